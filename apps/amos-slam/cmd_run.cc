@@ -1,0 +1,16 @@
+#include <iostream>
+
+#include "commands.h"
+
+namespace amos::app {
+
+void addRunCommand(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("run", "(not available yet)");
+  cmd->allow_extras();
+  cmd->callback([&exit_code] {
+    std::cerr << "amos-slam run: this subcommand is not available yet in this build\n";
+    exit_code = 2;
+  });
+}
+
+}  // namespace amos::app

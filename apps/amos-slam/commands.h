@@ -1,0 +1,13 @@
+#pragma once
+// Each subcommand lives in its own cmd_<name>.cc and registers itself on the root CLI11 app. The callback stores
+// the command's exit code in `exit_code`; amos::core::Error thrown by the libraries is reported by main().
+#include <CLI/CLI.hpp>
+
+namespace amos::app {
+
+void addRunCommand(CLI::App& app, int& exit_code);
+void addEvalCommand(CLI::App& app, int& exit_code);
+void addSynthCommand(CLI::App& app, int& exit_code);
+void addSegmentCommand(CLI::App& app, int& exit_code);
+
+}  // namespace amos::app

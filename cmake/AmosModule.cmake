@@ -1,0 +1,27 @@
+# amos_add_module(<name> [DEPS <target>...] [TEST_DEPS <target>...])
+# Builds src/amos/<name>/*.cc (except *_test.cc and *_bench.cc) into the static library amos_<name>
+# (alias amos::<name>). With AMOS_BUILD_TESTS, every *_test.cc beside it goes into amos_<name>_tests, whose
+# GoogleTest cases are registered with CTest as "<name>/<Suite>.<Case>".
+function(amos_add_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS;TEST_DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+  list(FILTER sources EXCLUDE REGEX "_(test|bench)\\.cc$")
+  add_library(amos_${name} STATIC ${sources})
+  add_library(amos::${name} ALIAS amos_${name})
+  target_include_directories(amos_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(amos_${name} PUBLIC ${ARG_DEPS})
+  target_compile_features(amos_${name} PUBLIC cxx_std_17)
+
+  if(AMOS_BUILD_TESTS)
+    file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
+    if(tests)
+      add_executable(amos_${name}_tests ${tests})
+      target_link_libraries(amos_${name}_tests PRIVATE amos_${name} ${ARG_TEST_DEPS} GTest::gtest GTest::gtest_main)
+      target_compile_definitions(amos_${name}_tests PRIVATE
+        AMOS_SHARED_DIR="${AMOS_SHARED_DIR}" AMOS_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+        AMOS_BINARY_DIR="${PROJECT_BINARY_DIR}")
+      gtest_discover_tests(amos_${name}_tests TEST_PREFIX "${name}/" DISCOVERY_TIMEOUT 60
+        WORKING_DIRECTORY ${PROJECT_BINARY_DIR})
+    endif()
+  endif()
+endfunction()

@@ -1,0 +1,54 @@
+#include "amos/core/camera.h"
+
+#include <gtest/gtest.h>
+
+#include "amos/core/error.h"
+
+namespace amos::core {
+namespace {
+
+CameraIntrinsics fr3() {
+  CameraIntrinsics c;
+  c.fx = 535.4; c.fy = 539.2; c.cx = 320.1; c.cy = 247.6;
+  return c;
+}
+
+TEST(Camera, ProjectInvertsBackProject) {
+  PinholeCamera cam(fr3());
+  const Eigen::Vector3d p = cam.backProject(100.5, 400.25, 2.5);
+  const Eigen::Vector2d uv = cam.project(p);
+  EXPECT_NEAR(uv.x(), 100.5, 1e-9);
+  EXPECT_NEAR(uv.y(), 400.25, 1e-9);
+  EXPECT_NEAR(p.z(), 2.5, 1e-12);
+}
+
+TEST(Camera, RejectsNonPositiveFocalLengthNamingTheKey) {
+  CameraIntrinsics c = fr3();
+  c.fy = 0;
+  try {
+    PinholeCamera cam(c);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("Camera.fy"), std::string::npos);
+  }
+}
+
+TEST(Camera, UndistortIsIdentityWithoutDistortion) {
+  PinholeCamera cam(fr3());
+  const auto out = cam.undistort({{10.f, 20.f}});
+  EXPECT_FLOAT_EQ(out[0].x, 10.f);
+  EXPECT_FLOAT_EQ(out[0].y, 20.f);
+}
+
+TEST(Camera, UndistortMovesCornerPixelsWithFr1Distortion) {
+  CameraIntrinsics c;
+  c.fx = 517.306408; c.fy = 516.469215; c.cx = 318.643040; c.cy = 255.313989;
+  c.k1 = 0.262383; c.k2 = -0.953104; c.p1 = -0.005358; c.p2 = 0.002628; c.k3 = 1.163314;
+  PinholeCamera cam(c);
+  const auto out = cam.undistort({{0.f, 0.f}, {318.643040f, 255.313989f}});
+  EXPECT_GT(std::abs(out[0].x) + std::abs(out[0].y), 1.0);  // the corner moves
+  EXPECT_NEAR(out[1].x, 318.643040, 1e-3);                   // the principal point does not
+}
+
+}  // namespace
+}  // namespace amos::core

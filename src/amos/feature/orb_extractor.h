@@ -1,0 +1,42 @@
+#pragma once
+// ORB features on a scale pyramid, spread evenly over the image (ORB-SLAM2-style cell FAST with a threshold
+// fallback, then quadtree distribution), oriented by intensity centroid, with 256-bit rBRIEF descriptors.
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+namespace amos::feature {
+
+struct OrbOptions {
+  int num_features = 1000;   // ORBextractor.nFeatures
+  double scale_factor = 1.2; // ORBextractor.scaleFactor
+  int num_levels = 8;        // ORBextractor.nLevels
+  int ini_fast_threshold = 20;  // ORBextractor.iniThFAST
+  int min_fast_threshold = 7;   // ORBextractor.minThFAST
+  // Throws core::Error naming the ORBextractor.* key whose value is invalid.
+  void check() const;
+};
+
+class OrbExtractor {
+ public:
+  explicit OrbExtractor(const OrbOptions& options);
+
+  // gray: CV_8UC1. Keypoints are in level-0 pixel coordinates (distorted, as detected), with octave, angle (deg)
+  // and size set; descriptors is N x 32 CV_8U, row i belongs to keypoint i. Deterministic for a given image.
+  // Optional mask (CV_8UC1, 0 = do not detect there) restricts detection.
+  void extract(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
+               const cv::Mat& mask = cv::Mat()) const;
+
+  const OrbOptions& options() const { return options_; }
+  // scale of level l relative to level 0 (scale_factor^l), and its square / inverses, as tracking needs them.
+  const std::vector<float>& scaleFactors() const { return scale_; }
+  const std::vector<float>& levelSigma2() const { return sigma2_; }
+  const std::vector<float>& invLevelSigma2() const { return inv_sigma2_; }
+
+ private:
+  OrbOptions options_;
+  std::vector<float> scale_, sigma2_, inv_sigma2_;
+  std::vector<int> features_per_level_;
+};
+
+}  // namespace amos::feature

@@ -1,0 +1,72 @@
+#pragma once
+// Reader for RGB-D sequences in the TUM RGB-D / Bonn layout:
+//   rgb/ depth/ rgb.txt depth.txt [groundtruth.txt] [associations.txt | associate.txt]
+// Frames are associated one-to-one by nearest timestamp within max_dt (as the TUM benchmark's associate.py
+// does), or taken from an association file (`t_rgb rgb/x.png t_depth depth/y.png [...]`) when there is one.
+// Frames stream lazily through a prefetch thread, so a long sequence never sits in memory.
+#include <opencv2/core.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace amos::io {
+
+struct AssociatedFrame {
+  double t_rgb = 0, t_depth = 0;
+  std::string rgb_file, depth_file;  // absolute or relative to the working directory
+};
+
+struct SequenceIndex {
+  std::string dir;
+  std::vector<AssociatedFrame> frames;
+  std::string groundtruth_file;  // empty when the sequence has none
+};
+
+// Lists the frames of the sequence in `dir`. Listed files that do not exist are skipped with one warning naming
+// them; malformed lines throw core::Error naming file and line; an empty result throws.
+SequenceIndex indexSequence(const std::string& dir, double max_dt = 0.02);
+
+// Associates two stamped lists like associate.py: candidate pairs within max_dt, greedily by smallest time
+// difference, each stamp used once; result sorted by the first list's stamps. Returns index pairs (a, b).
+std::vector<std::pair<std::size_t, std::size_t>> associateStamps(const std::vector<double>& a,
+                                                                 const std::vector<double>& b, double max_dt);
+
+struct RgbdFrame {
+  std::size_t index = 0;  // position in the sequence
+  double timestamp = 0;   // of the RGB image
+  cv::Mat bgr;            // CV_8UC3
+  cv::Mat depth;          // CV_32F metres, 0 where the sensor gave no depth
+  std::string rgb_file;
+};
+
+struct ReaderOptions {
+  double depth_factor = 5000.0;  // DepthMapFactor: raw 16-bit value / factor = metres
+  int width = 640, height = 480; // expected image size (Camera.width/height)
+  std::size_t prefetch = 8;      // frames decoded ahead of the consumer
+};
+
+// Loads and validates one frame: throws core::Error naming the file for unreadable images, a wrong size,
+// an 8-bit depth image or a depth image without a single valid pixel.
+RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index);
+
+class SequenceReader {
+ public:
+  SequenceReader(SequenceIndex index, ReaderOptions options);
+  ~SequenceReader();
+  SequenceReader(const SequenceReader&) = delete;
+  SequenceReader& operator=(const SequenceReader&) = delete;
+
+  // Next frame in order, or nullopt at the end. Rethrows a load error of that frame in the caller's thread.
+  std::optional<RgbdFrame> next();
+  std::size_t size() const;
+  const SequenceIndex& index() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace amos::io
