@@ -1,11 +1,14 @@
-# amos_add_module(<name> [DEPS <target>...] [TEST_DEPS <target>...])
+# amos_add_module(<name> [DEPS <target>...] [TEST_DEPS <target>...] [EXCLUDE <regex>])
 # Builds src/amos/<name>/*.cc (except *_test.cc and *_bench.cc) into the static library amos_<name>
 # (alias amos::<name>). With AMOS_BUILD_TESTS, every *_test.cc beside it goes into amos_<name>_tests, whose
 # GoogleTest cases are registered with CTest as "<name>/<Suite>.<Case>".
 function(amos_add_module name)
-  cmake_parse_arguments(ARG "" "" "DEPS;TEST_DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "EXCLUDE" "DEPS;TEST_DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
   list(FILTER sources EXCLUDE REGEX "_(test|bench)\\.cc$")
+  if(ARG_EXCLUDE)
+    list(FILTER sources EXCLUDE REGEX "${ARG_EXCLUDE}")
+  endif()
   add_library(amos_${name} STATIC ${sources})
   add_library(amos::${name} ALIAS amos_${name})
   target_include_directories(amos_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
@@ -14,6 +17,9 @@ function(amos_add_module name)
 
   if(AMOS_BUILD_TESTS)
     file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
+    if(ARG_EXCLUDE AND tests)
+      list(FILTER tests EXCLUDE REGEX "${ARG_EXCLUDE}")
+    endif()
     if(tests)
       add_executable(amos_${name}_tests ${tests})
       target_link_libraries(amos_${name}_tests PRIVATE amos_${name} ${ARG_TEST_DEPS} GTest::gtest GTest::gtest_main)
