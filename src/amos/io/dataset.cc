@@ -1,0 +1,208 @@
+#include "amos/io/dataset.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <exception>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <thread>
+#include <variant>
+
+#include "amos/core/bounded_queue.h"
+#include "amos/core/error.h"
+#include "amos/io/text_lines.h"
+
+namespace amos::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct StampedFile {
+  double t = 0;
+  std::string file;
+};
+
+std::vector<StampedFile> readStampedList(const std::string& path) {
+  std::vector<StampedFile> out;
+  for (const auto& line : readTextLines(path)) {
+    if (line.fields.size() < 2) {
+      throw core::Error(fmt::format("{}:{}: expected 'timestamp filename', got {} field(s)", path, line.number,
+                                    line.fields.size()));
+    }
+    out.push_back({parseNumber(line.fields[0], path, line.number, "timestamp"), line.fields[1]});
+  }
+  return out;
+}
+
+std::vector<AssociatedFrame> readAssociationFile(const std::string& path) {
+  std::vector<AssociatedFrame> out;
+  for (const auto& line : readTextLines(path)) {
+    if (line.fields.size() < 4) {
+      throw core::Error(fmt::format("{}:{}: expected 't_rgb rgb_file t_depth depth_file', got {} field(s)", path,
+                                    line.number, line.fields.size()));
+    }
+    AssociatedFrame f;
+    f.t_rgb = parseNumber(line.fields[0], path, line.number, "RGB timestamp");
+    f.rgb_file = line.fields[1];
+    f.t_depth = parseNumber(line.fields[2], path, line.number, "depth timestamp");
+    f.depth_file = line.fields[3];
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+std::string firstExisting(const fs::path& dir, std::initializer_list<const char*> names) {
+  for (const char* name : names) {
+    if (fs::is_regular_file(dir / name)) return (dir / name).string();
+  }
+  return {};
+}
+
+// Drops entries whose files are missing, warning once per missing file (the first few by name, then a count).
+void dropMissingFiles(std::vector<AssociatedFrame>& frames) {
+  constexpr std::size_t kNamedWarnings = 10;
+  std::size_t missing = 0;
+  auto gone = [&](const std::string& file) {
+    if (fs::is_regular_file(file)) return false;
+    if (++missing <= kNamedWarnings) spdlog::warn("listed file is missing, frame skipped: {}", file);
+    return true;
+  };
+  frames.erase(std::remove_if(frames.begin(), frames.end(),
+                              [&](const AssociatedFrame& f) { return gone(f.rgb_file) | gone(f.depth_file); }),
+               frames.end());
+  if (missing > kNamedWarnings) spdlog::warn("{} listed files are missing in all; their frames were skipped", missing);
+}
+
+}  // namespace
+
+std::vector<std::pair<std::size_t, std::size_t>> associateStamps(const std::vector<double>& a,
+                                                                 const std::vector<double>& b, double max_dt) {
+  struct Candidate {
+    double diff;
+    std::size_t i, j;
+  };
+  std::vector<Candidate> candidates;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      const double diff = std::abs(a[i] - b[j]);
+      if (diff < max_dt) candidates.push_back({diff, i, j});
+    }
+  }
+  // Greedy by smallest difference; ties keep list order (stable), as Python's sort does.
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& x, const Candidate& y) { return x.diff < y.diff; });
+  std::vector<bool> used_a(a.size(), false), used_b(b.size(), false);
+  std::vector<std::pair<std::size_t, std::size_t>> matches;
+  for (const auto& c : candidates) {
+    if (used_a[c.i] || used_b[c.j]) continue;
+    used_a[c.i] = used_b[c.j] = true;
+    matches.emplace_back(c.i, c.j);
+  }
+  std::sort(matches.begin(), matches.end(), [&](const auto& x, const auto& y) { return a[x.first] < a[y.first]; });
+  return matches;
+}
+
+SequenceIndex indexSequence(const std::string& dir, double max_dt) {
+  const fs::path root(dir);
+  core::require(fs::is_directory(root), fmt::format("sequence folder '{}' does not exist", dir));
+  SequenceIndex index;
+  index.dir = dir;
+  const std::string association = firstExisting(root, {"associations.txt", "associate.txt", "association.txt"});
+  if (!association.empty()) {
+    index.frames = readAssociationFile(association);
+  } else {
+    const std::string rgb_list = (root / "rgb.txt").string(), depth_list = (root / "depth.txt").string();
+    core::require(fs::is_regular_file(rgb_list) && fs::is_regular_file(depth_list),
+                  fmt::format("'{}' has neither an association file nor rgb.txt + depth.txt", dir));
+    const auto rgb = readStampedList(rgb_list);
+    const auto depth = readStampedList(depth_list);
+    std::vector<double> t_rgb, t_depth;
+    for (const auto& s : rgb) t_rgb.push_back(s.t);
+    for (const auto& s : depth) t_depth.push_back(s.t);
+    for (const auto& [i, j] : associateStamps(t_rgb, t_depth, max_dt)) {
+      index.frames.push_back({rgb[i].t, depth[j].t, rgb[i].file, depth[j].file});
+    }
+  }
+  for (auto& f : index.frames) {
+    f.rgb_file = (root / f.rgb_file).string();
+    f.depth_file = (root / f.depth_file).string();
+  }
+  dropMissingFiles(index.frames);
+  core::require(!index.frames.empty(), fmt::format("sequence '{}' has no RGB-D frame to read", dir));
+  index.groundtruth_file = firstExisting(root, {"groundtruth.txt"});
+  return index;
+}
+
+RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index) {
+  RgbdFrame frame;
+  frame.index = index;
+  frame.timestamp = entry.t_rgb;
+  frame.rgb_file = entry.rgb_file;
+  frame.bgr = cv::imread(entry.rgb_file, cv::IMREAD_COLOR);
+  core::require(!frame.bgr.empty(), fmt::format("cannot read colour image '{}'", entry.rgb_file));
+  core::require(frame.bgr.cols == options.width && frame.bgr.rows == options.height,
+                fmt::format("colour image '{}' is {}x{}, the settings say {}x{}", entry.rgb_file, frame.bgr.cols,
+                            frame.bgr.rows, options.width, options.height));
+  const cv::Mat raw = cv::imread(entry.depth_file, cv::IMREAD_UNCHANGED);
+  core::require(!raw.empty(), fmt::format("cannot read depth image '{}'", entry.depth_file));
+  core::require(raw.channels() == 1 && (raw.depth() == CV_16U || raw.depth() == CV_32F),
+                fmt::format("depth image '{}' is {}-bit with {} channel(s); expected a 16-bit single-channel PNG",
+                            entry.depth_file, raw.elemSize1() * 8, raw.channels()));
+  core::require(raw.cols == options.width && raw.rows == options.height,
+                fmt::format("depth image '{}' is {}x{}, the settings say {}x{}", entry.depth_file, raw.cols, raw.rows,
+                            options.width, options.height));
+  raw.convertTo(frame.depth, CV_32F, raw.depth() == CV_16U ? 1.0 / options.depth_factor : 1.0);
+  core::require(cv::countNonZero(frame.depth > 0) > 0,
+                fmt::format("depth image '{}' has no valid pixel", entry.depth_file));
+  return frame;
+}
+
+struct SequenceReader::Impl {
+  SequenceIndex index;
+  ReaderOptions options;
+  using Item = std::variant<RgbdFrame, std::exception_ptr>;
+  core::BoundedQueue<Item> queue;
+  std::thread worker;
+
+  Impl(SequenceIndex idx, ReaderOptions opts)
+      : index(std::move(idx)), options(opts), queue(std::max<std::size_t>(1, opts.prefetch)) {
+    worker = std::thread([this] { produce(); });
+  }
+  ~Impl() {
+    queue.close();
+    if (worker.joinable()) worker.join();
+  }
+  void produce() {
+    for (std::size_t i = 0; i < index.frames.size(); ++i) {
+      Item item;
+      try {
+        item = loadRgbdFrame(index.frames[i], options, i);
+      } catch (...) {
+        item = std::current_exception();
+      }
+      const bool failed = std::holds_alternative<std::exception_ptr>(item);
+      if (!queue.push(std::move(item)) || failed) break;
+    }
+    queue.close();
+  }
+};
+
+SequenceReader::SequenceReader(SequenceIndex index, ReaderOptions options)
+    : impl_(std::make_unique<Impl>(std::move(index), options)) {}
+
+SequenceReader::~SequenceReader() = default;
+
+std::optional<RgbdFrame> SequenceReader::next() {
+  auto item = impl_->queue.pop();
+  if (!item) return std::nullopt;
+  if (auto* error = std::get_if<std::exception_ptr>(&*item)) std::rethrow_exception(*error);
+  return std::get<RgbdFrame>(std::move(*item));
+}
+
+std::size_t SequenceReader::size() const { return impl_->index.frames.size(); }
+const SequenceIndex& SequenceReader::index() const { return impl_->index; }
+
+}  // namespace amos::io

@@ -1,0 +1,150 @@
+#include "amos/io/dataset.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "amos/core/error.h"
+
+namespace amos::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A tiny TUM-layout sequence in a fresh temporary folder.
+class TinySequence : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / fs::path("amos_dataset_test_" + std::string(::testing::UnitTest::GetInstance()
+                                                                                     ->current_test_info()
+                                                                                     ->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "rgb");
+    fs::create_directories(dir_ / "depth");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  void writeImages(const std::string& stamp, cv::Size size = {64, 48}, int depth_type = CV_16U) {
+    cv::imwrite((dir_ / "rgb" / (stamp + ".png")).string(), cv::Mat(size, CV_8UC3, cv::Scalar(10, 20, 30)));
+    cv::Mat depth(size, depth_type, cv::Scalar(5000));
+    if (depth_type == CV_8U) depth.setTo(200);
+    cv::imwrite((dir_ / "depth" / (stamp + ".png")).string(), depth);
+  }
+  void writeFile(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  ReaderOptions smallOptions() const {
+    ReaderOptions o;
+    o.width = 64;
+    o.height = 48;
+    return o;
+  }
+  fs::path dir_;
+};
+
+using Pair = std::pair<std::size_t, std::size_t>;
+
+TEST(AssociateStamps, GreedyNearestWithinWindowLikeAssociatePy) {
+  const std::vector<double> rgb = {0.00, 0.033, 0.066, 0.5};
+  const std::vector<double> depth = {0.010, 0.030, 0.031, 0.070};
+  const auto m = associateStamps(rgb, depth, 0.02);
+  ASSERT_EQ(m.size(), 3u);  // 0.5 has no depth within 0.02 s
+  EXPECT_EQ(m[0], Pair(0, 0));
+  EXPECT_EQ(m[1], Pair(1, 2));  // 0.031 is closer than 0.030
+  EXPECT_EQ(m[2], Pair(2, 3));
+}
+
+TEST_F(TinySequence, AssociatesListsAndSkipsMissingFile) {
+  writeImages("1.000000");
+  writeImages("1.033000");
+  writeFile("rgb.txt", "# color images\n1.000000 rgb/1.000000.png\n1.033000 rgb/1.033000.png\n1.066 rgb/gone.png\n");
+  writeFile("depth.txt", "# depth\r\n1.005 depth/1.000000.png\r\n1.040 depth/1.033000.png\r\n1.07 depth/x.png\r\n");
+  const SequenceIndex index = indexSequence(dir_.string());
+  ASSERT_EQ(index.frames.size(), 2u);
+  EXPECT_DOUBLE_EQ(index.frames[1].t_depth, 1.040);
+  EXPECT_TRUE(index.groundtruth_file.empty());
+  SequenceReader reader(index, smallOptions());
+  int count = 0;
+  while (auto frame = reader.next()) {
+    EXPECT_EQ(frame->index, static_cast<std::size_t>(count));
+    EXPECT_FLOAT_EQ(frame->depth.at<float>(0, 0), 1.0f);
+    ++count;
+  }
+  EXPECT_EQ(count, 2);
+}
+
+TEST_F(TinySequence, MalformedLineNamesFileAndLine) {
+  writeFile("rgb.txt", "# header\n1.0 rgb/a.png\nnot-a-time rgb/b.png\n");
+  writeFile("depth.txt", "1.0 depth/a.png\n");
+  try {
+    indexSequence(dir_.string());
+    FAIL() << "expected an error";
+  } catch (const core::Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("rgb.txt:3"), std::string::npos) << what;
+  }
+}
+
+TEST_F(TinySequence, AssociationFileWithTooFewFieldsIsAnError) {
+  writeFile("associations.txt", "1.0 rgb/a.png 1.01\n");
+  EXPECT_THROW(indexSequence(dir_.string()), core::Error);
+}
+
+TEST_F(TinySequence, EmptySequenceIsAnError) {
+  writeFile("rgb.txt", "# nothing\n");
+  writeFile("depth.txt", "# nothing\n");
+  EXPECT_THROW(indexSequence(dir_.string()), core::Error);
+}
+
+TEST_F(TinySequence, EightBitDepthIsAClearError) {
+  writeImages("1.0", {64, 48}, CV_8U);
+  writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n");
+  try {
+    loadRgbdFrame(indexSequence(dir_.string()).frames[0], smallOptions(), 0);
+    FAIL() << "expected an error";
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("8-bit"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(TinySequence, WrongImageSizeIsAClearErrorThroughTheReader) {
+  writeImages("1.0", {32, 48});
+  writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n");
+  SequenceReader reader(indexSequence(dir_.string()), smallOptions());
+  try {
+    reader.next();
+    FAIL() << "expected an error";
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("32x48"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(TinySequence, DepthWithoutValidPixelIsAnError) {
+  cv::imwrite((dir_ / "rgb" / "1.png").string(), cv::Mat(48, 64, CV_8UC3, cv::Scalar(1, 2, 3)));
+  cv::imwrite((dir_ / "depth" / "1.png").string(), cv::Mat(48, 64, CV_16U, cv::Scalar(0)));
+  writeFile("associations.txt", "1.0 rgb/1.png 1.0 depth/1.png\n");
+  EXPECT_THROW(loadRgbdFrame(indexSequence(dir_.string()).frames[0], smallOptions(), 0), core::Error);
+}
+
+TEST(RealSequences, ReadsTheSharedTumAndBonnSlices) {
+  const std::string data = std::string(AMOS_SHARED_DIR) + "/data/";
+  const auto fr2 = indexSequence(data + "tum_fr2_desk_first50");
+  EXPECT_EQ(fr2.frames.size(), 50u);
+  EXPECT_FALSE(fr2.groundtruth_file.empty());
+  // fr1's association file lists the whole sequence; only 9 frames' files are there.
+  EXPECT_EQ(indexSequence(data + "tum_fr1_desk_first9").frames.size(), 9u);
+  const auto bonn = indexSequence(data + "bonn_crowd_dev");
+  EXPECT_EQ(bonn.frames.size(), 270u);
+  ReaderOptions options;
+  options.depth_factor = 5000;
+  const RgbdFrame f = loadRgbdFrame(bonn.frames[0], options, 0);
+  EXPECT_EQ(f.bgr.type(), CV_8UC3);
+  EXPECT_EQ(f.depth.type(), CV_32F);
+  double min_depth, max_depth;
+  cv::minMaxLoc(f.depth, &min_depth, &max_depth);
+  EXPECT_GT(max_depth, 1.0);
+  EXPECT_LT(max_depth, 20.0);
+}
+
+}  // namespace
+}  // namespace amos::io
