@@ -1,0 +1,45 @@
+#pragma once
+// All settings of a run, parsed once from one YAML file into the typed option structs of each module.
+// Keys: ORB-SLAM2's (Camera.*, ThDepth, DepthMapFactor, ORBextractor.*) plus this project's own sections.
+// See configs/*.yaml for every key with its default and meaning.
+#include <string>
+#include <vector>
+
+#include "amos/core/camera.h"
+#include "amos/feature/orb_extractor.h"
+#include "amos/io/dataset.h"
+
+namespace amos::config {
+
+enum class GroundTruthFormat { kTum, kBonn };
+
+struct Settings {
+  std::string source_file;  // where these settings came from (empty for defaults)
+
+  core::CameraIntrinsics camera;  // Camera.fx fy cx cy k1 k2 p1 p2 k3 width height
+  double fps = 30.0;              // Camera.fps
+  bool rgb_order = true;          // Camera.RGB: 1 = images are RGB (TUM PNGs are decoded to BGR by OpenCV either way)
+  double bf = 40.0;               // Camera.bf: baseline x fx of the virtual stereo pair (ORB-SLAM2 RGB-D convention)
+  double th_depth = 40.0;         // ThDepth: close/far threshold in baselines (close if z < ThDepth * bf / fx)
+  double depth_factor = 5000.0;   // DepthMapFactor: raw depth value / factor = metres
+
+  feature::OrbOptions orb;        // ORBextractor.*
+
+  GroundTruthFormat groundtruth_format = GroundTruthFormat::kTum;  // Dataset.groundtruth: tum | bonn
+  std::string models_dir;                                          // Segmentation.models_dir
+
+  // Reader options that follow from these settings (image size, depth factor).
+  io::ReaderOptions readerOptions() const;
+  // Close/far depth threshold in metres.
+  double closeDepthThreshold() const { return th_depth * bf / camera.fx; }
+  // Throws core::Error naming the key at fault.
+  void check() const;
+};
+
+// Parses `path`. Unknown keys are warned about (with their line); an invalid value throws core::Error naming
+// file, line and key.
+Settings loadSettings(const std::string& path);
+// Same, from text (tests).
+Settings parseSettings(const std::string& yaml_text, const std::string& virtual_path);
+
+}  // namespace amos::config

@@ -1,0 +1,94 @@
+#include "amos/config/settings.h"
+
+#include <gtest/gtest.h>
+
+#include "amos/config/yaml_reader.h"
+#include "amos/core/error.h"
+
+namespace amos::config {
+namespace {
+
+const char* kMinimal =
+    "%YAML:1.0\n"
+    "Camera.fx: 500.0\n"
+    "Camera.fy: 500.0\n"
+    "Camera.cx: 320.0\n"
+    "Camera.cy: 240.0\n";
+
+std::string errorOf(const std::string& text) {
+  try {
+    parseSettings(text, "test.yaml");
+  } catch (const core::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Settings, ShippedConfigsParseWithTheirCalibration) {
+  const std::string dir = std::string(AMOS_SOURCE_DIR) + "/configs/";
+  const Settings tum2 = loadSettings(dir + "tum2.yaml");
+  EXPECT_DOUBLE_EQ(tum2.camera.fx, 520.908620);
+  EXPECT_DOUBLE_EQ(tum2.camera.k3, 0.917205);
+  EXPECT_DOUBLE_EQ(tum2.depth_factor, 5208.0);
+  EXPECT_EQ(tum2.orb.num_features, 1000);
+  EXPECT_NEAR(tum2.closeDepthThreshold(), 40.0 * 40.0 / 520.908620, 1e-12);
+  const Settings bonn = loadSettings(dir + "bonn.yaml");
+  EXPECT_DOUBLE_EQ(bonn.camera.cy, 237.756098);
+  EXPECT_EQ(bonn.groundtruth_format, GroundTruthFormat::kBonn);
+  EXPECT_EQ(loadSettings(dir + "tum1.yaml").camera.width, 640);
+  EXPECT_FALSE(loadSettings(dir + "tum3.yaml").camera.hasDistortion());
+}
+
+TEST(Settings, DefaultsFillWhatTheFileOmits) {
+  const Settings s = parseSettings(kMinimal, "test.yaml");
+  EXPECT_EQ(s.orb.num_levels, 8);
+  EXPECT_DOUBLE_EQ(s.depth_factor, 5000.0);
+  EXPECT_EQ(s.readerOptions().width, 640);
+}
+
+TEST(Settings, WrongTypeNamesFileLineAndKey) {
+  const std::string e = errorOf(std::string(kMinimal) + "ORBextractor.nLevels: eight\n");
+  EXPECT_NE(e.find("test.yaml:6"), std::string::npos) << e;
+  EXPECT_NE(e.find("ORBextractor.nLevels"), std::string::npos) << e;
+}
+
+TEST(Settings, InvalidValueNamesFileLineAndKey) {
+  const std::string e = errorOf(std::string(kMinimal) + "DepthMapFactor: -1\n");
+  EXPECT_NE(e.find("test.yaml:6"), std::string::npos) << e;
+  EXPECT_NE(e.find("DepthMapFactor"), std::string::npos) << e;
+  const std::string orb = errorOf(std::string(kMinimal) + "ORBextractor.nFeatures: 0\n");
+  EXPECT_NE(orb.find("ORBextractor.nFeatures"), std::string::npos) << orb;
+  EXPECT_NE(orb.find("test.yaml:6"), std::string::npos) << orb;
+}
+
+TEST(Settings, MissingRequiredKeyIsAnError) {
+  const std::string e = errorOf("Camera.fx: 500.0\nCamera.fy: 500.0\nCamera.cx: 320.0\n");
+  EXPECT_NE(e.find("Camera.cy"), std::string::npos) << e;
+}
+
+TEST(Settings, MalformedYamlNamesTheLine) {
+  const std::string e = errorOf(std::string(kMinimal) + "Camera.k1: [0.1, \n  : :\n");
+  EXPECT_NE(e.find("test.yaml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("malformed"), std::string::npos) << e;
+}
+
+TEST(Settings, BadEnumValueIsNamed) {
+  const std::string e = errorOf(std::string(kMinimal) + "Dataset.groundtruth: vicon\n");
+  EXPECT_NE(e.find("Dataset.groundtruth"), std::string::npos) << e;
+}
+
+TEST(YamlReader, ReportsUnknownKeys) {
+  YamlReader in = YamlReader::fromText(std::string(kMinimal) + "Camera.fz: 3\n", "t.yaml");
+  double fx = 0;
+  in.read("Camera.fx", fx);
+  const auto unread = in.unreadKeys();
+  EXPECT_NE(std::find(unread.begin(), unread.end(), "Camera.fz"), unread.end());
+  EXPECT_EQ(in.where("Camera.fz"), "t.yaml:6");
+}
+
+TEST(YamlReader, MissingFileIsAnError) {
+  EXPECT_THROW(YamlReader::fromFile("/nonexistent/settings.yaml"), core::Error);
+}
+
+}  // namespace
+}  // namespace amos::config

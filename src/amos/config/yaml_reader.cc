@@ -1,0 +1,124 @@
+#include "amos/config/yaml_reader.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "amos/core/error.h"
+
+namespace amos::config {
+
+namespace {
+// OpenCV writes `%YAML:1.0`, which is not a valid YAML directive; blank it (keeping line numbers intact).
+std::string withoutOpenCvHeader(std::string text) {
+  if (text.rfind("%YAML:", 0) == 0) {
+    const auto eol = text.find('\n');
+    text.replace(0, eol == std::string::npos ? text.size() : eol, "");
+  }
+  return text;
+}
+}  // namespace
+
+YamlReader YamlReader::fromFile(const std::string& path) {
+  std::ifstream in(path);
+  core::require(in.good(), fmt::format("cannot open settings file '{}'", path));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return fromText(buffer.str(), path);
+}
+
+YamlReader YamlReader::fromText(const std::string& text, const std::string& virtual_path) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(withoutOpenCvHeader(text));
+  } catch (const YAML::Exception& e) {
+    throw core::Error(fmt::format("{}:{}: malformed YAML: {}", virtual_path, e.mark.line + 1, e.msg));
+  }
+  if (!root.IsMap()) {
+    throw core::Error(fmt::format("{}: settings must be a map of `Key: value` lines", virtual_path));
+  }
+  return YamlReader(root, virtual_path);
+}
+
+YamlReader::YamlReader(YAML::Node root, std::string path) : root_(std::move(root)), path_(std::move(path)) {
+  for (const auto& kv : root_) entries_[kv.first.as<std::string>()] = kv.second;
+}
+
+bool YamlReader::has(const std::string& key) const { return entries_.count(key) > 0; }
+
+std::string YamlReader::where(const std::string& key) const {
+  auto it = entries_.find(key);
+  if (it == entries_.end()) return path_;
+  return fmt::format("{}:{}", path_, it->second.Mark().line + 1);
+}
+
+const YAML::Node& YamlReader::node(const std::string& key) {
+  read_.insert(key);
+  return entries_.at(key);
+}
+
+template <typename T>
+void YamlReader::readScalar(const std::string& key, T& value, const char* type_name) {
+  if (!has(key)) return;
+  const YAML::Node& n = node(key);
+  const std::string text = n.IsScalar() ? n.Scalar() : std::string("<not a scalar>");
+  try {
+    if (!n.IsScalar()) throw YAML::Exception(n.Mark(), "not a scalar");
+    value = n.as<T>();
+  } catch (const YAML::Exception&) {
+    throw core::Error(fmt::format("{}: key '{}' must be {}, got '{}'", where(key), key, type_name, text));
+  }
+}
+
+void YamlReader::read(const std::string& key, double& value) {
+  readScalar(key, value, "a number");
+  if (has(key) && !std::isfinite(value)) throw core::Error(fmt::format("{}: key '{}' must be finite", where(key), key));
+}
+void YamlReader::read(const std::string& key, float& value) {
+  double v = value;
+  read(key, v);
+  value = static_cast<float>(v);
+}
+void YamlReader::read(const std::string& key, int& value) { readScalar(key, value, "a whole number"); }
+void YamlReader::read(const std::string& key, bool& value) {
+  if (!has(key)) return;
+  // ORB-SLAM2 files write flags as 0/1; accept those as well as true/false.
+  const YAML::Node& n = node(key);
+  const std::string text = n.IsScalar() ? n.Scalar() : "";
+  if (text == "1") value = true;
+  else if (text == "0") value = false;
+  else readScalar(key, value, "true/false (or 1/0)");
+}
+void YamlReader::read(const std::string& key, std::string& value) { readScalar(key, value, "a string"); }
+void YamlReader::read(const std::string& key, std::vector<std::string>& value) {
+  if (!has(key)) return;
+  const YAML::Node& n = node(key);
+  if (n.IsScalar()) {
+    value = {n.Scalar()};
+    return;
+  }
+  if (!n.IsSequence()) throw core::Error(fmt::format("{}: key '{}' must be a list of names", where(key), key));
+  value.clear();
+  for (const auto& item : n) {
+    if (!item.IsScalar()) throw core::Error(fmt::format("{}: key '{}' must be a list of names", where(key), key));
+    value.push_back(item.Scalar());
+  }
+}
+
+std::vector<std::string> YamlReader::unreadKeys() const {
+  std::vector<std::string> out;
+  for (const auto& [key, n] : entries_) {
+    if (!read_.count(key)) out.push_back(key);
+  }
+  return out;
+}
+
+std::vector<std::string> YamlReader::keys() const {
+  std::vector<std::string> out;
+  for (const auto& kv : entries_) out.push_back(kv.first);
+  return out;
+}
+
+}  // namespace amos::config
