@@ -1,0 +1,81 @@
+#include "amos/io/trajectory.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "amos/core/error.h"
+#include "amos/io/text_lines.h"
+
+namespace amos::io {
+namespace {
+
+// Locale-independent parse of one whole token; accepts a leading '+' like Python's float().
+bool parseDouble(const std::string& token, double& value) {
+  const char* begin = token.data();
+  const char* end = token.data() + token.size();
+  if (begin != end && *begin == '+') ++begin;
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+}  // namespace
+
+std::vector<StampedPose> readTumTrajectory(const std::string& path) {
+  core::require(std::filesystem::is_regular_file(path),
+                fmt::format("trajectory file '{}' does not exist (or is not a regular file)", path));
+  std::vector<StampedPose> poses;
+  int skipped = 0;
+  // readTextLines splits on blanks, tabs and commas and drops '#' comments and blank lines, like the TUM scripts.
+  for (const TextLine& line : readTextLines(path)) {
+    const std::vector<std::string>& fields = line.fields;
+    if (fields.size() != 8) {
+      throw core::Error(fmt::format("{}:{}: expected 8 numbers 'timestamp tx ty tz qx qy qz qw', found {} fields",
+                                    path, line.number, fields.size()));
+    }
+    std::array<double, 8> v{};
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      if (!parseDouble(fields[k], v[k])) {
+        throw core::Error(fmt::format("{}:{}: field {} '{}' is not a number", path, line.number, k + 1, fields[k]));
+      }
+    }
+    const bool finite = std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+    const bool zero_quaternion = v[4] == 0 && v[5] == 0 && v[6] == 0 && v[7] == 0;
+    if (!finite || zero_quaternion) {
+      // evaluate_rpe.py drops such lines too; they carry no usable pose.
+      spdlog::warn("{}:{}: {}, line skipped", path, line.number, finite ? "all-zero quaternion" : "non-finite value");
+      ++skipped;
+      continue;
+    }
+    StampedPose pose;
+    pose.timestamp = v[0];
+    pose.T_wc = core::makeSE3(Eigen::Quaterniond(v[7], v[4], v[5], v[6]), Eigen::Vector3d(v[1], v[2], v[3]));
+    poses.push_back(pose);
+  }
+  if (skipped > 0) spdlog::warn("{}: {} line(s) skipped", path, skipped);
+  return poses;
+}
+
+void writeTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "w"), &std::fclose);
+  core::require(file != nullptr, fmt::format("cannot write trajectory file '{}'", path));
+  std::fprintf(file.get(), "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n");
+  for (const StampedPose& pose : poses) {
+    const Eigen::Vector3d t = pose.T_wc.translation();
+    const Eigen::Quaterniond q(pose.T_wc.linear());
+    std::fprintf(file.get(), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", pose.timestamp, t.x(), t.y(), t.z(),
+                 q.x(), q.y(), q.z(), q.w());
+  }
+  const bool ok = std::ferror(file.get()) == 0;
+  const int close_result = std::fclose(file.release());
+  core::require(ok && close_result == 0, fmt::format("error while writing trajectory file '{}'", path));
+}
+
+}  // namespace amos::io

@@ -1,0 +1,125 @@
+#include "amos/io/trajectory.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "amos/core/error.h"
+
+namespace amos::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A scratch file under the build tree, unique per test process.
+std::string scratchPath(const std::string& name) {
+  const fs::path dir = fs::path(AMOS_BINARY_DIR) / "test_scratch" / ("trajectory_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return (dir / name).string();
+}
+
+void writeText(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+TEST(TumTrajectory, RoundTripKeepsPosesToNanometres) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  std::vector<StampedPose> poses;
+  for (int i = 0; i < 50; ++i) {
+    StampedPose p;
+    p.timestamp = 1305031098.665912 + 0.033 * i;
+    p.T_wc = core::expSE3((core::Vector6d() << u(rng), u(rng), u(rng), u(rng) / 3, u(rng) / 3, u(rng) / 3)
+                              .finished());
+    poses.push_back(p);
+  }
+  const std::string path = scratchPath("round_trip.txt");
+  writeTumTrajectory(path, poses);
+  const std::vector<StampedPose> back = readTumTrajectory(path);
+  ASSERT_EQ(back.size(), poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_NEAR(back[i].timestamp, poses[i].timestamp, 1e-6);  // %.6f of a 1e9 s stamp
+    EXPECT_LT((back[i].T_wc.translation() - poses[i].T_wc.translation()).norm(), 2e-9);
+    EXPECT_LT((back[i].T_wc.linear() - poses[i].T_wc.linear()).norm(), 1e-8);
+  }
+}
+
+TEST(TumTrajectory, AcceptsCommentsBlankLinesCommasAndTabs) {
+  const std::string path = scratchPath("separators.txt");
+  writeText(path,
+            "# ground truth trajectory\n"
+            "\n"
+            "   \n"
+            "  # indented comment\n"
+            "1.0 1 2 3 0 0 0 1\n"
+            "2.0,4,5,6,0,0,0,2\n"          // unnormalised quaternion is normalised
+            "3.0\t7\t8\t9\t0\t0\t1\t0\r\n"  // tabs and a Windows line end
+            "4.0, +1e-1 , 0 ,0, 0,0,0,1\n");
+  const std::vector<StampedPose> poses = readTumTrajectory(path);
+  ASSERT_EQ(poses.size(), 4u);
+  EXPECT_DOUBLE_EQ(poses[0].timestamp, 1.0);
+  EXPECT_EQ(poses[1].T_wc.translation(), Eigen::Vector3d(4, 5, 6));
+  EXPECT_LT((poses[1].T_wc.linear() - Eigen::Matrix3d::Identity()).norm(), 1e-15);
+  // q = (x 0, y 0, z 1, w 0): 180 degrees about z.
+  EXPECT_LT((poses[2].T_wc.linear() - Eigen::Vector3d(-1, -1, 1).asDiagonal().toDenseMatrix()).norm(), 1e-15);
+  EXPECT_DOUBLE_EQ(poses[3].T_wc.translation().x(), 0.1);
+}
+
+TEST(TumTrajectory, SkipsZeroQuaternionAndNanLinesLikeTheBenchmark) {
+  const std::string path = scratchPath("zero_q.txt");
+  writeText(path, "1 0 0 0 0 0 0 0\n2 nan 0 0 0 0 0 1\n3 1 1 1 0 0 0 1\n");
+  const std::vector<StampedPose> poses = readTumTrajectory(path);
+  ASSERT_EQ(poses.size(), 1u);
+  EXPECT_DOUBLE_EQ(poses[0].timestamp, 3.0);
+}
+
+TEST(TumTrajectory, MalformedLineNamesFileAndLine) {
+  const std::string path = scratchPath("malformed.txt");
+  writeText(path, "# header\n1 0 0 0 0 0 0 1\n2 0 0 0 0 0 1\n");
+  try {
+    readTumTrajectory(path);
+    FAIL() << "no error for a line with 7 fields";
+  } catch (const core::Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path + ":3:"), std::string::npos) << message;
+    EXPECT_NE(message.find("7 fields"), std::string::npos) << message;
+  }
+  writeText(path, "1 0 0 0 0 0 0 1\n\n2 0 0 zero 0 0 0 1\n");
+  try {
+    readTumTrajectory(path);
+    FAIL() << "no error for a non-numeric field";
+  } catch (const core::Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path + ":3:"), std::string::npos) << message;
+    EXPECT_NE(message.find("'zero'"), std::string::npos) << message;
+  }
+}
+
+TEST(TumTrajectory, MissingFileIsAClearError) {
+  const std::string path = scratchPath("does_not_exist.txt");
+  try {
+    readTumTrajectory(path);
+    FAIL() << "no error for a missing file";
+  } catch (const core::Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("does not exist"), std::string::npos) << message;
+  }
+}
+
+TEST(TumTrajectory, ReadsTheOfficialGroundTruth) {
+  const std::string path =
+      std::string(AMOS_SHARED_DIR) + "/data/trajectories/rgbd_dataset_freiburg1_xyz_groundtruth.txt";
+  const std::vector<StampedPose> poses = readTumTrajectory(path);
+  ASSERT_EQ(poses.size(), 3000u);  // 3003 lines, 3 of them comments
+  EXPECT_DOUBLE_EQ(poses[0].timestamp, 1305031098.6659);
+  EXPECT_EQ(poses[0].T_wc.translation(), Eigen::Vector3d(1.3563, 0.6305, 1.6380));
+}
+
+}  // namespace
+}  // namespace amos::io
