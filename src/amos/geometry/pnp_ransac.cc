@@ -1,0 +1,206 @@
+#include "amos/geometry/pnp_ransac.h"
+
+#include <fmt/format.h>
+#include <opencv2/calib3d.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+
+#include "amos/core/error.h"
+
+namespace amos::geometry {
+
+void PnpRansacOptions::check() const {
+  core::require(std::isfinite(reprojection_threshold_px) && reprojection_threshold_px > 0,
+                fmt::format("PnP.reprojectionThreshold must be > 0, got {}", reprojection_threshold_px));
+  core::require(confidence > 0 && confidence < 1, fmt::format("PnP.confidence must be in (0, 1), got {}", confidence));
+  core::require(max_iterations > 0, fmt::format("PnP.maxIterations must be > 0, got {}", max_iterations));
+  core::require(min_inliers >= 4, fmt::format("PnP.minInliers must be >= 4, got {}", min_inliers));
+}
+
+namespace {
+
+// EPnP is well conditioned from 5 points on (OpenCV's own RANSAC uses 5 for EPnP too); 4 would be the minimum.
+constexpr int kSampleSize = 5;
+// Gauss-Newton rounds of the final refinement and re-evaluations of the inlier set after it.
+constexpr int kRefineIterations = 10;
+constexpr int kInlierRounds = 10;
+
+// Squared reprojection error of one correspondence, +inf when the point is not in front of the camera.
+double squaredError(const core::SE3& T_cw, const Eigen::Vector3d& p_w, const Eigen::Vector2d& uv,
+                    const core::PinholeCamera& camera) {
+  const Eigen::Vector3d p_c = T_cw * p_w;
+  if (p_c.z() <= 1e-9) return std::numeric_limits<double>::infinity();
+  return (camera.project(p_c) - uv).squaredNorm();
+}
+
+// Inliers of a pose; returns their count and fills `inliers` (sorted indices).
+int collectInliers(const core::SE3& T_cw, const std::vector<Eigen::Vector3d>& points_w,
+                   const std::vector<Eigen::Vector2d>& pixels, const core::PinholeCamera& camera,
+                   double threshold2, std::vector<int>& inliers) {
+  inliers.clear();
+  for (size_t i = 0; i < points_w.size(); ++i)
+    if (squaredError(T_cw, points_w[i], pixels[i], camera) < threshold2) inliers.push_back(static_cast<int>(i));
+  return static_cast<int>(inliers.size());
+}
+
+int countInliers(const core::SE3& T_cw, const std::vector<Eigen::Vector3d>& points_w,
+                 const std::vector<Eigen::Vector2d>& pixels, const core::PinholeCamera& camera, double threshold2) {
+  int count = 0;
+  for (size_t i = 0; i < points_w.size(); ++i)
+    count += squaredError(T_cw, points_w[i], pixels[i], camera) < threshold2 ? 1 : 0;
+  return count;
+}
+
+// k distinct indices in [0, n). Uses the raw mt19937 output (fully specified by the standard) rather than
+// std::uniform_int_distribution (implementation-defined), so a seed gives the same samples on every platform.
+std::array<int, kSampleSize> sampleIndices(std::mt19937& rng, int n) {
+  std::array<int, kSampleSize> idx{};
+  for (int k = 0; k < kSampleSize; ++k) {
+    bool fresh = false;
+    while (!fresh) {
+      idx[k] = static_cast<int>(rng() % static_cast<std::uint32_t>(n));
+      fresh = std::find(idx.begin(), idx.begin() + k, idx[k]) == idx.begin() + k;
+    }
+  }
+  return idx;
+}
+
+bool epnp(const std::vector<cv::Point3d>& object, const std::vector<cv::Point2d>& image, const cv::Mat& K,
+          core::SE3& T_cw) {
+  cv::Mat rvec, tvec;
+  if (!cv::solvePnP(object, image, K, cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_EPNP)) return false;
+  const Eigen::Vector3d r(rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2));
+  const Eigen::Vector3d t(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
+  if (!r.allFinite() || !t.allFinite()) return false;
+  T_cw = core::SE3::Identity();
+  T_cw.linear() = core::expSO3(r);
+  T_cw.translation() = t;
+  return true;
+}
+
+// Gauss-Newton with a small Levenberg damping on the reprojection error of `subset`, perturbing on the left
+// (core/pose.h convention): d(p_c)/d[rho, phi] = [I, -[p_c]x].
+core::SE3 refinePose(core::SE3 T_cw, const std::vector<Eigen::Vector3d>& points_w,
+                     const std::vector<Eigen::Vector2d>& pixels, const core::PinholeCamera& camera,
+                     const std::vector<int>& subset) {
+  const double fx = camera.fx(), fy = camera.fy();
+  auto cost = [&](const core::SE3& T) {
+    double c = 0;
+    for (int i : subset) c += std::min(squaredError(T, points_w[i], pixels[i], camera), 1e12);
+    return c;
+  };
+  double current = cost(T_cw);
+  double lambda = 1e-4;
+  for (int it = 0; it < kRefineIterations; ++it) {
+    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+    core::Vector6d g = core::Vector6d::Zero();
+    for (int i : subset) {
+      const Eigen::Vector3d p = T_cw * points_w[i];
+      if (p.z() <= 1e-9) continue;
+      const double iz = 1.0 / p.z(), iz2 = iz * iz;
+      Eigen::Matrix<double, 2, 3> J_proj;
+      J_proj << fx * iz, 0, -fx * p.x() * iz2, 0, fy * iz, -fy * p.y() * iz2;
+      Eigen::Matrix<double, 3, 6> J_pose;
+      J_pose.leftCols<3>().setIdentity();
+      J_pose.rightCols<3>() = -core::skew(p);
+      const Eigen::Matrix<double, 2, 6> J = J_proj * J_pose;
+      const Eigen::Vector2d r = camera.project(p) - pixels[i];
+      H.noalias() += J.transpose() * J;
+      g.noalias() += J.transpose() * r;
+    }
+    bool improved = false;
+    while (!improved && lambda < 1e8) {
+      Eigen::Matrix<double, 6, 6> A = H;
+      A.diagonal() *= 1.0 + lambda;
+      const core::Vector6d delta = A.ldlt().solve(-g);
+      if (!delta.allFinite()) break;
+      const core::SE3 candidate = core::expSE3(delta) * T_cw;
+      const double c = cost(candidate);
+      if (c < current) {
+        const double gain = current - c;
+        T_cw = candidate;
+        current = c;
+        lambda = std::max(lambda * 0.1, 1e-9);
+        improved = true;
+        if (gain < 1e-10 * (1 + current) || delta.norm() < 1e-12) return T_cw;
+      } else {
+        lambda *= 10;
+      }
+    }
+    if (!improved) break;
+  }
+  return T_cw;
+}
+
+}  // namespace
+
+PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std::vector<Eigen::Vector2d>& pixels,
+                         const core::PinholeCamera& camera, const PnpRansacOptions& options) {
+  options.check();
+  core::require(points_w.size() == pixels.size(),
+                fmt::format("solvePnpRansac: {} points but {} pixels", points_w.size(), pixels.size()));
+  PnpResult result;
+  const int n = static_cast<int>(points_w.size());
+  if (n < std::max(kSampleSize, options.min_inliers)) return result;
+
+  const cv::Mat K = camera.K();
+  const double threshold2 = options.reprojection_threshold_px * options.reprojection_threshold_px;
+  std::mt19937 rng(options.seed);
+  std::vector<cv::Point3d> object(kSampleSize);
+  std::vector<cv::Point2d> image(kSampleSize);
+
+  // RANSAC over EPnP hypotheses; the iteration budget shrinks as the best inlier ratio grows (confidence).
+  core::SE3 best_T = core::SE3::Identity();
+  int best_count = 0;
+  int budget = options.max_iterations;
+  for (int it = 0; it < budget; ++it) {
+    const auto idx = sampleIndices(rng, n);
+    for (int k = 0; k < kSampleSize; ++k) {
+      const auto& p = points_w[idx[k]];
+      object[k] = {p.x(), p.y(), p.z()};
+      image[k] = {pixels[idx[k]].x(), pixels[idx[k]].y()};
+    }
+    core::SE3 T;
+    if (!epnp(object, image, K, T)) continue;
+    const int count = countInliers(T, points_w, pixels, camera, threshold2);
+    if (count > best_count) {
+      best_count = count;
+      best_T = T;
+      const double w = static_cast<double>(count) / n;
+      const double p_all_inliers = std::pow(w, kSampleSize);
+      if (p_all_inliers >= 1.0 - 1e-12) {
+        budget = it + 1;
+      } else {
+        const double needed = std::log(1.0 - options.confidence) / std::log(1.0 - p_all_inliers);
+        // Compare in double: `needed` overflows int when the inlier ratio is tiny.
+        budget = static_cast<int>(std::min<double>(options.max_iterations, std::ceil(needed)));
+      }
+    }
+  }
+  if (best_count < std::max(kSampleSize + 1, options.min_inliers)) return result;
+
+  // Refine on the inliers, then re-evaluate them with the refined pose, until the set is stable.
+  std::vector<int> inliers;
+  collectInliers(best_T, points_w, pixels, camera, threshold2, inliers);
+  core::SE3 T = best_T;
+  for (int round = 0; round < kInlierRounds; ++round) {
+    T = refinePose(T, points_w, pixels, camera, inliers);
+    std::vector<int> refreshed;
+    collectInliers(T, points_w, pixels, camera, threshold2, refreshed);
+    const bool stable = refreshed == inliers;
+    inliers = std::move(refreshed);
+    if (stable || static_cast<int>(inliers.size()) < options.min_inliers) break;
+  }
+
+  result.T_cw = T;
+  result.inliers = std::move(inliers);
+  result.success = static_cast<int>(result.inliers.size()) >= options.min_inliers;
+  return result;
+}
+
+}  // namespace amos::geometry
