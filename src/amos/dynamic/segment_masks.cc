@@ -1,0 +1,106 @@
+#include "amos/dynamic/segment_masks.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <opencv2/imgproc.hpp>
+
+#include "amos/core/error.h"
+#include "amos/dynamic/segmenter_classes.h"
+
+namespace amos::dynamic {
+
+cv::Mat paintInstances(const std::vector<SegmentedInstance>& instances, cv::Size size) {
+  cv::Mat frame(size, CV_8UC1, cv::Scalar(0));
+  const cv::Rect image(cv::Point(0, 0), size);
+  for (const auto& instance : instances) {
+    core::require(instance.mask.empty() || (instance.mask.type() == CV_8UC1 && instance.mask.size() == instance.box.size()),
+                  "instance mask must be CV_8UC1 of the box size");
+    const cv::Rect box = instance.box & image;
+    if (box.empty() || instance.mask.empty()) continue;
+    const cv::Mat part = instance.mask(cv::Rect(box.tl() - instance.box.tl(), box.size()));
+    cv::Mat target = frame(box);
+    cv::bitwise_or(target, part, target);
+  }
+  return frame;
+}
+
+cv::Mat dilationKernel(const MaskDilationOptions& options) {
+  options.check();
+  if (options.size <= 1) return {};
+  const int shape = options.shape == "rect" ? cv::MORPH_RECT : options.shape == "cross" ? cv::MORPH_CROSS
+                                                                                      : cv::MORPH_ELLIPSE;
+  return cv::getStructuringElement(shape, cv::Size(options.size, options.size));
+}
+
+cv::Mat dilateMask(const cv::Mat& mask, const MaskDilationOptions& options) {
+  core::require(mask.type() == CV_8UC1, "dilateMask expects a CV_8UC1 mask");
+  const cv::Mat kernel = dilationKernel(options);
+  if (kernel.empty()) return mask.clone();
+  cv::Mat out(mask.size(), CV_8UC1, cv::Scalar(0));
+  const cv::Rect bounds = cv::boundingRect(mask);
+  if (bounds.empty()) return out;
+  // Work on the bounding box of the mask grown by the kernel radius: the result is 0 everywhere else.
+  const int r = options.size / 2;
+  const cv::Rect roi = cv::Rect(bounds.x - r, bounds.y - r, bounds.width + 2 * r, bounds.height + 2 * r) &
+                       cv::Rect(0, 0, mask.cols, mask.rows);
+  cv::Mat target = out(roi);
+  cv::dilate(mask(roi), target, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+  return out;
+}
+
+double maskIoU(const cv::Mat& a, const cv::Mat& b) {
+  core::require(a.size() == b.size() && a.type() == CV_8UC1 && b.type() == CV_8UC1,
+                "maskIoU expects two CV_8UC1 masks of the same size");
+  cv::Mat inter, uni;
+  cv::bitwise_and(a != 0, b != 0, inter);
+  cv::bitwise_or(a != 0, b != 0, uni);
+  const int n_uni = cv::countNonZero(uni);
+  return n_uni == 0 ? 1.0 : static_cast<double>(cv::countNonZero(inter)) / n_uni;
+}
+
+cv::Mat pasteProbabilityMask(const cv::Mat& probability, const cv::Rect& crop, const cv::Rect& box, float threshold) {
+  core::require(probability.type() == CV_32F && !probability.empty(), "probability map must be non-empty CV_32F");
+  core::require((box & crop) == box && !box.empty(), "pasteProbabilityMask: crop must contain a non-empty box");
+  cv::Mat resized;
+  cv::resize(probability, resized, crop.size(), 0, 0, cv::INTER_LINEAR);
+  cv::Mat inside = resized(cv::Rect(box.tl() - crop.tl(), box.size()));
+  cv::Mat mask;
+  cv::compare(inside, threshold, mask, cv::CMP_GT);  // 255 where probability > threshold
+  return mask;
+}
+
+cv::Rect widenBox(const cv::Rect& box, float widen_x, float widen_y, cv::Size image_size) {
+  const int dx = static_cast<int>(std::lround(0.5f * widen_x * box.width));
+  const int dy = static_cast<int>(std::lround(0.5f * widen_y * box.height));
+  return cv::Rect(box.x - dx, box.y - dy, box.width + 2 * dx, box.height + 2 * dy) &
+         cv::Rect(cv::Point(0, 0), image_size);
+}
+
+cv::Mat drawOverlay(const cv::Mat& bgr, const std::vector<SegmentedInstance>& instances) {
+  static const cv::Scalar kColours[] = {{0, 0, 255},   {0, 200, 0},   {255, 80, 0},  {0, 200, 255},
+                                        {255, 0, 200}, {200, 255, 0}, {128, 0, 255}, {0, 128, 255}};
+  cv::Mat overlay = bgr.clone();
+  for (std::size_t k = 0; k < instances.size(); ++k) {
+    const auto& inst = instances[k];
+    const cv::Scalar colour = kColours[k % (sizeof(kColours) / sizeof(kColours[0]))];
+    if (!inst.mask.empty()) {
+      cv::Mat roi = overlay(inst.box);
+      cv::Mat tint(roi.size(), roi.type(), colour);
+      cv::Mat blended;
+      cv::addWeighted(roi, 0.45, tint, 0.55, 0.0, blended);
+      blended.copyTo(roi, inst.mask);
+      std::vector<std::vector<cv::Point>> contours;
+      cv::findContours(inst.mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE, inst.box.tl());
+      cv::drawContours(overlay, contours, -1, colour, 2);
+    }
+    cv::rectangle(overlay, inst.box, colour, 1);
+    const std::string label = fmt::format("{} {:.2f}", cocoClassName(inst.class_id), inst.score);
+    const cv::Point at(inst.box.x + 2, std::max(inst.box.y + 14, 14));
+    cv::putText(overlay, label, at, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 3);
+    cv::putText(overlay, label, at, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1);
+  }
+  return overlay;
+}
+
+}  // namespace amos::dynamic

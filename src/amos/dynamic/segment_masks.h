@@ -1,0 +1,37 @@
+#pragma once
+// Mask operations around the segmenter: painting per-box instance masks into a frame, growing them by the
+// configured structuring element (paper Sec. III-C) and comparing masks.
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+#include "amos/dynamic/segmenter.h"
+#include "amos/dynamic/segmenter_options.h"
+
+namespace amos::dynamic {
+
+// Union of the instances' masks in a frame of `size`: CV_8UC1, 255 where any instance is, 0 elsewhere.
+cv::Mat paintInstances(const std::vector<SegmentedInstance>& instances, cv::Size size);
+
+// Structuring element of the options (empty Mat when dilation is off).
+cv::Mat dilationKernel(const MaskDilationOptions& options);
+
+// mask grown by the structuring element; only the neighbourhood of the non-zero pixels is processed, so an
+// empty or small mask costs little. Pixels beyond the image border count as 0.
+cv::Mat dilateMask(const cv::Mat& mask, const MaskDilationOptions& options);
+
+// Intersection over union of two binary masks (non-zero = set). Two empty masks give 1.
+double maskIoU(const cv::Mat& a, const cv::Mat& b);
+
+// Pastes a probability map computed on `crop` (any size, CV_32F in [0, 1]) back into the image: the map is
+// resized to the crop, thresholded (> threshold) and the part inside `box` is returned as a box-sized CV_8UC1
+// 0/255 mask. crop must contain box.
+cv::Mat pasteProbabilityMask(const cv::Mat& probability, const cv::Rect& crop, const cv::Rect& box, float threshold);
+
+// box grown by widen_x * width and widen_y * height in total (half on each side), clipped to the image.
+cv::Rect widenBox(const cv::Rect& box, float widen_x, float widen_y, cv::Size image_size);
+
+// Colour overlay for inspection: instances tinted per instance, outlines, boxes and "class score" labels.
+cv::Mat drawOverlay(const cv::Mat& bgr, const std::vector<SegmentedInstance>& instances);
+
+}  // namespace amos::dynamic

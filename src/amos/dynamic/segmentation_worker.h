@@ -1,0 +1,79 @@
+#pragma once
+// Runs a Segmenter on every frame in its own thread (paper Sec. III-A: "instance segmentation using
+// multi-threaded parallelism"), overlapped with the tracking thread's feature extraction:
+//
+//   auto pending = worker.submit(frame_id, bgr, depth);  // returns at once
+//   extractOrb(gray, ...);                               // runs while the frame is segmented
+//   SegmentationResult masks = pending.get();            // blocks until this frame's masks are ready
+//
+// Frames travel through a bounded queue to the worker thread; each result comes back through a std::future
+// (condition variable inside, no polling). Frames are segmented in submission order. A segmenter exception is
+// rethrown by the future's get() in the caller's thread.
+//
+// Thread safety: submit() and close() may be called from any thread. The worker keeps a reference to the
+// submitted images (cv::Mat is shared, not copied): do not write into them until the result has arrived.
+#include <opencv2/core.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <future>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "amos/core/bounded_queue.h"
+#include "amos/core/stage_timer.h"
+#include "amos/dynamic/segmenter.h"
+#include "amos/dynamic/segmenter_options.h"
+
+namespace amos::dynamic {
+
+struct SegmentationResult {
+  std::uint64_t frame_id = 0;
+  std::vector<SegmentedInstance> instances;
+  cv::Mat mask;          // CV_8UC1 frame, 255 = prior dynamic object, undilated (what `segment` writes)
+  cv::Mat dilated_mask;  // mask grown by Segmentation.dilation_* (what removes keypoints)
+  double segment_ms = 0;  // time spent in the segmenter and mask operations
+  double latency_ms = 0;  // from submit() to the result being ready, queueing included
+};
+
+class SegmentationWorker {
+ public:
+  // queue_capacity: frames that may wait; submit() blocks while that many are queued (no frame is dropped).
+  SegmentationWorker(std::unique_ptr<Segmenter> segmenter, MaskDilationOptions dilation,
+                     std::size_t queue_capacity = 2);
+  // Closes the queue, finishes the frames already queued, joins the thread.
+  ~SegmentationWorker();
+  SegmentationWorker(const SegmentationWorker&) = delete;
+  SegmentationWorker& operator=(const SegmentationWorker&) = delete;
+
+  // bgr: CV_8UC3; depth: CV_32F metres or empty. Throws core::Error after close().
+  std::future<SegmentationResult> submit(std::uint64_t frame_id, const cv::Mat& bgr, const cv::Mat& depth = cv::Mat());
+
+  // Stops accepting frames; queued frames are still segmented. Idempotent.
+  void close();
+
+  const Segmenter& segmenter() const { return *segmenter_; }
+
+ private:
+  struct Job {
+    std::uint64_t frame_id = 0;
+    cv::Mat bgr, depth;
+    std::promise<SegmentationResult> promise;
+    core::Stopwatch since_submit;
+  };
+
+  void run();
+
+  std::unique_ptr<Segmenter> segmenter_;
+  MaskDilationOptions dilation_;
+  core::BoundedQueue<Job> queue_;
+  std::thread thread_;  // last: started once everything it uses exists
+};
+
+// Segments one frame synchronously the way the worker does (instances, union mask, dilated mask). For tools and
+// tests that do not need the thread.
+SegmentationResult segmentFrame(Segmenter& segmenter, const MaskDilationOptions& dilation, std::uint64_t frame_id,
+                                const cv::Mat& bgr, const cv::Mat& depth = cv::Mat());
+
+}  // namespace amos::dynamic

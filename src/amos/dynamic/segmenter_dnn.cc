@@ -1,0 +1,165 @@
+#include "amos/dynamic/segmenter_dnn.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/dnn.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "amos/core/error.h"
+#include "amos/dynamic/model_locator.h"
+#include "amos/dynamic/nanodet_decoder.h"
+#include "amos/dynamic/segment_depth_mask.h"
+#include "amos/dynamic/segment_masks.h"
+#include "amos/dynamic/segmenter_classes.h"
+#include "amos/dynamic/segmenter_factory.h"
+
+namespace amos::dynamic {
+namespace {
+
+constexpr int kSelfieSize = 256;
+constexpr int kPersonClass = 0;
+constexpr int kRegMax = 7;
+// NanoDet's input normalisation (BGR order): (x - mean) / std.
+const cv::Scalar kNanoDetMean(103.53, 116.28, 123.675);
+const cv::Scalar kNanoDetInvStd(1.0 / 57.375, 1.0 / 57.12, 1.0 / 58.395);
+
+cv::dnn::Net loadOnnx(const std::string& path) {
+  cv::dnn::Net net;
+  try {
+    net = cv::dnn::readNetFromONNX(path);
+  } catch (const cv::Exception& e) {
+    throw core::Error(fmt::format("cannot load segmentation model {}: not an ONNX network OpenCV {} can read "
+                                  "(corrupt or truncated file?): {}",
+                                  path, CV_VERSION, e.what()));
+  }
+  core::require(!net.empty(), fmt::format("cannot load segmentation model {}: empty network", path));
+  net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+  net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  return net;
+}
+
+class NanoDetSelfieSegmenter : public Segmenter {
+ public:
+  explicit NanoDetSelfieSegmenter(const SegmenterOptions& options) : options_(options) {
+    options_.check();
+    if (options_.threads > 0) cv::setNumThreads(options_.threads);
+    for (const auto& name : options_.classes) class_ids_.push_back(cocoClassId(name));
+    const auto files = nanodetSelfieModelFiles(options_);
+    detector_path_ = joinPath(options_.models_dir, files[0]);
+    selfie_path_ = joinPath(options_.models_dir, files[1]);
+    detector_ = loadOnnx(detector_path_);
+    selfie_ = loadOnnx(selfie_path_);
+    detector_outputs_ = detector_.getUnconnectedOutLayersNames();
+    selfie_outputs_ = selfie_.getUnconnectedOutLayersNames();
+    warmUp();
+  }
+
+  std::string name() const override { return "nanodet_selfie"; }
+
+  std::vector<SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat& depth) override {
+    core::require(!bgr.empty() && bgr.type() == CV_8UC3, "segmenter: image must be a non-empty CV_8UC3 BGR image");
+    core::require(depth.empty() || (depth.type() == CV_32F && depth.size() == bgr.size()),
+                  "segmenter: depth must be empty or CV_32F of the image size");
+    std::vector<SegmentedInstance> instances;
+    for (const Detection& det : detect(bgr)) {
+      const cv::Rect box = toPixelRect(det.box, bgr.size());
+      if (box.width < 2 || box.height < 2) continue;
+      SegmentedInstance inst;
+      inst.class_id = det.class_id;
+      inst.score = det.score;
+      inst.box = box;
+      inst.mask = det.class_id == kPersonClass ? personMask(bgr, box) : boxDepthMask(depth, box, options_.depth_tolerance);
+      instances.push_back(std::move(inst));
+    }
+    return instances;
+  }
+
+ private:
+  std::vector<Detection> detect(const cv::Mat& bgr) {
+    const Letterbox lb = makeLetterbox(bgr.size(), options_.input_size);
+    cv::Mat input;
+    applyLetterbox(bgr, lb).convertTo(input, CV_32FC3);
+    cv::subtract(input, kNanoDetMean, input);
+    cv::multiply(input, kNanoDetInvStd, input);
+    detector_.setInput(cv::dnn::blobFromImage(input));
+    std::vector<cv::Mat> outputs;
+    detector_.forward(outputs, detector_outputs_);
+    const auto heads = nanodetHeadsFromOutputs(outputs, options_.input_size, kRegMax);
+    auto detections = nmsPerClass(decodeNanoDet(heads, class_ids_, options_.score_threshold, kRegMax), options_.nms_iou);
+    if (detections.size() > static_cast<std::size_t>(options_.max_instances))
+      detections.resize(static_cast<std::size_t>(options_.max_instances));
+    for (auto& d : detections) d.box = unletterboxBox(d.box, lb, bgr.size());
+    return detections;
+  }
+
+  static cv::Rect toPixelRect(const cv::Rect2f& box, cv::Size size) {
+    const int x0 = static_cast<int>(std::floor(box.x)), y0 = static_cast<int>(std::floor(box.y));
+    const int x1 = static_cast<int>(std::ceil(box.x + box.width)), y1 = static_cast<int>(std::ceil(box.y + box.height));
+    return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & cv::Rect(cv::Point(0, 0), size);
+  }
+
+  // Widened crop squashed to the selfie input (letterboxing was worse, see the models' README), probability
+  // pasted back inside the detector's box.
+  cv::Mat personMask(const cv::Mat& bgr, const cv::Rect& box) {
+    const cv::Rect crop = widenBox(box, options_.box_widen_x, options_.box_widen_y, bgr.size());
+    const cv::Mat probability = runSelfie(bgr(crop));
+    return pasteProbabilityMask(probability, crop, box, options_.mask_threshold);
+  }
+
+  cv::Mat runSelfie(const cv::Mat& crop) {
+    selfie_.setInput(cv::dnn::blobFromImage(crop, 1.0 / 255.0, cv::Size(kSelfieSize, kSelfieSize), cv::Scalar(),
+                                            /*swapRB=*/true, /*crop=*/false));
+    std::vector<cv::Mat> outputs;
+    selfie_.forward(outputs, selfie_outputs_);
+    core::require(outputs.size() == 1 && outputs[0].total() == static_cast<std::size_t>(kSelfieSize * kSelfieSize),
+                  fmt::format("segmentation model {} gives {} outputs of {} values, expected one 1x1x{}x{} map",
+                              selfie_path_, outputs.size(), outputs.empty() ? 0 : outputs[0].total(), kSelfieSize,
+                              kSelfieSize));
+    return cv::Mat(kSelfieSize, kSelfieSize, CV_32F, outputs[0].ptr<float>()).clone();
+  }
+
+  // One pass of each network on a blank image: checks the outputs have the expected shapes and pays the first
+  // inference's set-up cost before the first real frame.
+  void warmUp() {
+    try {
+      detect(cv::Mat(480, 640, CV_8UC3, cv::Scalar::all(0)));
+    } catch (const cv::Exception& e) {
+      throw core::Error(fmt::format("segmentation model {} fails on a test input: {}", detector_path_, e.what()));
+    } catch (const core::Error& e) {
+      throw core::Error(fmt::format("segmentation model {} is not a NanoDet-m {}x{} export: {}", detector_path_,
+                                    options_.input_size, options_.input_size, e.what()));
+    }
+    try {
+      runSelfie(cv::Mat(kSelfieSize, kSelfieSize, CV_8UC3, cv::Scalar::all(0)));
+    } catch (const cv::Exception& e) {
+      throw core::Error(fmt::format("segmentation model {} fails on a test input: {}", selfie_path_, e.what()));
+    }
+  }
+
+  SegmenterOptions options_;
+  std::vector<int> class_ids_;
+  std::string detector_path_, selfie_path_;
+  cv::dnn::Net detector_, selfie_;
+  std::vector<std::string> detector_outputs_, selfie_outputs_;
+};
+
+}  // namespace
+
+std::vector<std::string> nanodetSelfieModelFiles(const SegmenterOptions& options) {
+  return {fmt::format("nanodet_m_{}.onnx", options.input_size), "selfie_seg_256.onnx"};
+}
+
+std::unique_ptr<Segmenter> makeNanoDetSelfieSegmenter(const SegmenterOptions& options) {
+  return std::make_unique<NanoDetSelfieSegmenter>(options);
+}
+
+void addDnnSegmenterBackends(SegmenterFactory& factory) {
+  factory.add("nanodet_selfie", {"NanoDet-m boxes + MediaPipe selfie person masks (OpenCV dnn, CPU)",
+                                 nanodetSelfieModelFiles, makeNanoDetSelfieSegmenter});
+}
+
+}  // namespace amos::dynamic

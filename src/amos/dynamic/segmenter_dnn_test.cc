@@ -1,0 +1,113 @@
+// Tests of the OpenCV-dnn backend on the shared models and the reference masks of the paper's YOLACT pipeline.
+#include "amos/dynamic/segmenter_dnn.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "amos/core/error.h"
+#include "amos/dynamic/segment_masks.h"
+#include "amos/dynamic/segmentation_worker.h"
+#include "amos/dynamic/segmenter_factory.h"
+
+namespace amos::dynamic {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kShared = AMOS_SHARED_DIR;
+const std::string kModels = kShared + "/models";
+
+ModelSources modelsAt(const std::string& dir) {
+  ModelSources sources;
+  sources.cli_dir = dir;
+  sources.default_dirs.clear();
+  return sources;
+}
+
+std::string creationError(const SegmenterOptions& options, const ModelSources& sources) {
+  try {
+    createSegmenter(options, sources, builtinSegmenterFactory());
+  } catch (const core::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Mean IoU over the two TUM fr3/walking_xyz frames against the masks of the authors' YOLACT pipeline (255 =
+// person). In w_xyz_122 YOLACT missed the person cut by the right border, and so does NanoDet at the default
+// threshold, so a detection there would count against us.
+TEST(SegmenterDnn, PersonMasksMatchThePapersYolactMasks) {
+  const std::string dir = kShared + "/data/person_masks";
+  ASSERT_TRUE(fs::is_directory(dir + "/rgb")) << dir << " is missing";
+  SegmenterOptions options;
+  auto segmenter = createSegmenter(options, modelsAt(kModels), builtinSegmenterFactory());
+  double sum = 0;
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(dir + "/rgb")) {
+    const std::string name = entry.path().filename().string();
+    const cv::Mat bgr = cv::imread(entry.path().string(), cv::IMREAD_COLOR);
+    const cv::Mat reference = cv::imread(dir + "/mask/" + name, cv::IMREAD_GRAYSCALE);
+    ASSERT_FALSE(bgr.empty() || reference.empty()) << name;
+    const SegmentationResult result = segmentFrame(*segmenter, options.dilation, 0, bgr);
+    const double iou = maskIoU(result.mask, reference > 127);
+    std::printf("  %s: %zu instance(s), IoU %.3f\n", name.c_str(), result.instances.size(), iou);
+    EXPECT_GT(iou, 0.8) << name;
+    // The dilated mask contains the mask and is larger.
+    EXPECT_EQ(cv::countNonZero(result.mask & ~result.dilated_mask), 0);
+    EXPECT_GT(cv::countNonZero(result.dilated_mask), cv::countNonZero(result.mask));
+    sum += iou;
+    ++count;
+  }
+  ASSERT_EQ(count, 2);
+  std::printf("  mean IoU %.3f\n", sum / count);
+  EXPECT_GE(sum / count, 0.85);
+}
+
+TEST(SegmenterDnn, NoPeopleInAnEmptyImage) {
+  SegmenterOptions options;
+  options.models_dir = kModels;
+  auto segmenter = makeNanoDetSelfieSegmenter(options);
+  EXPECT_TRUE(segmenter->segment(cv::Mat(480, 640, CV_8UC3, cv::Scalar(128, 128, 128)), cv::Mat()).empty());
+  EXPECT_THROW(segmenter->segment(cv::Mat(480, 640, CV_8UC1), cv::Mat()), core::Error);
+}
+
+TEST(SegmenterDnn, MissingModelIsAClearStartUpError) {
+  const fs::path empty = fs::temp_directory_path() / ("amos_no_models_" + std::to_string(::getpid()));
+  fs::create_directories(empty);
+  SegmenterOptions options;
+  options.input_size = 416;
+  const std::string message = creationError(options, modelsAt(empty.string()));
+  EXPECT_NE(message.find("nanodet_m_416.onnx"), std::string::npos) << message;
+  EXPECT_NE(message.find("--models"), std::string::npos) << message;
+  const std::string nothing = creationError(options, ModelSources{"", "", nullptr, {}});
+  EXPECT_NE(nothing.find("--mode geometry"), std::string::npos) << nothing;
+  fs::remove_all(empty);
+}
+
+TEST(SegmenterDnn, CorruptModelIsAClearStartUpError) {
+  const fs::path dir = fs::temp_directory_path() / ("amos_bad_models_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  fs::copy_file(kModels + "/selfie_seg_256.onnx", dir / "selfie_seg_256.onnx", fs::copy_options::overwrite_existing);
+  {
+    // A truncated download: the first 100 kB of the real file.
+    std::ifstream in(kModels + "/nanodet_m_320.onnx", std::ios::binary);
+    ASSERT_TRUE(in.good());
+    std::string head(100000, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    std::ofstream(dir / "nanodet_m_320.onnx", std::ios::binary) << head;
+  }
+  std::string message = creationError(SegmenterOptions{}, modelsAt(dir.string()));
+  EXPECT_NE(message.find("nanodet_m_320.onnx"), std::string::npos) << message;
+
+  // A valid ONNX file that is the wrong network: the selfie model where the detector should be.
+  fs::copy_file(kModels + "/selfie_seg_256.onnx", dir / "nanodet_m_320.onnx", fs::copy_options::overwrite_existing);
+  message = creationError(SegmenterOptions{}, modelsAt(dir.string()));
+  EXPECT_NE(message.find("nanodet_m_320.onnx"), std::string::npos) << message;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace amos::dynamic

@@ -1,0 +1,45 @@
+#pragma once
+// Settings of the prior-dynamic-object segmenter (YAML section `Segmentation.`). Plain values with the defaults
+// that reproduce the paper's setting as closely as the available models allow; check() names the key at fault.
+#include <string>
+#include <vector>
+
+namespace amos::dynamic {
+
+// Structuring element used to grow the masks before they remove keypoints (paper Sec. III-C: "morphological
+// expansion of the target mask"; the authors' code uses a 31x31 ellipse).
+struct MaskDilationOptions {
+  int size = 31;                  // Segmentation.dilation_size: odd side length in pixels; 0 or 1 = no dilation
+  std::string shape = "ellipse";  // Segmentation.dilation_shape: ellipse | rect | cross
+  void check() const;
+};
+
+struct SegmenterOptions {
+  // Segmentation.backend: name of a backend registered in segmenter_factory.h. Built in (with AMOS_WITH_DNN):
+  // "nanodet_selfie" = NanoDet-m boxes + MediaPipe selfie person masks per box.
+  std::string backend = "nanodet_selfie";
+  // Segmentation.models_dir: folder with the ONNX files. Empty = found by model_locator.h (--models, settings,
+  // $AMOS_MODELS, ./models, ../shared/models); by the time a backend is created this holds the resolved folder.
+  std::string models_dir;
+  int input_size = 320;             // Segmentation.input_size: detector input side, 320 or 416
+  float score_threshold = 0.35f;    // Segmentation.score_threshold: minimum detector confidence
+  float nms_iou = 0.5f;             // Segmentation.nms_iou: per-class non-maximum suppression overlap
+  // Segmentation.classes: COCO names to mask. People get a learned mask; other classes a box + depth mask.
+  std::vector<std::string> classes = {"person"};
+  float box_widen_x = 0.10f;        // Segmentation.box_widen_x: crop widening for the mask net, total fraction of box width
+  float box_widen_y = 0.05f;        // Segmentation.box_widen_y: same, of box height
+  float mask_threshold = 0.5f;      // Segmentation.mask_threshold: person probability above which a pixel is masked
+  // Segmentation.depth_tolerance: for non-person classes, pixels of the box whose depth is within this many metres
+  // of the object's median depth belong to the object (whole box when there is no usable depth).
+  float depth_tolerance = 0.4f;
+  int max_instances = 32;           // Segmentation.max_instances: keep at most this many, highest score first
+  MaskDilationOptions dilation;     // Segmentation.dilation_size / dilation_shape
+  // Segmentation.threads: OpenCV worker threads for inference (cv::setNumThreads, which is process-wide);
+  // 0 = leave OpenCV's setting alone.
+  int threads = 0;
+
+  // Throws core::Error naming the Segmentation.* key whose value is invalid.
+  void check() const;
+};
+
+}  // namespace amos::dynamic

@@ -1,0 +1,69 @@
+#include "amos/dynamic/segmenter_options.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "amos/core/error.h"
+#include "amos/dynamic/segmenter_classes.h"
+
+namespace amos::dynamic {
+namespace {
+
+// The message of the error check() throws after `change`, or "" when it does not throw.
+std::string checkError(const std::function<void(SegmenterOptions&)>& change) {
+  SegmenterOptions options;
+  change(options);
+  try {
+    options.check();
+  } catch (const core::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SegmenterOptions, DefaultsAreValidAndMatchThePaper) {
+  SegmenterOptions options;
+  EXPECT_NO_THROW(options.check());
+  EXPECT_EQ(options.classes, std::vector<std::string>{"person"});
+  EXPECT_EQ(options.dilation.size, 31);
+  EXPECT_EQ(options.dilation.shape, "ellipse");
+}
+
+TEST(SegmenterOptions, ErrorsNameTheKey) {
+  const std::pair<std::string, std::function<void(SegmenterOptions&)>> cases[] = {
+      {"Segmentation.backend", [](SegmenterOptions& o) { o.backend.clear(); }},
+      {"Segmentation.input_size", [](SegmenterOptions& o) { o.input_size = 300; }},
+      {"Segmentation.score_threshold", [](SegmenterOptions& o) { o.score_threshold = 1.5f; }},
+      {"Segmentation.nms_iou", [](SegmenterOptions& o) { o.nms_iou = 0.f; }},
+      {"Segmentation.classes", [](SegmenterOptions& o) { o.classes = {"person", "unicorn"}; }},
+      {"Segmentation.classes", [](SegmenterOptions& o) { o.classes.clear(); }},
+      {"Segmentation.box_widen_x", [](SegmenterOptions& o) { o.box_widen_x = -0.1f; }},
+      {"Segmentation.box_widen_y", [](SegmenterOptions& o) { o.box_widen_y = 2.f; }},
+      {"Segmentation.mask_threshold", [](SegmenterOptions& o) { o.mask_threshold = 1.f; }},
+      {"Segmentation.depth_tolerance", [](SegmenterOptions& o) { o.depth_tolerance = 0.f; }},
+      {"Segmentation.max_instances", [](SegmenterOptions& o) { o.max_instances = 0; }},
+      {"Segmentation.threads", [](SegmenterOptions& o) { o.threads = -1; }},
+      {"Segmentation.dilation_size", [](SegmenterOptions& o) { o.dilation.size = 30; }},
+      {"Segmentation.dilation_shape", [](SegmenterOptions& o) { o.dilation.shape = "disc"; }},
+  };
+  for (const auto& [key, change] : cases) {
+    const std::string message = checkError(change);
+    EXPECT_NE(message.find(key), std::string::npos) << "expected an error naming " << key << ", got: " << message;
+  }
+  EXPECT_EQ(checkError([](SegmenterOptions& o) { o.dilation.size = 0; }), "");
+  EXPECT_EQ(checkError([](SegmenterOptions& o) { o.classes = movableCocoClasses(); }), "");
+}
+
+TEST(SegmenterClasses, CocoTable) {
+  ASSERT_EQ(cocoClassNames().size(), 80u);
+  EXPECT_EQ(cocoClassId("person"), 0);
+  EXPECT_EQ(cocoClassId("chair"), 56);
+  EXPECT_EQ(cocoClassId("toothbrush"), 79);
+  EXPECT_EQ(cocoClassName(16), "dog");
+  EXPECT_EQ(cocoClassName(80), "class80");
+  EXPECT_THROW(cocoClassId("Person"), core::Error);
+}
+
+}  // namespace
+}  // namespace amos::dynamic
