@@ -1,0 +1,398 @@
+#include "amos/dynamic/depth_slic.h"
+
+#include <fmt/format.h>
+#include <opencv2/core/hal/intrin.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "amos/core/error.h"
+
+namespace amos::dynamic {
+
+void DepthSlicOptions::check() const {
+  core::require(num_superpixels >= 4,
+                fmt::format("Dynamic.Superpixel.count must be at least 4, got {}", num_superpixels));
+  core::require(std::isfinite(scale) && scale > 0 && scale <= 1,
+                fmt::format("Dynamic.Superpixel.scale must lie in (0, 1], got {}", scale));
+  core::require(std::isfinite(colour_scale) && colour_scale > 0,
+                fmt::format("Dynamic.Superpixel.colourScale must be positive, got {}", colour_scale));
+  core::require(std::isfinite(depth_scale_m) && depth_scale_m > 0,
+                fmt::format("Dynamic.Superpixel.depthScale must be positive, got {}", depth_scale_m));
+  core::require(iterations >= 1, fmt::format("Dynamic.Superpixel.iterations must be >= 1, got {}", iterations));
+}
+
+namespace {
+
+// Working-resolution image planes, one float per pixel, so the assignment loop reads contiguous rows.
+struct Planes {
+  int width = 0, height = 0;
+  cv::Mat L, A, B;   // CIELAB, CV_32F
+  cv::Mat Z;         // depth [m], 0 where invalid, CV_32F
+  cv::Mat valid;     // 1 where Z is valid, else 0, CV_32F (a multiplier that switches the depth term off)
+};
+
+struct Centre {
+  float x = 0, y = 0, L = 0, A = 0, B = 0;
+  float z = 0;
+  float z_weight = 0;  // 1 when the centre has a valid mean depth, else 0
+};
+
+Planes makePlanes(const cv::Mat& bgr, const cv::Mat& depth, double scale) {
+  Planes p;
+  p.width = std::max(1, static_cast<int>(std::lround(bgr.cols * scale)));
+  p.height = std::max(1, static_cast<int>(std::lround(bgr.rows * scale)));
+  const cv::Size size(p.width, p.height);
+  cv::Mat small_bgr, small_depth;
+  if (size == bgr.size()) {
+    small_bgr = bgr;
+    small_depth = depth;
+  } else {
+    cv::resize(bgr, small_bgr, size, 0, 0, cv::INTER_AREA);
+    // Nearest neighbour: averaging would blend foreground and background depths at edges and mix in zeros.
+    cv::resize(depth, small_depth, size, 0, 0, cv::INTER_NEAREST);
+  }
+  // The 8-bit conversion runs on lookup tables (several times faster than the float path) and its 1/255
+  // quantisation is far below SLIC's colour scale. Undo its packing: L8 = L * 255 / 100, a8 = a + 128.
+  cv::Mat lab8;
+  cv::cvtColor(small_bgr, lab8, cv::COLOR_BGR2Lab);
+  cv::Mat channels[3];
+  cv::split(lab8, channels);
+  channels[0].convertTo(p.L, CV_32F, 100.0 / 255.0);
+  channels[1].convertTo(p.A, CV_32F, 1.0, -128.0);
+  channels[2].convertTo(p.B, CV_32F, 1.0, -128.0);
+  p.Z.create(size, CV_32F);
+  p.valid.create(size, CV_32F);
+  for (int y = 0; y < p.height; ++y) {
+    const float* d = small_depth.ptr<float>(y);
+    float* z = p.Z.ptr<float>(y);
+    float* v = p.valid.ptr<float>(y);
+    for (int x = 0; x < p.width; ++x) {
+      const bool ok = std::isfinite(d[x]) && d[x] > 0.f;
+      z[x] = ok ? d[x] : 0.f;
+      v[x] = ok ? 1.f : 0.f;
+    }
+  }
+  return p;
+}
+
+// Seeds on a regular grid, each moved to the lowest colour-gradient pixel of its 3x3 neighbourhood (as in
+// SLIC) so that no seed starts on an edge.
+std::vector<Centre> seedCentres(const Planes& p, int num_superpixels, float& step) {
+  step = std::sqrt(static_cast<float>(p.width) * p.height / num_superpixels);
+  const int nx = std::max(1, static_cast<int>(std::lround(p.width / step)));
+  const int ny = std::max(1, static_cast<int>(std::lround(p.height / step)));
+  const float sx = static_cast<float>(p.width) / nx, sy = static_cast<float>(p.height) / ny;
+  auto gradient = [&](int x, int y) {
+    if (x < 1 || y < 1 || x >= p.width - 1 || y >= p.height - 1) return std::numeric_limits<float>::max();
+    auto diff2 = [&](int xa, int ya, int xb, int yb) {
+      const float dl = p.L.at<float>(ya, xa) - p.L.at<float>(yb, xb);
+      const float da = p.A.at<float>(ya, xa) - p.A.at<float>(yb, xb);
+      const float db = p.B.at<float>(ya, xa) - p.B.at<float>(yb, xb);
+      return dl * dl + da * da + db * db;
+    };
+    return diff2(x + 1, y, x - 1, y) + diff2(x, y + 1, x, y - 1);
+  };
+  std::vector<Centre> centres;
+  centres.reserve(static_cast<std::size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      int bx = std::min(p.width - 1, static_cast<int>((i + 0.5f) * sx));
+      int by = std::min(p.height - 1, static_cast<int>((j + 0.5f) * sy));
+      float best = gradient(bx, by);
+      const int cx = bx, cy = by;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const float g = gradient(cx + dx, cy + dy);
+          if (g < best) best = g, bx = cx + dx, by = cy + dy;
+        }
+      Centre c;
+      c.x = static_cast<float>(bx);
+      c.y = static_cast<float>(by);
+      c.L = p.L.at<float>(by, bx);
+      c.A = p.A.at<float>(by, bx);
+      c.B = p.B.at<float>(by, bx);
+      c.z = p.Z.at<float>(by, bx);
+      c.z_weight = p.valid.at<float>(by, bx);
+      centres.push_back(c);
+    }
+  }
+  return centres;
+}
+
+// One SLIC assignment pass: every pixel within +-step of a centre takes the nearest centre under Eq. 1.
+void assignPixels(const Planes& p, const std::vector<Centre>& centres, float step, float inv_colour,
+                  float inv_depth, cv::Mat& labels, cv::Mat& distance) {
+  distance.setTo(std::numeric_limits<float>::max());
+  const float inv_step = 1.f / step;
+  const int radius = static_cast<int>(std::ceil(step));
+  for (int k = 0; k < static_cast<int>(centres.size()); ++k) {
+    const Centre& c = centres[k];
+    const int x0 = std::max(0, static_cast<int>(c.x) - radius), x1 = std::min(p.width, static_cast<int>(c.x) + radius + 1);
+    const int y0 = std::max(0, static_cast<int>(c.y) - radius), y1 = std::min(p.height, static_cast<int>(c.y) + radius + 1);
+    // The depth weight carries the centre's validity, so the inner loop needs no branch for it.
+    const float depth_w = c.z_weight * inv_depth;
+    for (int y = y0; y < y1; ++y) {
+      const float* L = p.L.ptr<float>(y);
+      const float* A = p.A.ptr<float>(y);
+      const float* B = p.B.ptr<float>(y);
+      const float* Z = p.Z.ptr<float>(y);
+      const float* V = p.valid.ptr<float>(y);
+      float* dist = distance.ptr<float>(y);
+      int* lab = labels.ptr<int>(y);
+      const float dy2 = (y - c.y) * (y - c.y);
+      int x = x0;
+#if CV_SIMD
+      // Same arithmetic as the scalar loop below, several pixels at a time.
+      {
+        constexpr int kLanes = cv::v_float32::nlanes;
+        float ramp[kLanes];
+        for (int i = 0; i < kLanes; ++i) ramp[i] = static_cast<float>(i);
+        const cv::v_float32 v_cl = cv::vx_setall_f32(c.L), v_ca = cv::vx_setall_f32(c.A),
+                            v_cb = cv::vx_setall_f32(c.B), v_cz = cv::vx_setall_f32(c.z);
+        const cv::v_float32 v_dy2 = cv::vx_setall_f32(dy2), v_ic = cv::vx_setall_f32(inv_colour),
+                            v_is = cv::vx_setall_f32(inv_step), v_dw = cv::vx_setall_f32(depth_w),
+                            v_lanes = cv::vx_setall_f32(static_cast<float>(kLanes));
+        const cv::v_int32 v_k = cv::vx_setall_s32(k);
+        cv::v_float32 v_dx = cv::vx_load(ramp) + cv::vx_setall_f32(x0 - c.x);
+        for (; x + kLanes <= x1; x += kLanes, v_dx = v_dx + v_lanes) {
+          const cv::v_float32 dl = cv::vx_load(L + x) - v_cl, da = cv::vx_load(A + x) - v_ca,
+                              db = cv::vx_load(B + x) - v_cb;
+          const cv::v_float32 d_colour = cv::v_sqrt(cv::v_fma(dl, dl, cv::v_fma(da, da, db * db)));
+          const cv::v_float32 d_image = cv::v_sqrt(cv::v_fma(v_dx, v_dx, v_dy2));
+          const cv::v_float32 d_depth = cv::v_abs(cv::vx_load(Z + x) - v_cz) * cv::vx_load(V + x);
+          const cv::v_float32 D = cv::v_fma(d_colour, v_ic, cv::v_fma(d_image, v_is, d_depth * v_dw));
+          const cv::v_float32 old = cv::vx_load(dist + x);
+          const cv::v_float32 closer = D < old;
+          cv::v_store(dist + x, cv::v_select(closer, D, old));
+          cv::v_store(lab + x, cv::v_select(cv::v_reinterpret_as_s32(closer), v_k, cv::vx_load(lab + x)));
+        }
+      }
+#endif
+      for (; x < x1; ++x) {
+        const float dl = L[x] - c.L, da = A[x] - c.A, db = B[x] - c.B;
+        const float dx = x - c.x;
+        const float d_colour = std::sqrt(dl * dl + da * da + db * db);  // Eq. 2
+        const float d_image = std::sqrt(dx * dx + dy2);                  // Eq. 3
+        // Eq. 4, implemented as |d_i - d_c|: the printed sqrt(d_i^2 + d_c^2) is not a distance (it is not 0
+        // for equal depths and grows with the absolute depth, so it would pull every pixel towards the nearest
+        // surface instead of separating surfaces at different depths).
+        const float d_depth = std::fabs(Z[x] - c.z) * V[x];
+        const float D = d_colour * inv_colour + d_image * inv_step + d_depth * depth_w;  // Eq. 1
+        if (D < dist[x]) {
+          dist[x] = D;
+          lab[x] = k;
+        }
+      }
+    }
+  }
+}
+
+void updateCentres(const Planes& p, const cv::Mat& labels, std::vector<Centre>& centres) {
+  struct Sum {
+    double x = 0, y = 0, L = 0, A = 0, B = 0, z = 0;
+    int n = 0, nz = 0;
+  };
+  std::vector<Sum> sums(centres.size());
+  for (int y = 0; y < p.height; ++y) {
+    const int* lab = labels.ptr<int>(y);
+    const float* L = p.L.ptr<float>(y);
+    const float* A = p.A.ptr<float>(y);
+    const float* B = p.B.ptr<float>(y);
+    const float* Z = p.Z.ptr<float>(y);
+    const float* V = p.valid.ptr<float>(y);
+    for (int x = 0; x < p.width; ++x) {
+      if (lab[x] < 0) continue;
+      Sum& s = sums[lab[x]];
+      s.x += x, s.y += y, s.L += L[x], s.A += A[x], s.B += B[x];
+      ++s.n;
+      if (V[x] > 0.f) s.z += Z[x], ++s.nz;
+    }
+  }
+  for (std::size_t k = 0; k < centres.size(); ++k) {
+    const Sum& s = sums[k];
+    if (s.n == 0) continue;  // an empty centre keeps its place; it may win pixels back next round
+    Centre& c = centres[k];
+    c.x = static_cast<float>(s.x / s.n);
+    c.y = static_cast<float>(s.y / s.n);
+    c.L = static_cast<float>(s.L / s.n);
+    c.A = static_cast<float>(s.A / s.n);
+    c.B = static_cast<float>(s.B / s.n);
+    c.z = s.nz > 0 ? static_cast<float>(s.z / s.nz) : 0.f;
+    c.z_weight = s.nz > 0 ? 1.f : 0.f;
+  }
+}
+
+// SLIC's connectivity post-processing: splits every label into 4-connected components and merges each component
+// smaller than min_size into the adjacent component nearest to it under Eq. 1 without the position term (mean
+// colour and mean depth). Plain SLIC merges into the component met first in raster order, which on textured
+// surfaces glues fragments across depth edges. Relabels consecutively; returns the label count.
+int enforceConnectivity(const Planes& p, cv::Mat& labels, int min_size, float inv_colour, float inv_depth) {
+  const int w = labels.cols, h = labels.rows;
+  cv::Mat comp(labels.size(), CV_32S, cv::Scalar(-1));
+  struct Stats {
+    double L = 0, A = 0, B = 0, z = 0;
+    int n = 0, nz = 0;
+  };
+  std::vector<Stats> stats;
+  // Flat indexing: every plane here is a freshly allocated, continuous matrix.
+  const int* old_labels = labels.ptr<int>();
+  int* comp_of = comp.ptr<int>();
+  const float *L = p.L.ptr<float>(), *A = p.A.ptr<float>(), *B = p.B.ptr<float>();
+  const float *Z = p.Z.ptr<float>(), *V = p.valid.ptr<float>();
+  std::vector<int> queue;
+  queue.reserve(static_cast<std::size_t>(w) * h);
+  for (int start = 0; start < w * h; ++start) {
+    if (comp_of[start] >= 0) continue;
+    const int old = old_labels[start], id = static_cast<int>(stats.size());
+    Stats st;
+    queue.clear();
+    queue.push_back(start);
+    comp_of[start] = id;
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const int i = queue[q], qx = i % w;
+      st.L += L[i], st.A += A[i], st.B += B[i];
+      if (V[i] > 0.f) st.z += Z[i], ++st.nz;
+      auto visit = [&](int j) {
+        if (comp_of[j] < 0 && old_labels[j] == old) comp_of[j] = id, queue.push_back(j);
+      };
+      if (qx > 0) visit(i - 1);
+      if (qx + 1 < w) visit(i + 1);
+      if (i >= w) visit(i - w);
+      if (i + w < w * h) visit(i + w);
+    }
+    st.n = static_cast<int>(queue.size());
+    stats.push_back(st);
+  }
+  const int count = static_cast<int>(stats.size());
+  // Neighbours of the small components.
+  std::vector<std::vector<int>> neighbours(count);
+  auto link = [&](int a, int b) {
+    if (a == b) return;
+    // Big components only need their list once a small one merges into them and keeps growing.
+    if (stats[a].n < min_size) neighbours[a].push_back(b);
+    if (stats[b].n < min_size) neighbours[b].push_back(a);
+  };
+  for (int y = 0; y < h; ++y) {
+    const int* row = comp.ptr<int>(y);
+    const int* below = y + 1 < h ? comp.ptr<int>(y + 1) : nullptr;
+    for (int x = 0; x < w; ++x) {
+      if (x + 1 < w) link(row[x], row[x + 1]);
+      if (below) link(row[x], below[x]);
+    }
+  }
+  std::vector<int> parent(count);
+  for (int i = 0; i < count; ++i) parent[i] = i;
+  auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<int> order;
+  for (int i = 0; i < count; ++i)
+    if (stats[i].n < min_size) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return stats[a].n < stats[b].n; });
+  for (int small : order) {
+    const int a = root(small);
+    if (stats[a].n >= min_size) continue;  // already grown by earlier merges
+    const Stats& sa = stats[a];
+    int best = -1;
+    double best_d = std::numeric_limits<double>::max();
+    for (int nb : neighbours[a]) {
+      const int b = root(nb);
+      if (b == a) continue;
+      const Stats& sb = stats[b];
+      const double dl = sa.L / sa.n - sb.L / sb.n, da = sa.A / sa.n - sb.A / sb.n, db = sa.B / sa.n - sb.B / sb.n;
+      double d = std::sqrt(dl * dl + da * da + db * db) * inv_colour;
+      if (sa.nz > 0 && sb.nz > 0) d += std::fabs(sa.z / sa.nz - sb.z / sb.nz) * inv_depth;
+      if (d < best_d) best_d = d, best = b;
+    }
+    if (best < 0) continue;
+    parent[a] = best;
+    Stats& sb = stats[best];
+    sb.L += sa.L, sb.A += sa.A, sb.B += sa.B, sb.z += sa.z, sb.n += sa.n, sb.nz += sa.nz;
+    // The merged component's neighbours are those of both parts.
+    neighbours[best].insert(neighbours[best].end(), neighbours[a].begin(), neighbours[a].end());
+  }
+  std::vector<int> final_label(count, -1);
+  int next = 0;
+  for (int y = 0; y < h; ++y) {
+    int* out = labels.ptr<int>(y);
+    const int* c = comp.ptr<int>(y);
+    for (int x = 0; x < w; ++x) {
+      const int r = root(c[x]);
+      if (final_label[r] < 0) final_label[r] = next++;
+      out[x] = final_label[r];
+    }
+  }
+  return next;
+}
+
+}  // namespace
+
+SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth, const DepthSlicOptions& options) {
+  options.check();
+  core::require(!bgr.empty() && bgr.type() == CV_8UC3, "computeDepthSlic: bgr must be a non-empty CV_8UC3 image");
+  core::require(depth.type() == CV_32F && depth.size() == bgr.size(),
+                "computeDepthSlic: depth must be CV_32F with the size of the colour image");
+
+  const Planes p = makePlanes(bgr, depth, options.scale);
+  float step = 0;
+  std::vector<Centre> centres = seedCentres(p, options.num_superpixels, step);
+  cv::Mat labels(p.height, p.width, CV_32S, cv::Scalar(-1));
+  cv::Mat distance(p.height, p.width, CV_32F);
+  const float inv_colour = static_cast<float>(1.0 / options.colour_scale);
+  const float inv_depth = static_cast<float>(1.0 / options.depth_scale_m);
+  for (int it = 0; it < options.iterations; ++it) {
+    assignPixels(p, centres, step, inv_colour, inv_depth, labels, distance);
+    updateCentres(p, labels, centres);
+  }
+  // Pixels farther than one step from every centre (possible after centres drift) keep -1; give them to their
+  // left/upper neighbour's superpixel before the connectivity pass.
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x)
+      if (labels.at<int>(y, x) < 0)
+        labels.at<int>(y, x) = x > 0 ? labels.at<int>(y, x - 1) : (y > 0 ? labels.at<int>(y - 1, x) : 0);
+  const int min_size = std::max(1, static_cast<int>(step * step / 4));
+  const int count = enforceConnectivity(p, labels, min_size, inv_colour, inv_depth);
+
+  SuperpixelSegmentation result;
+  result.superpixels.resize(count);
+  {
+    std::vector<double> sx(count), sy(count), sl(count), sa(count), sb(count), sz(count);
+    std::vector<int> n(count), nz(count);
+    for (int y = 0; y < p.height; ++y) {
+      const int* lab = labels.ptr<int>(y);
+      const float *L = p.L.ptr<float>(y), *A = p.A.ptr<float>(y), *B = p.B.ptr<float>(y);
+      const float *Z = p.Z.ptr<float>(y), *V = p.valid.ptr<float>(y);
+      for (int x = 0; x < p.width; ++x) {
+        const int k = lab[x];
+        sx[k] += x, sy[k] += y, sl[k] += L[x], sa[k] += A[x], sb[k] += B[x];
+        ++n[k];
+        if (V[x] > 0.f) sz[k] += Z[x], ++nz[k];
+      }
+    }
+    // Working pixel centre x maps to full-resolution coordinate (x + 0.5) / s - 0.5.
+    const double fx = static_cast<double>(bgr.cols) / p.width, fy = static_cast<double>(bgr.rows) / p.height;
+    for (int k = 0; k < count; ++k) {
+      Superpixel& s = result.superpixels[k];
+      s.pixel_count = n[k];
+      s.x = static_cast<float>((sx[k] / n[k] + 0.5) * fx - 0.5);
+      s.y = static_cast<float>((sy[k] / n[k] + 0.5) * fy - 0.5);
+      s.L = static_cast<float>(sl[k] / n[k]);
+      s.A = static_cast<float>(sa[k] / n[k]);
+      s.B = static_cast<float>(sb[k] / n[k]);
+      s.depth = nz[k] > 0 ? static_cast<float>(sz[k] / nz[k]) : 0.f;
+      s.valid_depth_fraction = static_cast<float>(nz[k]) / n[k];
+    }
+  }
+  if (labels.size() == bgr.size()) {
+    result.labels = labels;
+  } else {
+    cv::resize(labels, result.labels, bgr.size(), 0, 0, cv::INTER_NEAREST);
+  }
+  return result;
+}
+
+}  // namespace amos::dynamic
