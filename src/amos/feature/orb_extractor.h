@@ -5,6 +5,9 @@
 
 #include <vector>
 
+#include "amos/feature/orientation.h"
+#include "amos/feature/steered_brief.h"
+
 namespace amos::feature {
 
 struct OrbOptions {
@@ -32,11 +35,19 @@ class OrbExtractor {
   const std::vector<float>& scaleFactors() const { return scale_; }
   const std::vector<float>& levelSigma2() const { return sigma2_; }
   const std::vector<float>& invLevelSigma2() const { return inv_sigma2_; }
+  // How many keypoints each level aims for (geometric in 1 / scale_factor, summing to num_features).
+  const std::vector<int>& featuresPerLevel() const { return features_per_level_; }
+  // Reflected border around each pyramid level: room for the radius-15 orientation and descriptor patches of
+  // keypoints detected right at the level's edge.
+  static constexpr int kLevelBorder = 19;
+  static constexpr int kPatchSize = 31;
 
  private:
   OrbOptions options_;
   std::vector<float> scale_, sigma2_, inv_sigma2_;
   std::vector<int> features_per_level_;
+  IntensityCentroid centroid_;
+  SteeredBrief brief_;
 };
 
 }  // namespace amos::feature
