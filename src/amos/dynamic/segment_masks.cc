@@ -103,4 +103,30 @@ cv::Mat drawOverlay(const cv::Mat& bgr, const std::vector<SegmentedInstance>& in
   return overlay;
 }
 
+cv::Mat contactSheet(const std::vector<cv::Mat>& images, const std::vector<std::string>& captions, int columns,
+                     int tile_width) {
+  core::require(!images.empty() && columns > 0 && tile_width > 0, "contactSheet: nothing to tile");
+  int tile_height = 0;
+  for (const auto& image : images) {
+    core::require(image.type() == CV_8UC3 && !image.empty(), "contactSheet expects CV_8UC3 images");
+    tile_height = std::max(tile_height, (image.rows * tile_width + image.cols / 2) / image.cols);
+  }
+  const int rows = (static_cast<int>(images.size()) + columns - 1) / columns;
+  const int gap = 4;
+  cv::Mat sheet(rows * (tile_height + gap) + gap, columns * (tile_width + gap) + gap, CV_8UC3,
+                cv::Scalar(40, 40, 40));
+  for (std::size_t k = 0; k < images.size(); ++k) {
+    const int r = static_cast<int>(k) / columns, c = static_cast<int>(k) % columns;
+    const int h = (images[k].rows * tile_width + images[k].cols / 2) / images[k].cols;
+    cv::Mat tile = sheet(cv::Rect(gap + c * (tile_width + gap), gap + r * (tile_height + gap), tile_width, h));
+    cv::resize(images[k], tile, tile.size(), 0, 0, cv::INTER_AREA);
+    if (k < captions.size()) {
+      const cv::Point at(4, h - 6);
+      cv::putText(tile, captions[k], at, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 3);
+      cv::putText(tile, captions[k], at, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1);
+    }
+  }
+  return sheet;
+}
+
 }  // namespace amos::dynamic

@@ -3,6 +3,7 @@
 // configured structuring element (paper Sec. III-C) and comparing masks.
 #include <opencv2/core.hpp>
 
+#include <string>
 #include <vector>
 
 #include "amos/dynamic/segmenter.h"
@@ -33,5 +34,10 @@ cv::Rect widenBox(const cv::Rect& box, float widen_x, float widen_y, cv::Size im
 
 // Colour overlay for inspection: instances tinted per instance, outlines, boxes and "class score" labels.
 cv::Mat drawOverlay(const cv::Mat& bgr, const std::vector<SegmentedInstance>& instances);
+
+// Tiles images (CV_8UC3, any sizes) into one sheet, `columns` wide, each scaled to tile_width keeping its
+// aspect ratio, with the caption of the same index (if any) written in its corner.
+cv::Mat contactSheet(const std::vector<cv::Mat>& images, const std::vector<std::string>& captions, int columns,
+                     int tile_width);
 
 }  // namespace amos::dynamic

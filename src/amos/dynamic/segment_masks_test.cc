@@ -88,5 +88,14 @@ TEST(SegmentMasks, MaskIoU) {
   EXPECT_DOUBLE_EQ(maskIoU(a, b), 30.0 / 90.0);
 }
 
+TEST(SegmentMasks, ContactSheetTilesImages) {
+  std::vector<cv::Mat> images(5, cv::Mat(48, 64, CV_8UC3, cv::Scalar(0, 0, 255)));
+  const cv::Mat sheet = contactSheet(images, {"a", "b"}, 3, 32);
+  EXPECT_EQ(sheet.size(), cv::Size(3 * (32 + 4) + 4, 2 * (24 + 4) + 4));
+  EXPECT_EQ(sheet.at<cv::Vec3b>(4 + 2, 4 + 16), cv::Vec3b(0, 0, 255));   // first tile
+  EXPECT_EQ(sheet.at<cv::Vec3b>(32 + 2, 40 + 16), cv::Vec3b(0, 0, 255));  // fifth tile (row 1, column 1)
+  EXPECT_EQ(sheet.at<cv::Vec3b>(32 + 2, 76 + 16), cv::Vec3b(40, 40, 40));  // no sixth tile
+}
+
 }  // namespace
 }  // namespace amos::dynamic
