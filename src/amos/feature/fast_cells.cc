@@ -50,11 +50,19 @@ std::vector<cv::KeyPoint> detectFastInCells(const cv::Mat& padded, int border, c
     const int c = cellOf(xs, static_cast<int>(kp.pt.x)), r = cellOf(ys, static_cast<int>(kp.pt.y));
     has_corner[static_cast<size_t>(r * cols + c)] = 1;
   }
+  // Horizontal runs of empty cells are searched in one FAST call each: cv::FAST has a per-call cost that would
+  // otherwise dominate when many small cells fall back.
   for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < cols; ++c) {
-      if (has_corner[static_cast<size_t>(r * cols + c)]) continue;
-      const cv::Rect cell(xs[c], ys[r], xs[c + 1] - xs[c], ys[r + 1] - ys[r]);
-      fastInRect(padded, border, cell, options.min_threshold, mask, corners);
+    for (int c = 0; c < cols;) {
+      if (has_corner[static_cast<size_t>(r * cols + c)]) {
+        ++c;
+        continue;
+      }
+      int end = c + 1;
+      while (end < cols && !has_corner[static_cast<size_t>(r * cols + end)]) ++end;
+      const cv::Rect run(xs[c], ys[r], xs[end] - xs[c], ys[r + 1] - ys[r]);
+      fastInRect(padded, border, run, options.min_threshold, mask, corners);
+      c = end;
     }
   }
   return corners;

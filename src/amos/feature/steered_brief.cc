@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <set>
 #include <tuple>
@@ -35,7 +36,27 @@ std::vector<BriefPair> makeGaussianBriefPattern(unsigned seed, int num_pairs, in
   return pattern;
 }
 
-SteeredBrief::SteeredBrief(unsigned seed) : pattern_(makeGaussianBriefPattern(seed)) {}
+SteeredBrief::SteeredBrief(unsigned seed) : pattern_(makeGaussianBriefPattern(seed)) {
+  for (const BriefPair& p : pattern_) {
+    xs_.push_back(static_cast<float>(p.x1));
+    ys_.push_back(static_cast<float>(p.y1));
+  }
+  for (const BriefPair& p : pattern_) {
+    xs_.push_back(static_cast<float>(p.x2));
+    ys_.push_back(static_cast<float>(p.y2));
+  }
+}
+
+namespace {
+// Round to nearest (ties to even) by the float magic-number trick; unlike lrintf it vectorises with plain SSE2.
+// Valid for |value| < 2^22, far beyond the +-15 pixel offsets here.
+inline int roundSmall(float value) {
+  const float shifted = value + 12582912.0f;  // 1.5 * 2^23: the integer ends up in the low mantissa bits
+  std::int32_t bits;
+  std::memcpy(&bits, &shifted, sizeof bits);
+  return bits - 0x4B400000;
+}
+}  // namespace
 
 void SteeredBrief::compute(const cv::Mat& smoothed, int x, int y, float angle_deg, std::uint8_t* out) const {
   const double angle = angle_deg * M_PI / 180.0;
@@ -43,15 +64,20 @@ void SteeredBrief::compute(const cv::Mat& smoothed, int x, int y, float angle_de
   const std::uint8_t* center = smoothed.ptr<std::uint8_t>(y) + x;
   const int step = static_cast<int>(smoothed.step1());
   // Pattern point (px, py) is read at the image offset (px c - py s, px s + py c).
-  auto sample = [&](int px, int py) {
-    const int u = cvRound(px * c - py * s), v = cvRound(px * s + py * c);
-    return center[v * step + u];
-  };
-  const BriefPair* pair = pattern_.data();
+  constexpr int kPoints = 2 * kDescriptorBits;
+  int offsets[kPoints];
+  const float* px = xs_.data();
+  const float* py = ys_.data();
+  for (int i = 0; i < kPoints; ++i)
+    offsets[i] = roundSmall(px[i] * s + py[i] * c) * step + roundSmall(px[i] * c - py[i] * s);
+  const int* first = offsets;
+  const int* second = offsets + kDescriptorBits;
   for (int byte = 0; byte < kDescriptorBytes; ++byte) {
     int value = 0;
-    for (int bit = 0; bit < 8; ++bit, ++pair)
-      value |= (sample(pair->x1, pair->y1) < sample(pair->x2, pair->y2) ? 1 : 0) << bit;
+    for (int bit = 0; bit < 8; ++bit) {
+      const int i = 8 * byte + bit;
+      value |= (center[first[i]] < center[second[i]] ? 1 : 0) << bit;
+    }
     out[byte] = static_cast<std::uint8_t>(value);
   }
 }

@@ -32,6 +32,8 @@ class SteeredBrief {
 
  private:
   std::vector<BriefPair> pattern_;
+  // The pattern as point lists, first points then second points of each pair (for the rotation loop).
+  std::vector<float> xs_, ys_;
 };
 
 }  // namespace amos::feature
