@@ -1,0 +1,83 @@
+#include "amos/dynamic/corner_tracking.h"
+
+#include <fmt/format.h>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+
+#include <cmath>
+
+#include "amos/core/error.h"
+
+namespace amos::dynamic {
+
+void CornerTrackingOptions::check() const {
+  core::require(max_corners >= 8, fmt::format("Dynamic.Corners.maxCorners must be >= 8, got {}", max_corners));
+  core::require(quality_level > 0 && quality_level < 1,
+                fmt::format("Dynamic.Corners.qualityLevel must lie in (0, 1), got {}", quality_level));
+  core::require(min_distance_px >= 0,
+                fmt::format("Dynamic.Corners.minDistance must be >= 0, got {}", min_distance_px));
+  core::require(lk_window >= 5 && lk_window % 2 == 1,
+                fmt::format("Dynamic.LK.window must be an odd number >= 5, got {}", lk_window));
+  core::require(lk_levels >= 0 && lk_levels <= 6,
+                fmt::format("Dynamic.LK.pyramidLevels must lie in [0, 6], got {}", lk_levels));
+  core::require(lk_max_iterations >= 1,
+                fmt::format("Dynamic.LK.maxIterations must be >= 1, got {}", lk_max_iterations));
+  core::require(lk_epsilon > 0, fmt::format("Dynamic.LK.epsilon must be positive, got {}", lk_epsilon));
+  core::require(forward_backward_px > 0,
+                fmt::format("Dynamic.LK.forwardBackwardThreshold must be positive, got {}", forward_backward_px));
+}
+
+FramePairPyramids buildPyramids(const cv::Mat& last_gray, const cv::Mat& current_gray,
+                                const CornerTrackingOptions& options) {
+  options.check();
+  core::require(!last_gray.empty() && last_gray.type() == CV_8UC1 && current_gray.type() == CV_8UC1 &&
+                    last_gray.size() == current_gray.size(),
+                "buildPyramids: both images must be CV_8UC1 of the same size");
+  FramePairPyramids p;
+  const cv::Size window(options.lk_window, options.lk_window);
+  cv::buildOpticalFlowPyramid(last_gray, p.last, window, options.lk_levels);
+  cv::buildOpticalFlowPyramid(current_gray, p.current, window, options.lk_levels);
+  return p;
+}
+
+std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std::vector<cv::Point2f>& points,
+                                    const CornerTrackingOptions& options) {
+  options.check();
+  core::require(!pyramids.last.empty() && !pyramids.current.empty(), "trackPoints: pyramids are empty");
+  std::vector<PointTrack> tracks;
+  if (points.empty()) return tracks;
+  const cv::Size window(options.lk_window, options.lk_window);
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, options.lk_max_iterations,
+                              options.lk_epsilon);
+  std::vector<cv::Point2f> forward, backward;
+  std::vector<uchar> ok_forward, ok_backward;
+  std::vector<float> error;
+  cv::calcOpticalFlowPyrLK(pyramids.last, pyramids.current, points, forward, ok_forward, error, window,
+                           options.lk_levels, stop);
+  // The backward pass starts from the forward result; its initial guess is the original point (as if static).
+  backward = points;
+  cv::calcOpticalFlowPyrLK(pyramids.current, pyramids.last, forward, backward, ok_backward, error, window,
+                           options.lk_levels, stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+  const cv::Size size = pyramids.current.front().size();
+  const cv::Rect2f inside(0.f, 0.f, static_cast<float>(size.width - 1), static_cast<float>(size.height - 1));
+  const float fb2 = static_cast<float>(options.forward_backward_px * options.forward_backward_px);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!ok_forward[i] || !ok_backward[i]) continue;
+    if (!inside.contains(forward[i])) continue;
+    const cv::Point2f d = backward[i] - points[i];
+    if (d.dot(d) > fb2) continue;
+    tracks.push_back({points[i], forward[i], static_cast<int>(i)});
+  }
+  return tracks;
+}
+
+std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const cv::Mat& current_gray,
+                                     const CornerTrackingOptions& options, const cv::Mat& mask) {
+  const FramePairPyramids pyramids = buildPyramids(last_gray, current_gray, options);
+  std::vector<cv::Point2f> corners;
+  cv::goodFeaturesToTrack(last_gray, corners, options.max_corners, options.quality_level, options.min_distance_px,
+                          mask);
+  return trackPoints(pyramids, corners, options);
+}
+
+}  // namespace amos::dynamic

@@ -1,0 +1,117 @@
+#include "amos/dynamic/reprojection_scoring.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "amos/core/error.h"
+
+namespace amos::dynamic {
+
+void ReprojectionOptions::check() const {
+  core::require(std::isfinite(cauchy_scale_px) && cauchy_scale_px > 0,
+                fmt::format("Dynamic.Reprojection.cauchyScale must be positive, got {}", cauchy_scale_px));
+  core::require(std::isfinite(candidate_threshold_px) && candidate_threshold_px > 0,
+                fmt::format("Dynamic.Reprojection.threshold must be positive, got {}", candidate_threshold_px));
+  core::require(min_points_per_cluster >= 1,
+                fmt::format("Dynamic.Reprojection.minPoints must be >= 1, got {}", min_points_per_cluster));
+  core::require(std::isfinite(max_depth_m) && max_depth_m > 0,
+                fmt::format("Dynamic.Reprojection.maxDepth must be positive, got {}", max_depth_m));
+  core::require(std::isfinite(depth_edge_ratio) && depth_edge_ratio > 0,
+                fmt::format("Dynamic.Reprojection.depthEdgeRatio must be positive, got {}", depth_edge_ratio));
+}
+
+double cauchyRho(double squared_error, double scale) {
+  const double c2 = scale * scale;
+  return c2 * std::log1p(squared_error / c2);
+}
+
+double cauchyEquivalentError(double mean_rho, double scale) {
+  const double c2 = scale * scale;
+  return std::sqrt(std::max(0.0, c2 * std::expm1(mean_rho / c2)));
+}
+
+std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<PointTrack>& tracks,
+                                                              const cv::Mat& last_depth,
+                                                              const core::SE3& T_cw_last,
+                                                              const core::PinholeCamera& camera,
+                                                              const ReprojectionOptions& options) {
+  options.check();
+  core::require(last_depth.type() == CV_32F, "backProjectTracks: depth must be CV_32F metres");
+  std::vector<cv::Point2f> raw;
+  raw.reserve(tracks.size());
+  for (const PointTrack& t : tracks) raw.push_back(t.last);
+  const std::vector<cv::Point2f> undistorted = camera.undistort(raw);
+  const core::SE3 T_wl = T_cw_last.inverse();
+  std::vector<std::optional<Eigen::Vector3d>> points(tracks.size());
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    // Depth is registered to the raw image: read it at the raw pixel.
+    const int u = static_cast<int>(std::lround(raw[i].x)), v = static_cast<int>(std::lround(raw[i].y));
+    if (u < 1 || v < 1 || u >= last_depth.cols - 1 || v >= last_depth.rows - 1) continue;
+    const float z = last_depth.at<float>(v, u);
+    if (!(z > 0.f) || z > options.max_depth_m) continue;
+    float lo = z, hi = z;
+    bool hole = false;
+    for (int dv = -1; dv <= 1; ++dv)
+      for (int du = -1; du <= 1; ++du) {
+        const float zn = last_depth.at<float>(v + dv, u + du);
+        if (!(zn > 0.f) || !std::isfinite(zn)) hole = true;
+        lo = std::min(lo, zn), hi = std::max(hi, zn);
+      }
+    if (hole || hi - lo > options.depth_edge_ratio * z) continue;
+    // Eq. 6: P = T_wl [Z (u - cx) / fx, Z (v - cy) / fy, Z]^T.
+    points[i] = T_wl * camera.backProject(undistorted[i].x, undistorted[i].y, z);
+  }
+  return points;
+}
+
+std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTrack>& tracks,
+                                                      const std::vector<std::optional<Eigen::Vector3d>>& points_w,
+                                                      const core::SE3& T_cw_current,
+                                                      const core::PinholeCamera& camera) {
+  core::require(tracks.size() == points_w.size(), "reprojectionErrors: tracks and points differ in number");
+  std::vector<cv::Point2f> raw;
+  raw.reserve(tracks.size());
+  for (const PointTrack& t : tracks) raw.push_back(t.current);
+  const std::vector<cv::Point2f> undistorted = camera.undistort(raw);
+  std::vector<std::optional<double>> errors(tracks.size());
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    if (!points_w[i]) continue;
+    const Eigen::Vector3d p_c = T_cw_current * *points_w[i];
+    if (p_c.z() <= 1e-6) continue;
+    const Eigen::Vector2d e = Eigen::Vector2d(undistorted[i].x, undistorted[i].y) - camera.project(p_c);
+    errors[i] = e.norm();
+  }
+  return errors;
+}
+
+std::vector<ClusterScore> scoreClusters(const std::vector<std::optional<double>>& errors_px,
+                                        const std::vector<int>& cluster_of_point, int num_clusters,
+                                        const ReprojectionOptions& options) {
+  options.check();
+  core::require(errors_px.size() == cluster_of_point.size(),
+                "scoreClusters: errors and cluster labels differ in number");
+  core::require(num_clusters >= 0, "scoreClusters: negative cluster count");
+  std::vector<ClusterScore> scores(num_clusters);
+  std::vector<double> sum(num_clusters, 0.0);
+  for (std::size_t i = 0; i < errors_px.size(); ++i) {
+    const int c = cluster_of_point[i];
+    if (c < 0 || !errors_px[i]) continue;
+    core::require(c < num_clusters, "scoreClusters: cluster label out of range");
+    sum[c] += cauchyRho(*errors_px[i] * *errors_px[i], options.cauchy_scale_px);
+    ++scores[c].points;
+  }
+  const double threshold_rho =
+      cauchyRho(options.candidate_threshold_px * options.candidate_threshold_px, options.cauchy_scale_px);
+  for (int c = 0; c < num_clusters; ++c) {
+    ClusterScore& s = scores[c];
+    if (s.points < options.min_points_per_cluster) continue;
+    s.mean_rho = sum[c] / s.points;
+    s.equivalent_px = cauchyEquivalentError(s.mean_rho, options.cauchy_scale_px);
+    s.candidate = s.mean_rho > threshold_rho;
+  }
+  return scores;
+}
+
+}  // namespace amos::dynamic
