@@ -54,10 +54,10 @@ std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std
   std::vector<float> error;
   cv::calcOpticalFlowPyrLK(pyramids.last, pyramids.current, points, forward, ok_forward, error, window,
                            options.lk_levels, stop);
-  // The backward pass starts from the forward result; its initial guess is the original point (as if static).
-  backward = points;
+  // The backward pass starts where the forward pass ended, without a hint towards the original point, so
+  // that only a track consistent in both directions returns to it.
   cv::calcOpticalFlowPyrLK(pyramids.current, pyramids.last, forward, backward, ok_backward, error, window,
-                           options.lk_levels, stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+                           options.lk_levels, stop);
   const cv::Size size = pyramids.current.front().size();
   const cv::Rect2f inside(0.f, 0.f, static_cast<float>(size.width - 1), static_cast<float>(size.height - 1));
   const float fb2 = static_cast<float>(options.forward_backward_px * options.forward_backward_px);

@@ -1,0 +1,81 @@
+#include "amos/dynamic/corner_tracking.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "amos/core/error.h"
+
+namespace amos::dynamic {
+namespace {
+
+cv::Mat texture() {
+  cv::Mat t(480, 640, CV_8U);
+  cv::setRNGSeed(9);
+  cv::randu(t, 0, 255);
+  cv::GaussianBlur(t, t, cv::Size(0, 0), 2.0);
+  return t;
+}
+
+TEST(CornerTracking, RecoversAKnownSubpixelShift) {
+  const cv::Mat last = texture();
+  cv::Mat current;
+  const cv::Mat A = (cv::Mat_<double>(2, 3) << 1, 0, 3.5, 0, 1, -2.25);
+  cv::warpAffine(last, current, A, last.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  const std::vector<PointTrack> tracks = trackCorners(last, current, CornerTrackingOptions{});
+  ASSERT_GT(tracks.size(), 300u);
+  int close = 0;
+  for (const PointTrack& t : tracks) {
+    const cv::Point2f d = t.current - t.last;
+    if (std::abs(d.x - 3.5f) < 0.1f && std::abs(d.y + 2.25f) < 0.1f) ++close;
+  }
+  EXPECT_GT(close, static_cast<int>(tracks.size() * 95 / 100));
+}
+
+TEST(CornerTracking, ForwardBackwardCheckDropsOccludedPoints) {
+  const cv::Mat last = texture();
+  cv::Mat current = last.clone();
+  // A new, unrelated texture covers a block of the current frame (an occluder walking in).
+  cv::Mat occluder(160, 160, CV_8U);
+  cv::randu(occluder, 0, 255);
+  cv::GaussianBlur(occluder, occluder, cv::Size(0, 0), 2.0);
+  occluder.copyTo(current(cv::Rect(240, 160, 160, 160)));
+  std::vector<cv::Point2f> points;
+  for (int v = 20; v < 460; v += 20)
+    for (int u = 20; u < 620; u += 20) points.emplace_back(u, v);
+  const CornerTrackingOptions options;
+  const std::vector<PointTrack> tracks = trackPoints(buildPyramids(last, current, options), points, options);
+  int inside = 0, total_inside = 0;
+  const cv::Rect deep(255, 175, 130, 130);  // the occluder minus half an LK window
+  for (const cv::Point2f& p : points) total_inside += deep.contains(p);
+  for (const PointTrack& t : tracks) {
+    EXPECT_EQ(t.last, points[t.source_index]);
+    if (deep.contains(t.last)) ++inside;
+    // Far from the occluder (beyond the coarsest level's window, 21 px * 2^3) tracks are exact.
+    const cv::Rect reach(240 - 90, 160 - 90, 160 + 180, 160 + 180);
+    if (!reach.contains(t.last)) {
+      EXPECT_LT(cv::norm(t.current - t.last), 0.05);
+    }
+  }
+  EXPECT_GT(total_inside, 30);
+  // LK "converges" for every occluded point (both status flags set); the forward-backward check drops most of
+  // them. The rest land in local minima consistent in both directions, which no track-only test can tell.
+  CornerTrackingOptions no_check = options;
+  no_check.forward_backward_px = 1e6;
+  int inside_without_check = 0;
+  for (const PointTrack& t : trackPoints(buildPyramids(last, current, no_check), points, no_check))
+    inside_without_check += deep.contains(t.last);
+  EXPECT_EQ(inside_without_check, total_inside);
+  EXPECT_LT(inside, total_inside / 3);
+  EXPECT_GT(tracks.size(), points.size() * 3 / 4);
+}
+
+TEST(CornerTracking, RejectsBadOptionsAndImages) {
+  CornerTrackingOptions bad;
+  bad.lk_window = 20;
+  EXPECT_THROW(bad.check(), core::Error);
+  EXPECT_THROW(buildPyramids(cv::Mat(10, 10, CV_8UC3), cv::Mat(10, 10, CV_8UC3), CornerTrackingOptions{}),
+               core::Error);
+}
+
+}  // namespace
+}  // namespace amos::dynamic

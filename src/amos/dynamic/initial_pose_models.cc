@@ -1,0 +1,137 @@
+#include "amos/dynamic/initial_pose_models.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "amos/core/error.h"
+
+namespace amos::dynamic {
+
+void InitialPoseOptions::check() const {
+  core::require(std::isfinite(inlier_threshold_px) && inlier_threshold_px > 0,
+                fmt::format("Dynamic.InitialPose.inlierThreshold must be positive, got {}", inlier_threshold_px));
+  pnp.check();
+}
+
+void PoseCorrespondences::append(const PoseCorrespondences& other) {
+  points_w.insert(points_w.end(), other.points_w.begin(), other.points_w.end());
+  pixels.insert(pixels.end(), other.pixels.begin(), other.pixels.end());
+}
+
+std::string toString(PoseModel model) {
+  switch (model) {
+    case PoseModel::kReferenceKeyframe: return "reference_keyframe";
+    case PoseModel::kLastFrame: return "last_frame";
+    case PoseModel::kConstantVelocity: return "constant_velocity";
+  }
+  return "unknown";
+}
+
+PoseCorrespondences keyframeCorrespondences(const FramePairPyramids& keyframe_to_current,
+                                            const std::vector<cv::Point2f>& keyframe_pixels,
+                                            const std::vector<Eigen::Vector3d>& keyframe_points_w,
+                                            const core::PinholeCamera& camera,
+                                            const CornerTrackingOptions& tracking) {
+  core::require(keyframe_pixels.size() == keyframe_points_w.size(),
+                "keyframeCorrespondences: pixels and world points differ in number");
+  const std::vector<PointTrack> tracks = trackPoints(keyframe_to_current, keyframe_pixels, tracking);
+  std::vector<cv::Point2f> raw;
+  raw.reserve(tracks.size());
+  for (const PointTrack& t : tracks) raw.push_back(t.current);
+  const std::vector<cv::Point2f> undistorted = camera.undistort(raw);
+  PoseCorrespondences out;
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    out.points_w.push_back(keyframe_points_w[tracks[i].source_index]);
+    out.pixels.emplace_back(undistorted[i].x, undistorted[i].y);
+  }
+  return out;
+}
+
+PoseCorrespondences lastFrameCorrespondences(const std::vector<PointTrack>& tracks,
+                                             const std::vector<std::optional<Eigen::Vector3d>>& points_w,
+                                             const core::PinholeCamera& camera) {
+  core::require(tracks.size() == points_w.size(), "lastFrameCorrespondences: tracks and points differ in number");
+  std::vector<cv::Point2f> raw;
+  raw.reserve(tracks.size());
+  for (const PointTrack& t : tracks) raw.push_back(t.current);
+  const std::vector<cv::Point2f> undistorted = camera.undistort(raw);
+  PoseCorrespondences out;
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    if (!points_w[i]) continue;
+    out.points_w.push_back(*points_w[i]);
+    out.pixels.emplace_back(undistorted[i].x, undistorted[i].y);
+  }
+  return out;
+}
+
+core::SE3 velocityFrom(const core::SE3& T_cw_last, const core::SE3& T_cw_before_last) {
+  return T_cw_last * T_cw_before_last.inverse();
+}
+
+core::SE3 constantVelocityPose(const core::SE3& T_cw_last, const core::SE3& velocity) { return velocity * T_cw_last; }
+
+int countInliers(const core::SE3& T_cw, const PoseCorrespondences& correspondences,
+                 const core::PinholeCamera& camera, double threshold_px) {
+  const double t2 = threshold_px * threshold_px;
+  int count = 0;
+  for (std::size_t i = 0; i < correspondences.size(); ++i) {
+    const Eigen::Vector3d p_c = T_cw * correspondences.points_w[i];
+    if (p_c.z() <= 1e-6) continue;
+    if ((camera.project(p_c) - correspondences.pixels[i]).squaredNorm() < t2) ++count;
+  }
+  return count;
+}
+
+PoseCandidate poseFromCorrespondences(PoseModel model, const PoseCorrespondences& correspondences,
+                                      const core::PinholeCamera& camera, const InitialPoseOptions& options) {
+  PoseCandidate candidate;
+  candidate.model = model;
+  if (static_cast<int>(correspondences.size()) < options.pnp.min_inliers) return candidate;
+  const geometry::PnpResult pnp =
+      geometry::solvePnpRansac(correspondences.points_w, correspondences.pixels, camera, options.pnp);
+  candidate.valid = pnp.success;
+  candidate.T_cw = pnp.T_cw;
+  candidate.own_inliers = static_cast<int>(pnp.inliers.size());
+  return candidate;
+}
+
+InitialPoseResult selectInitialPose(std::vector<PoseCandidate> candidates, const PoseCorrespondences& common,
+                                    const core::PinholeCamera& camera, const InitialPoseOptions& options) {
+  options.check();
+  InitialPoseResult result;
+  result.common_size = static_cast<int>(common.size());
+  int best = -1;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    PoseCandidate& c = candidates[i];
+    if (!c.valid) continue;
+    c.common_inliers = countInliers(c.T_cw, common, camera, options.inlier_threshold_px);
+    if (best < 0 || c.common_inliers > candidates[best].common_inliers) best = static_cast<int>(i);
+  }
+  if (best >= 0) {
+    result.ok = true;
+    result.T_cw = candidates[best].T_cw;
+    result.model = candidates[best].model;
+  }
+  result.candidates = std::move(candidates);
+  return result;
+}
+
+InitialPoseResult estimateInitialPose(const PoseCorrespondences& keyframe, const PoseCorrespondences& last_frame,
+                                      const core::SE3& T_cw_last, const std::optional<core::SE3>& velocity,
+                                      const core::PinholeCamera& camera, const InitialPoseOptions& options) {
+  options.check();
+  std::vector<PoseCandidate> candidates;
+  candidates.push_back(poseFromCorrespondences(PoseModel::kReferenceKeyframe, keyframe, camera, options));
+  candidates.push_back(poseFromCorrespondences(PoseModel::kLastFrame, last_frame, camera, options));
+  PoseCandidate cv_candidate;
+  cv_candidate.model = PoseModel::kConstantVelocity;
+  cv_candidate.valid = velocity.has_value();
+  if (velocity) cv_candidate.T_cw = constantVelocityPose(T_cw_last, *velocity);
+  candidates.push_back(cv_candidate);
+  PoseCorrespondences common = keyframe;
+  common.append(last_frame);
+  return selectInitialPose(std::move(candidates), common, camera, options);
+}
+
+}  // namespace amos::dynamic

@@ -1,0 +1,142 @@
+#include "amos/dynamic/initial_pose_models.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <random>
+
+namespace amos::dynamic {
+namespace {
+
+core::PinholeCamera testCamera() {
+  core::CameraIntrinsics intr;
+  intr.fx = 535.4, intr.fy = 539.2, intr.cx = 320.1, intr.cy = 247.6;
+  return core::PinholeCamera(intr);
+}
+
+core::SE3 pose(double tx, double ty, double tz, double rx, double ry, double rz) {
+  core::Vector6d xi;
+  xi << tx, ty, tz, rx, ry, rz;
+  return core::expSE3(xi);
+}
+
+// n world points in front of the camera at T_cw, observed with 0.5 px noise.
+PoseCorrespondences observe(const core::SE3& T_cw, const core::PinholeCamera& cam, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(20, 620), v(20, 460), z(1.0, 5.0);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  PoseCorrespondences c;
+  for (int i = 0; i < n; ++i) {
+    const double zi = z(rng);
+    const Eigen::Vector3d p_c = cam.backProject(u(rng), v(rng), zi);
+    c.points_w.push_back(T_cw.inverse() * p_c);
+    c.pixels.push_back(cam.project(p_c) + Eigen::Vector2d(noise(rng), noise(rng)));
+  }
+  return c;
+}
+
+double poseError(const core::SE3& a, const core::SE3& b) { return core::translationNorm(a.inverse() * b); }
+
+TEST(InitialPoseModels, ConstantVelocityRepeatsTheLastMotion) {
+  const core::SE3 motion = pose(0.01, -0.02, 0.03, 0.01, 0.02, -0.005);
+  const core::SE3 T0 = pose(0.3, 0.1, -0.2, 0.1, 0.2, 0.3);
+  const core::SE3 T1 = motion * T0, T2 = motion * T1;
+  const core::SE3 predicted = constantVelocityPose(T1, velocityFrom(T1, T0));
+  EXPECT_LT((predicted.matrix() - T2.matrix()).norm(), 1e-12);
+}
+
+TEST(InitialPoseModels, SelectionPicksTheUncorruptedModel) {
+  const core::PinholeCamera cam = testCamera();
+  const core::SE3 truth = pose(0.1, 0.0, 0.05, 0.02, -0.03, 0.01);
+  const PoseCorrespondences common = observe(truth, cam, 200, 1);
+  const std::vector<core::SE3> corrupted = {pose(0, 0, 0, 0, 0.035, 0) * truth,   // 2 deg off
+                                            pose(0.1, 0, 0, 0, 0, 0) * truth};     // 10 cm off
+  for (int correct = 0; correct < 3; ++correct) {
+    std::vector<PoseCandidate> candidates(3);
+    int next_bad = 0;
+    for (int i = 0; i < 3; ++i) {
+      candidates[i].model = static_cast<PoseModel>(i);
+      candidates[i].valid = true;
+      candidates[i].T_cw = i == correct ? truth : corrupted[next_bad++];
+    }
+    const InitialPoseResult r = selectInitialPose(candidates, common, cam, InitialPoseOptions{});
+    ASSERT_TRUE(r.ok);
+    EXPECT_EQ(static_cast<int>(r.model), correct);
+    EXPECT_GT(r.candidates[correct].common_inliers, 190);
+    for (int i = 0; i < 3; ++i)
+      if (i != correct) {
+        EXPECT_LT(r.candidates[i].common_inliers, 20) << i;
+      }
+  }
+  // An invalid candidate is never chosen, however good its pose.
+  std::vector<PoseCandidate> candidates(2);
+  candidates[0].T_cw = truth;
+  candidates[1].valid = true;
+  candidates[1].T_cw = corrupted[0];
+  EXPECT_EQ(selectInitialPose(candidates, common, cam, InitialPoseOptions{}).T_cw.matrix(), corrupted[0].matrix());
+}
+
+TEST(InitialPoseModels, EstimateRunsPnpPerModelAndKeepsTheBest) {
+  const core::PinholeCamera cam = testCamera();
+  const core::SE3 T_cw_last = pose(0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+  const core::SE3 truth = pose(0.03, 0.0, 0.01, 0.0, 0.01, 0.0);
+  const core::SE3 wrong_velocity = pose(-0.2, 0.1, 0.0, 0.05, 0.0, 0.0);
+  // Keyframe correspondences consistent with a wrong pose (e.g. tracks locked onto a moving crowd).
+  const PoseCorrespondences bad = observe(pose(0.15, 0.0, 0.0, 0.0, 0.0, 0.04), cam, 80, 2);
+  const PoseCorrespondences good = observe(truth, cam, 150, 3);
+  InitialPoseResult r = estimateInitialPose(bad, good, T_cw_last, wrong_velocity, cam, InitialPoseOptions{});
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.model, PoseModel::kLastFrame);
+  EXPECT_LT(poseError(r.T_cw, truth), 0.01);
+  EXPECT_EQ(r.common_size, 230);
+  EXPECT_EQ(r.candidates.size(), 3u);
+  EXPECT_TRUE(r.candidates[0].valid);  // PnP succeeds on its own (wrong) data...
+  EXPECT_LT(r.candidates[0].common_inliers, r.candidates[1].common_inliers);  // ...but loses on the common set
+
+  r = estimateInitialPose(good, bad, T_cw_last, wrong_velocity, cam, InitialPoseOptions{});
+  EXPECT_EQ(r.model, PoseModel::kReferenceKeyframe);
+  EXPECT_LT(poseError(r.T_cw, truth), 0.01);
+
+  // Too few correspondences for PnP in either set: the constant-velocity prediction wins on their union.
+  const core::SE3 velocity = truth * T_cw_last.inverse();
+  const PoseCorrespondences few_a = observe(truth, cam, 10, 4), few_b = observe(truth, cam, 12, 5);
+  r = estimateInitialPose(few_a, few_b, T_cw_last, velocity, cam, InitialPoseOptions{});
+  ASSERT_TRUE(r.ok);
+  EXPECT_FALSE(r.candidates[0].valid);
+  EXPECT_FALSE(r.candidates[1].valid);
+  EXPECT_EQ(r.model, PoseModel::kConstantVelocity);
+  EXPECT_EQ(r.candidates[2].common_inliers, 22);
+  // No velocity and no PnP: nothing to offer.
+  EXPECT_FALSE(estimateInitialPose(few_a, few_b, T_cw_last, std::nullopt, cam, InitialPoseOptions{}).ok);
+}
+
+TEST(InitialPoseModels, KeyframeModelTracksKeypointsByLkAndSolvesThePose) {
+  // A textured fronto-parallel wall at 2 m; the camera slides 1 cm to the right, so the image shifts left by
+  // fx * 0.01 / 2 = 2.68 px.
+  const core::PinholeCamera cam = testCamera();
+  cv::Mat texture(480, 640, CV_8U);
+  cv::randu(texture, 0, 255);
+  cv::GaussianBlur(texture, texture, cv::Size(0, 0), 2.0);
+  const double shift = -cam.fx() * 0.01 / 2.0;
+  cv::Mat current;
+  const cv::Mat A = (cv::Mat_<double>(2, 3) << 1, 0, shift, 0, 1, 0);
+  cv::warpAffine(texture, current, A, texture.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  std::vector<cv::Point2f> pixels;
+  std::vector<Eigen::Vector3d> points_w;
+  for (int v = 40; v < 440; v += 25)
+    for (int u = 40; u < 600; u += 25) {
+      pixels.emplace_back(u, v);
+      points_w.push_back(cam.backProject(u, v, 2.0));  // keyframe at the world origin
+    }
+  CornerTrackingOptions tracking;
+  const FramePairPyramids pyramids = buildPyramids(texture, current, tracking);
+  const PoseCorrespondences c = keyframeCorrespondences(pyramids, pixels, points_w, cam, tracking);
+  EXPECT_GT(c.size(), pixels.size() * 9 / 10);
+  const PoseCandidate candidate = poseFromCorrespondences(PoseModel::kReferenceKeyframe, c, cam, InitialPoseOptions{});
+  ASSERT_TRUE(candidate.valid);
+  const core::SE3 truth = pose(-0.01, 0, 0, 0, 0, 0);  // T_cw of a camera at x = +1 cm
+  EXPECT_LT(poseError(candidate.T_cw, truth), 0.002);
+}
+
+}  // namespace
+}  // namespace amos::dynamic
