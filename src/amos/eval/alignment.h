@@ -14,7 +14,9 @@ struct Alignment {
   core::SE3 transform = core::SE3::Identity();
   double scale = 1.0;  // 1 unless a similarity was requested
 
-  Eigen::Vector3d apply(const Eigen::Vector3d& p) const { return transform.linear() * (scale * p) + transform.translation(); }
+  Eigen::Vector3d apply(const Eigen::Vector3d& p) const {
+    return transform.linear() * (scale * p) + transform.translation();
+  }
   // A camera pose T_wc of the model trajectory expressed in the data frame: rotation R * R_wc, centre apply(t_wc).
   core::SE3 apply(const core::SE3& T_wc) const;
 };

@@ -49,7 +49,8 @@ std::vector<io::StampedPose> bonnMarkerToCamera(const std::vector<io::StampedPos
   const Conversion c = conversion();
   std::vector<io::StampedPose> camera_poses;
   camera_poses.reserve(marker_poses.size());
-  for (const io::StampedPose& pose : marker_poses) camera_poses.push_back({pose.timestamp, c.left * pose.T_wc * c.right});
+  for (const io::StampedPose& pose : marker_poses)
+    camera_poses.push_back({pose.timestamp, c.left * pose.T_wc * c.right});
   return camera_poses;
 }
 

@@ -13,7 +13,7 @@
 namespace amos::eval {
 namespace {
 
-constexpr double kWidth = 1200, kHeight = 620;
+constexpr double kWidth = 1200, kHeight = 660;
 constexpr const char* kGtColour = "#222222";
 constexpr const char* kEstColour = "#1f6fd1";
 constexpr const char* kErrColour = "#d62728";
@@ -22,11 +22,20 @@ std::string escapeXml(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -107,22 +116,38 @@ void drawTrack(std::string& svg, const Frame& f, const std::vector<double>& stam
   svg += fmt::format(R"(<path d="{}" fill="none" {}/>)"
                      "\n",
                      path, style);
+  // Sparse tracks (e.g. keyframes only) would show as broken stubs or nothing: mark every sample.
+  if (points.size() <= 300) {
+    std::string marks;
+    for (const auto& p : points) {
+      marks += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="2.2"/>)", f.px(p.x()), f.py(p.y()));
+    }
+    const auto colour_begin = style.find("stroke=\"");
+    const std::string colour =
+        colour_begin == std::string::npos
+            ? std::string("black")
+            : style.substr(colour_begin + 8, style.find('"', colour_begin + 8) - colour_begin - 8);
+    svg += fmt::format(R"(<g fill="{}">{}</g>)"
+                       "\n",
+                       colour, marks);
+  }
 }
 
-void drawLegend(std::string& svg, double x, double y,
-                const std::vector<std::pair<std::string, std::string>>& entries) {
-  const double height = 8 + 20.0 * entries.size();
-  svg += fmt::format(R"(<rect x="{:.1f}" y="{:.1f}" width="190" height="{:.1f}" fill="white" fill-opacity="0.85" )"
-                     R"(stroke="#999"/>)"
-                     "\n",
-                     x, y, height);
-  for (std::size_t k = 0; k < entries.size(); ++k) {
-    const double yy = y + 18 + 20.0 * k;
+// A one-row legend (line sample + label per entry) starting at (x, y), outside the plot so it hides no data.
+void drawLegend(std::string& svg, double x, double y, const std::vector<std::pair<std::string, std::string>>& entries) {
+  for (const auto& [label, style] : entries) {
     svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" {}/>)"
                        R"(<text x="{:.1f}" y="{:.1f}" font-size="13">{}</text>)"
                        "\n",
-                       x + 8, yy - 4, x + 38, yy - 4, entries[k].second, x + 46, yy, escapeXml(entries[k].first));
+                       x, y - 4, x + 28, y - 4, style, x + 34, y, escapeXml(label));
+    x += 34 + 7.5 * static_cast<double>(label.size()) + 24;  // rough text width at 13 px
   }
+}
+
+// Long titles (full paths) are shortened from the left so that the end, usually the file names, stays visible.
+std::string shortened(const std::string& text, std::size_t max_chars) {
+  if (text.size() <= max_chars) return text;
+  return "..." + text.substr(text.size() - (max_chars - 3));
 }
 
 std::string formatMetric(double value, const char* unit, int decimals) {
@@ -211,21 +236,23 @@ std::string renderEvaluationSvg(const std::vector<io::StampedPose>& gt_raw, cons
   const std::string heading = title.empty() ? std::string("Trajectory evaluation") : title;
   svg += fmt::format(R"(<text x="{:.1f}" y="30" text-anchor="middle" font-size="18" font-weight="bold">{}</text>)"
                      "\n",
-                     kWidth / 2, escapeXml(heading));
+                     kWidth / 2, escapeXml(shortened(heading, 110)));
   const std::string summary = fmt::format(
-      "ATE RMSE {} ({} pairs, {} alignment)   RPE ({:g} s) {} / {} ({} pairs)", formatMetric(result.ate_rmse_m, "m", 6),
-      result.ate_pairs, result.sim3 ? fmt::format("Sim(3), scale {:.4f}", result.alignment.scale) : "SE(3)",
-      result.rpe_delta_s, formatMetric(result.rpe_trans_rmse_m, "m", 6), formatMetric(result.rpe_rot_rmse_deg, "deg", 4),
-      result.rpe_pairs);
+      "ATE RMSE {} ({} pairs, {})   RPE ({:g} s) {} / {} ({} pairs)", formatMetric(result.ate_rmse_m, "m", 6),
+      result.ate_pairs,
+      result.sim3 ? fmt::format("Sim(3) alignment, scale {:.4f}", result.alignment.scale) : "SE(3) alignment",
+      result.rpe_delta_s, formatMetric(result.rpe_trans_rmse_m, "m", 6),
+      formatMetric(result.rpe_rot_rmse_deg, "deg", 4), result.rpe_pairs);
   svg += fmt::format(R"(<text x="{:.1f}" y="56" text-anchor="middle" font-size="15">{}</text>)"
                      "\n",
                      kWidth / 2, escapeXml(summary));
 
   // Left panel: top view.
   drawAxes(svg, top, fmt::format("{} [m]", axis_names[axes[0]]), fmt::format("{} [m]", axis_names[axes[1]]));
-  svg += fmt::format(R"(<svg x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" viewBox="{:.1f} {:.1f} {:.1f} {:.1f}">)"
-                     "\n",
-                     top.left, top.top, top.width, top.height, top.left, top.top, top.width, top.height);  // clip
+  svg +=
+      fmt::format(R"(<svg x="{:.1f}" y="{:.1f}" width="{:.1f}" height="{:.1f}" viewBox="{:.1f} {:.1f} {:.1f} {:.1f}">)"
+                  "\n",
+                  top.left, top.top, top.width, top.height, top.left, top.top, top.width, top.height);  // clip
   std::string differences;
   for (std::size_t i = 0; i < pair_gt_2d.size(); ++i) {
     differences += fmt::format("M{:.1f},{:.1f} L{:.1f},{:.1f} ", top.px(pair_gt_2d[i].x()), top.py(pair_gt_2d[i].y()),
@@ -237,7 +264,7 @@ std::string renderEvaluationSvg(const std::vector<io::StampedPose>& gt_raw, cons
   drawTrack(svg, top, gt_stamps, gt_2d, fmt::format(R"(stroke="{}" stroke-width="1.6")", kGtColour));
   drawTrack(svg, top, est_stamps, est_2d, fmt::format(R"(stroke="{}" stroke-width="1.3")", kEstColour));
   svg += "</svg>\n";
-  drawLegend(svg, top.left + 8, top.top + 8,
+  drawLegend(svg, top.left, top.top + top.height + 70,
              {{"ground truth", fmt::format(R"(stroke="{}" stroke-width="2")", kGtColour)},
               {"estimate (aligned)", fmt::format(R"(stroke="{}" stroke-width="2")", kEstColour)},
               {"difference", fmt::format(R"(stroke="{}" stroke-width="1.5" stroke-opacity="0.6")", kErrColour)}});
@@ -256,7 +283,7 @@ std::string renderEvaluationSvg(const std::vector<io::StampedPose>& gt_raw, cons
   svg += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="#555" stroke-dasharray="6,4"/>)"
                      "\n",
                      err.left, rmse_y, err.left + err.width, rmse_y);
-  drawLegend(svg, err.left + err.width - 198, err.top + 8,
+  drawLegend(svg, err.left, err.top + err.height + 70,
              {{"error per pair", fmt::format(R"(stroke="{}" stroke-width="2")", kErrColour)},
               {fmt::format("RMSE {:.4f} m", result.ate_rmse_m), R"(stroke="#555" stroke-dasharray="6,4")"}});
   svg += fmt::format(R"(<text x="{:.1f}" y="82" text-anchor="middle" font-size="14">ATE over time</text>)"
