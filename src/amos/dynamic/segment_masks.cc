@@ -77,6 +77,28 @@ cv::Rect widenBox(const cv::Rect& box, float widen_x, float widen_y, cv::Size im
          cv::Rect(cv::Point(0, 0), image_size);
 }
 
+cv::Rect extendBorderCrop(const cv::Rect& box, const cv::Rect& crop, cv::Size image_size, float min_aspect) {
+  const int wanted = static_cast<int>(std::lround(min_aspect * crop.height));
+  if (min_aspect <= 0.f || crop.width >= wanted) return crop;
+  constexpr int kTouch = 2;  // boxes within this many pixels of the border count as cut by it
+  const bool left = box.x <= kTouch, right = box.x + box.width >= image_size.width - kTouch;
+  if (left == right) return crop;  // not at a side border, or spanning the whole width
+  cv::Rect out = crop;
+  out.width = wanted;
+  if (left) out.x = crop.x + crop.width - wanted;
+  return out;
+}
+
+cv::Mat imagePatch(const cv::Mat& image, const cv::Rect& rect) {
+  const cv::Rect inside = rect & cv::Rect(0, 0, image.cols, image.rows);
+  core::require(!inside.empty(), "imagePatch: rectangle entirely outside the image");
+  if (inside == rect) return image(rect);
+  cv::Mat patch;
+  cv::copyMakeBorder(image(inside), patch, inside.y - rect.y, rect.br().y - inside.br().y, inside.x - rect.x,
+                     rect.br().x - inside.br().x, cv::BORDER_REFLECT);
+  return patch;
+}
+
 cv::Mat drawOverlay(const cv::Mat& bgr, const std::vector<SegmentedInstance>& instances) {
   static const cv::Scalar kColours[] = {{0, 0, 255},   {0, 200, 0},   {255, 80, 0},  {0, 200, 255},
                                         {255, 0, 200}, {200, 255, 0}, {128, 0, 255}, {0, 128, 255}};

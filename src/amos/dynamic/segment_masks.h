@@ -32,6 +32,15 @@ cv::Mat pasteProbabilityMask(const cv::Mat& probability, const cv::Rect& crop, c
 // box grown by widen_x * width and widen_y * height in total (half on each side), clipped to the image.
 cv::Rect widenBox(const cv::Rect& box, float widen_x, float widen_y, cv::Size image_size);
 
+// A person cut by the left or right image border gives a thin crop, which the mask network (trained on whole
+// upper bodies) segments badly once it is squashed to its square input. When `box` touches that border and `crop`
+// is narrower than min_aspect * height, the crop is extended beyond the border to that width; the part outside
+// the image is then filled by mirroring (imagePatch). min_aspect <= 0 leaves the crop alone.
+cv::Rect extendBorderCrop(const cv::Rect& box, const cv::Rect& crop, cv::Size image_size, float min_aspect);
+
+// The pixels of `rect`, which may reach outside the image; outside pixels mirror the image (BORDER_REFLECT).
+cv::Mat imagePatch(const cv::Mat& image, const cv::Rect& rect);
+
 // Colour overlay for inspection: instances tinted per instance, outlines, boxes and "class score" labels.
 cv::Mat drawOverlay(const cv::Mat& bgr, const std::vector<SegmentedInstance>& instances);
 

@@ -88,6 +88,30 @@ TEST(SegmentMasks, MaskIoU) {
   EXPECT_DOUBLE_EQ(maskIoU(a, b), 30.0 / 90.0);
 }
 
+TEST(SegmentMasks, CropsOfPeopleCutByTheBorderAreExtendedBeyondIt) {
+  const cv::Size image(640, 480);
+  // Cut by the left border: widened to 0.45 * 400 = 180 px, reaching out to the left.
+  EXPECT_EQ(extendBorderCrop({0, 40, 60, 400}, {0, 30, 66, 420}, image, 0.45f), cv::Rect(66 - 189, 30, 189, 420));
+  // Cut by the right border: extended to the right.
+  EXPECT_EQ(extendBorderCrop({590, 40, 50, 400}, {585, 30, 55, 420}, image, 0.45f), cv::Rect(585, 30, 189, 420));
+  // Wide enough already, not at a border, or switched off: unchanged.
+  EXPECT_EQ(extendBorderCrop({0, 40, 250, 400}, {0, 30, 260, 420}, image, 0.45f), cv::Rect(0, 30, 260, 420));
+  EXPECT_EQ(extendBorderCrop({300, 40, 60, 400}, {295, 30, 70, 420}, image, 0.45f), cv::Rect(295, 30, 70, 420));
+  EXPECT_EQ(extendBorderCrop({0, 40, 60, 400}, {0, 30, 66, 420}, image, 0.f), cv::Rect(0, 30, 66, 420));
+}
+
+TEST(SegmentMasks, ImagePatchMirrorsOutsideTheImage) {
+  cv::Mat image(4, 6, CV_8UC1);
+  for (int x = 0; x < 6; ++x) image.col(x).setTo(10 * x);
+  const cv::Mat inside = imagePatch(image, {1, 0, 3, 4});
+  EXPECT_EQ(inside.at<uchar>(0, 0), 10);
+  const cv::Mat patch = imagePatch(image, {-2, 0, 5, 4});  // 2 columns left of the image, then columns 0..2
+  ASSERT_EQ(patch.size(), cv::Size(5, 4));
+  const uchar expected[] = {10, 0, 0, 10, 20};  // BORDER_REFLECT: ...b a | a b c...
+  for (int x = 0; x < 5; ++x) EXPECT_EQ(patch.at<uchar>(2, x), expected[x]) << x;
+  EXPECT_THROW(imagePatch(image, {10, 0, 2, 2}), core::Error);
+}
+
 TEST(SegmentMasks, ContactSheetTilesImages) {
   std::vector<cv::Mat> images(5, cv::Mat(48, 64, CV_8UC3, cv::Scalar(0, 0, 255)));
   const cv::Mat sheet = contactSheet(images, {"a", "b"}, 3, 32);

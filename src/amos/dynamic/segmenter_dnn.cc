@@ -72,7 +72,7 @@ class NanoDetSelfieSegmenter : public Segmenter {
       inst.class_id = det.class_id;
       inst.score = det.score;
       inst.box = box;
-      inst.mask = det.class_id == kPersonClass ? personMask(bgr, box) : boxDepthMask(depth, box, options_.depth_tolerance);
+      inst.mask = det.class_id == kPersonClass ? personMask(bgr, depth, box) : boxDepthMask(depth, box, options_.depth_tolerance);
       instances.push_back(std::move(inst));
     }
     return instances;
@@ -103,11 +103,16 @@ class NanoDetSelfieSegmenter : public Segmenter {
   }
 
   // Widened crop squashed to the selfie input (letterboxing was worse, see the models' README), probability
-  // pasted back inside the detector's box.
-  cv::Mat personMask(const cv::Mat& bgr, const cv::Rect& box) {
-    const cv::Rect crop = widenBox(box, options_.box_widen_x, options_.box_widen_y, bgr.size());
-    const cv::Mat probability = runSelfie(bgr(crop));
-    return pasteProbabilityMask(probability, crop, box, options_.mask_threshold);
+  // pasted back inside the detector's box. Crops of people cut by a side border are first extended beyond it
+  // (mirrored) so they are not squashed into a sliver; a mask that stays nearly empty falls back to box + depth.
+  cv::Mat personMask(const cv::Mat& bgr, const cv::Mat& depth, const cv::Rect& box) {
+    const cv::Rect crop = extendBorderCrop(box, widenBox(box, options_.box_widen_x, options_.box_widen_y, bgr.size()),
+                                           bgr.size(), options_.border_crop_aspect);
+    const cv::Mat probability = runSelfie(imagePatch(bgr, crop));
+    cv::Mat mask = pasteProbabilityMask(probability, crop, box, options_.mask_threshold);
+    if (cv::countNonZero(mask) < options_.min_mask_fill * box.area())
+      mask = boxDepthMask(depth, box, options_.depth_tolerance);
+    return mask;
   }
 
   cv::Mat runSelfie(const cv::Mat& crop) {

@@ -31,6 +31,10 @@ void SegmenterOptions::check() const {
           fmt::format("Segmentation.box_widen_y must be in [0, 1], got {}", box_widen_y));
   require(mask_threshold > 0.f && mask_threshold < 1.f,
           fmt::format("Segmentation.mask_threshold must be in (0, 1), got {}", mask_threshold));
+  require(border_crop_aspect >= 0.f && border_crop_aspect <= 2.f,
+          fmt::format("Segmentation.border_crop_aspect must be in [0, 2], got {}", border_crop_aspect));
+  require(min_mask_fill >= 0.f && min_mask_fill < 1.f,
+          fmt::format("Segmentation.min_mask_fill must be in [0, 1), got {}", min_mask_fill));
   require(depth_tolerance > 0.f, fmt::format("Segmentation.depth_tolerance must be > 0 m, got {}", depth_tolerance));
   require(max_instances >= 1, fmt::format("Segmentation.max_instances must be >= 1, got {}", max_instances));
   require(threads >= 0 && threads <= 64, fmt::format("Segmentation.threads must be in [0, 64], got {}", threads));

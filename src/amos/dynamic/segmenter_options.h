@@ -29,6 +29,13 @@ struct SegmenterOptions {
   float box_widen_x = 0.10f;        // Segmentation.box_widen_x: crop widening for the mask net, total fraction of box width
   float box_widen_y = 0.05f;        // Segmentation.box_widen_y: same, of box height
   float mask_threshold = 0.5f;      // Segmentation.mask_threshold: person probability above which a pixel is masked
+  // Segmentation.border_crop_aspect: a person box at the left/right image border whose crop is narrower than this
+  // times its height is extended beyond the border (mirrored image) to that width before the mask network sees
+  // it; thin squashed crops gave partial or empty masks. 0 = off.
+  float border_crop_aspect = 0.45f;
+  // Segmentation.min_mask_fill: a person whose learned mask covers less than this fraction of its box (the mask
+  // network failed, e.g. on motion blur) gets the box + depth mask instead. 0 = off.
+  float min_mask_fill = 0.1f;
   // Segmentation.depth_tolerance: for non-person classes, pixels of the box whose depth is within this many metres
   // of the object's median depth belong to the object (whole box when there is no usable depth).
   float depth_tolerance = 0.4f;

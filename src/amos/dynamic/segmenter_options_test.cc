@@ -41,6 +41,8 @@ TEST(SegmenterOptions, ErrorsNameTheKey) {
       {"Segmentation.box_widen_x", [](SegmenterOptions& o) { o.box_widen_x = -0.1f; }},
       {"Segmentation.box_widen_y", [](SegmenterOptions& o) { o.box_widen_y = 2.f; }},
       {"Segmentation.mask_threshold", [](SegmenterOptions& o) { o.mask_threshold = 1.f; }},
+      {"Segmentation.border_crop_aspect", [](SegmenterOptions& o) { o.border_crop_aspect = -1.f; }},
+      {"Segmentation.min_mask_fill", [](SegmenterOptions& o) { o.min_mask_fill = 1.f; }},
       {"Segmentation.depth_tolerance", [](SegmenterOptions& o) { o.depth_tolerance = 0.f; }},
       {"Segmentation.max_instances", [](SegmenterOptions& o) { o.max_instances = 0; }},
       {"Segmentation.threads", [](SegmenterOptions& o) { o.threads = -1; }},
