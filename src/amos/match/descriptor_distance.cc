@@ -10,8 +10,19 @@
 
 namespace amos::match {
 
-int hammingDistance(const std::uint8_t* a, const std::uint8_t* b) {
-  // Four 64-bit words; memcpy keeps the loads free of alignment and aliasing assumptions (compiles to plain loads).
+namespace {
+
+// The project builds for baseline x86-64, where __builtin_popcountll becomes a slow library call. The hot
+// functions are therefore compiled twice, with and without the POPCNT instruction, and the loader picks the
+// right one for the CPU (GCC/Clang function multi-versioning).
+#if defined(__x86_64__) && defined(__linux__) && (defined(__GNUC__) || defined(__clang__))
+#define AMOS_POPCNT_CLONES __attribute__((target_clones("popcnt", "default")))
+#else
+#define AMOS_POPCNT_CLONES
+#endif
+
+// Four 64-bit words; memcpy keeps the loads free of alignment and aliasing assumptions (compiles to plain loads).
+inline int distance256(const std::uint8_t* a, const std::uint8_t* b) {
   int distance = 0;
   for (int w = 0; w < 4; ++w) {
     std::uint64_t x, y;
@@ -22,19 +33,18 @@ int hammingDistance(const std::uint8_t* a, const std::uint8_t* b) {
   return distance;
 }
 
-std::vector<BruteForceMatch> matchBruteForce(const cv::Mat& query, const cv::Mat& train, int max_distance,
-                                             float ratio) {
-  auto valid = [](const cv::Mat& m) { return m.empty() || (m.type() == CV_8UC1 && m.cols == 32); };
-  core::require(valid(query) && valid(train), "matchBruteForce needs N x 32 CV_8U descriptor matrices");
-  std::vector<BruteForceMatch> candidates;
-  if (query.empty() || train.empty()) return candidates;
+struct Nearest {
+  int best, second, best_train;
+};
 
-  // Nearest and second nearest train row of every query row; the ratio test needs both.
+// Nearest and second nearest train row of every query row (the ratio test needs both).
+AMOS_POPCNT_CLONES void nearestTwo(const cv::Mat& query, const cv::Mat& train, std::vector<Nearest>& out) {
+  out.resize(static_cast<size_t>(query.rows));
   for (int q = 0; q < query.rows; ++q) {
     const std::uint8_t* dq = query.ptr<std::uint8_t>(q);
     int best = std::numeric_limits<int>::max(), second = std::numeric_limits<int>::max(), best_train = -1;
     for (int t = 0; t < train.rows; ++t) {
-      const int d = hammingDistance(dq, train.ptr<std::uint8_t>(t));
+      const int d = distance256(dq, train.ptr<std::uint8_t>(t));
       if (d < best) {
         second = best;
         best = d;
@@ -43,10 +53,29 @@ std::vector<BruteForceMatch> matchBruteForce(const cv::Mat& query, const cv::Mat
         second = d;
       }
     }
-    if (best > max_distance) continue;
+    out[static_cast<size_t>(q)] = {best, second, best_train};
+  }
+}
+
+}  // namespace
+
+AMOS_POPCNT_CLONES int hammingDistance(const std::uint8_t* a, const std::uint8_t* b) { return distance256(a, b); }
+
+std::vector<BruteForceMatch> matchBruteForce(const cv::Mat& query, const cv::Mat& train, int max_distance,
+                                             float ratio) {
+  auto valid = [](const cv::Mat& m) { return m.empty() || (m.type() == CV_8UC1 && m.cols == 32); };
+  core::require(valid(query) && valid(train), "matchBruteForce needs N x 32 CV_8U descriptor matrices");
+  std::vector<BruteForceMatch> candidates;
+  if (query.empty() || train.empty()) return candidates;
+
+  std::vector<Nearest> nearest;
+  nearestTwo(query, train, nearest);
+  for (int q = 0; q < query.rows; ++q) {
+    const Nearest& n = nearest[static_cast<size_t>(q)];
+    if (n.best > max_distance) continue;
     // With a single train row there is no second neighbour and the ratio test passes.
-    if (second != std::numeric_limits<int>::max() && !(best < ratio * second)) continue;
-    candidates.push_back({q, best_train, best});
+    if (n.second != std::numeric_limits<int>::max() && !(n.best < ratio * n.second)) continue;
+    candidates.push_back({q, n.best_train, n.best});
   }
 
   // One query per train row: the closest wins, ties go to the lower query index.
