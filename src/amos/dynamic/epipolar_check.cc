@@ -20,6 +20,8 @@ void EpipolarOptions::check() const {
                 fmt::format("Dynamic.Epipolar.confidence must lie in (0, 1), got {}", confidence));
   core::require(max_iterations >= 1,
                 fmt::format("Dynamic.Epipolar.maxIterations must be >= 1, got {}", max_iterations));
+  core::require(min_fit_points >= 15,
+                fmt::format("Dynamic.Epipolar.minFitPoints must be >= 15, got {}", min_fit_points));
   core::require(min_dynamic_points >= 1,
                 fmt::format("Dynamic.Epipolar.minDynamicPoints must be >= 1, got {}", min_dynamic_points));
 }

@@ -26,6 +26,9 @@ struct EpipolarOptions {
   // Dynamic.Epipolar.minDynamicPoints: a region is dynamic with at least 2 epipolar violators. One may be an LK
   // mismatch that passed the forward-backward check; two independent ones at p ~ 1e-3 each are ~1e-6.
   int min_dynamic_points = 2;
+  // Dynamic.Epipolar.minFitPoints: F is fitted on the tracks outside the potential motion regions when at
+  // least this many remain (else on all): 50 keeps the 7-point RANSAC well supported (~7x the sample size).
+  int min_fit_points = 50;
   // Dynamic.Epipolar.seed: RANSAC sampling seed (fixed for reproducible runs).
   int seed = 42;
   void check() const;

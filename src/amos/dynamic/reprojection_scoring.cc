@@ -32,6 +32,12 @@ double cauchyEquivalentError(double mean_rho, double scale) {
   return std::sqrt(std::max(0.0, c2 * std::expm1(mean_rho / c2)));
 }
 
+namespace {
+// A Shi-Tomasi corner (3x3 gradient block, 3x3 Sobel) is shaped by the pixels within 2 px of it: when a depth
+// edge lies that close, the corner may move with the other side of the edge than the depth read at its centre.
+constexpr int kEdgeRadius = 2;
+}  // namespace
+
 std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<PointTrack>& tracks,
                                                               const cv::Mat& last_depth,
                                                               const core::SE3& T_cw_last,
@@ -48,13 +54,15 @@ std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     // Depth is registered to the raw image: read it at the raw pixel.
     const int u = static_cast<int>(std::lround(raw[i].x)), v = static_cast<int>(std::lround(raw[i].y));
-    if (u < 1 || v < 1 || u >= last_depth.cols - 1 || v >= last_depth.rows - 1) continue;
+    if (u < kEdgeRadius || v < kEdgeRadius || u >= last_depth.cols - kEdgeRadius ||
+        v >= last_depth.rows - kEdgeRadius)
+      continue;
     const float z = last_depth.at<float>(v, u);
     if (!(z > 0.f) || z > options.max_depth_m) continue;
     float lo = z, hi = z;
     bool hole = false;
-    for (int dv = -1; dv <= 1; ++dv)
-      for (int du = -1; du <= 1; ++du) {
+    for (int dv = -kEdgeRadius; dv <= kEdgeRadius; ++dv)
+      for (int du = -kEdgeRadius; du <= kEdgeRadius; ++du) {
         const float zn = last_depth.at<float>(v + dv, u + du);
         if (!(zn > 0.f) || !std::isfinite(zn)) hole = true;
         lo = std::min(lo, zn), hi = std::max(hi, zn);

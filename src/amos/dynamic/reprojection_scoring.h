@@ -32,10 +32,11 @@ struct ReprojectionOptions {
   int min_points_per_cluster = 3;
   // Dynamic.Reprojection.maxDepth: RGB-D depth beyond 6 m has sigma(z) > 6 cm and is often spurious.
   double max_depth_m = 6.0;
-  // Dynamic.Reprojection.depthEdgeRatio: a point whose 3x3 depth neighbourhood spans more than this fraction of
-  // its depth (or holds an invalid depth) sits on a depth edge, where the depth may belong to the other side.
-  // 5%: indoor object borders are >= 0.3 m deep (10% at 3 m); noise (6 sigma(z)) stays below 5% of z up to
-  // 4.5 m, and a plane seen 70 deg off its normal changes depth by only ~1% of z over +-1 px.
+  // Dynamic.Reprojection.depthEdgeRatio: a point whose 5x5 depth neighbourhood (the pixels that shape a
+  // Shi-Tomasi corner) spans more than this fraction of its depth, or holds an invalid depth, sits on a depth
+  // edge, where the corner may move with the other side. 5%: indoor object borders are >= 0.3 m deep (10% at
+  // 3 m); noise (6 sigma(z)) stays below 5% of z up to 4.5 m; a plane seen 70 deg off its normal changes depth
+  // by ~2% of z over +-2 px.
   double depth_edge_ratio = 0.05;
   void check() const;
 };
@@ -47,7 +48,8 @@ double cauchyRho(double squared_error, double scale);
 double cauchyEquivalentError(double mean_rho, double scale);
 
 // Eq. 6: world points of the tracks' last-frame pixels, from the last depth image (CV_32F metres) and the last
-// frame's pose. Empty optional when the depth is invalid, too far or on a depth edge (see ReprojectionOptions).
+// frame's pose. Empty optional when the depth is invalid, too far, within 2 px of the image edge or on a depth
+// edge (see ReprojectionOptions).
 // Pixels are raw (distorted) image coordinates, undistorted with the camera before back-projection.
 std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<PointTrack>& tracks,
                                                               const cv::Mat& last_depth,

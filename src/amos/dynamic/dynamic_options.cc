@@ -1,0 +1,37 @@
+#include "amos/dynamic/dynamic_options.h"
+
+#include <fmt/format.h>
+
+#include "amos/core/error.h"
+
+namespace amos::dynamic {
+
+DynamicMode parseDynamicMode(const std::string& text) {
+  if (text == "none") return DynamicMode::kNone;
+  if (text == "prior") return DynamicMode::kPrior;
+  if (text == "geometry") return DynamicMode::kGeometry;
+  if (text == "full") return DynamicMode::kFull;
+  throw core::Error(fmt::format("Dynamic.mode must be one of none, prior, geometry, full; got '{}'", text));
+}
+
+std::string toString(DynamicMode mode) {
+  switch (mode) {
+    case DynamicMode::kNone: return "none";
+    case DynamicMode::kPrior: return "prior";
+    case DynamicMode::kGeometry: return "geometry";
+    case DynamicMode::kFull: return "full";
+  }
+  return "unknown";
+}
+
+void DynamicOptions::check() const {
+  superpixel.check();
+  cluster.check();
+  tracking.check();
+  reprojection.check();
+  epipolar.check();
+  boundary.check();
+  initial_pose.check();
+}
+
+}  // namespace amos::dynamic

@@ -1,0 +1,42 @@
+#pragma once
+// Options of the whole anti-dynamics front end (paper Section III), YAML section "Dynamic.". Every default is
+// argued beside it in the struct that owns it, from sensor noise, image size and typical indoor motion, not
+// fitted to any sequence.
+#include <string>
+
+#include "amos/dynamic/boundary_assignment.h"
+#include "amos/dynamic/corner_tracking.h"
+#include "amos/dynamic/depth_slic.h"
+#include "amos/dynamic/epipolar_check.h"
+#include "amos/dynamic/geometric_clustering.h"
+#include "amos/dynamic/initial_pose_models.h"
+#include "amos/dynamic/reprojection_scoring.h"
+
+namespace amos::dynamic {
+
+// Which stages produce the mask: none (plain SLAM), prior (segmentation only, III-A), geometry (superpixel
+// clusters judged by reprojection + epipolar tests only, III-B/C), full (both, the paper's system).
+enum class DynamicMode { kNone, kPrior, kGeometry, kFull };
+
+// "none" | "prior" | "geometry" | "full"; throws core::Error naming Dynamic.mode otherwise.
+DynamicMode parseDynamicMode(const std::string& text);
+std::string toString(DynamicMode mode);
+
+struct DynamicOptions {
+  DynamicMode mode = DynamicMode::kFull;  // Dynamic.mode
+  // Dynamic.judgePriorRegions: false = every prior (segmented person) region is removed, as in paper III-A
+  // ("feature points that fall within the region of highly dynamic objects will be removed"). true = a prior
+  // region stays in the mask only if it holds >= Dynamic.Epipolar.minDynamicPoints epipolar violators, which
+  // keeps the features of a sitting person but would also keep those of a person moving along epipolar lines.
+  bool judge_prior_regions = false;
+  DepthSlicOptions superpixel;      // Dynamic.Superpixel.*
+  ClusteringOptions cluster;        // Dynamic.Cluster.*
+  CornerTrackingOptions tracking;   // Dynamic.Corners.*, Dynamic.LK.*
+  ReprojectionOptions reprojection; // Dynamic.Reprojection.*
+  EpipolarOptions epipolar;         // Dynamic.Epipolar.*
+  BoundaryOptions boundary;         // Dynamic.Boundary.*
+  InitialPoseOptions initial_pose;  // Dynamic.InitialPose.* (used by tracking, III-D)
+  void check() const;
+};
+
+}  // namespace amos::dynamic
