@@ -1,0 +1,41 @@
+#include "amos/synth/presets.h"
+
+#include <algorithm>
+
+#include "amos/core/error.h"
+
+namespace amos::synth {
+
+bool Preset::hasMover(MoverKind kind) const { return std::find(movers.begin(), movers.end(), kind) != movers.end(); }
+
+const std::vector<Preset>& allPresets() {
+  using M = MoverKind;
+  using C = CameraMotion;
+  static const std::vector<Preset> presets = {
+      {"static_still", "static room, hand-held camera held still (path of walking_static)", C::kStatic, 300, {}, "static_still"},
+      {"static_xyz", "static room, camera moving along x/y/z (path of walking_xyz, sitting_xyz, box_push)", C::kXyz, 300, {}, "static_xyz"},
+      {"static_rpy", "static room, camera rotating about roll/pitch/yaw (path of walking_rpy)", C::kRpy, 300, {}, "static_rpy"},
+      {"static_halfsphere", "static room, camera on a 1 m half sphere (path of walking_halfsphere)", C::kHalfsphere, 300, {}, "static_halfsphere"},
+      {"static_loop", "static room, 20 s room-scale loop that closes (path of walking_loop)", C::kLoop, 600, {}, "static_loop"},
+      {"walking_static", "two people walking, camera held still", C::kStatic, 300, {M::kWalkerAcross, M::kWalkerAround}, "static_still"},
+      {"walking_xyz", "two people walking, camera moving along x/y/z", C::kXyz, 300, {M::kWalkerAcross, M::kWalkerAround}, "static_xyz"},
+      {"walking_rpy", "two people walking, camera rotating", C::kRpy, 300, {M::kWalkerAcross, M::kWalkerAround}, "static_rpy"},
+      {"walking_halfsphere", "two people walking, camera on a half sphere", C::kHalfsphere, 300, {M::kWalkerAcross, M::kWalkerAround}, "static_halfsphere"},
+      {"walking_loop", "two people walking, camera on the room-scale loop", C::kLoop, 600, {M::kWalkerAcross, M::kWalkerAround}, "static_loop"},
+      {"sitting_xyz", "two people sitting at the desk and shifting, camera moving along x/y/z", C::kXyz, 300, {M::kSitterLeft, M::kSitterRight}, "static_xyz"},
+      {"box_push", "a box pushed across the floor (no person), camera moving along x/y/z", C::kXyz, 300, {M::kPushedBox}, "static_xyz"},
+      {"objects_xyz", "pushed box, rolling chair and swinging door (no person), camera moving along x/y/z", C::kXyz, 300, {M::kPushedBox, M::kRollingChair, M::kSwingingDoor}, "objects_xyz --no-movers"},
+  };
+  return presets;
+}
+
+const Preset& findPreset(const std::string& name) {
+  std::string names;
+  for (const Preset& p : allPresets()) {
+    if (p.name == name) return p;
+    names += (names.empty() ? "" : ", ") + p.name;
+  }
+  throw core::Error("unknown synth preset '" + name + "' (known: " + names + ")");
+}
+
+}  // namespace amos::synth

@@ -1,0 +1,40 @@
+#pragma once
+// Named sequences. A preset is a camera motion plus a set of movers in the shared room; the room and the camera
+// path depend only on the seed and the motion, so every dynamic preset has a static counterpart that flies the
+// identical path through the identical room without movers (also reachable as `--no-movers`):
+//   walking_static -> static_still      walking_xyz, sitting_xyz, box_push -> static_xyz
+//   walking_rpy -> static_rpy           walking_halfsphere -> static_halfsphere      walking_loop -> static_loop
+//   objects_xyz -> objects_xyz with --no-movers (its door is a mover, so the static room has an open doorway)
+#include <string>
+#include <vector>
+
+#include "amos/synth/camera_path.h"
+
+namespace amos::synth {
+
+enum class MoverKind {
+  kWalkerAcross,   // person walking across in front of the desk, back and forth
+  kWalkerAround,   // person walking round the desk and behind it (the desk hides the legs)
+  kSitterLeft,     // person sitting behind the desk (left seat seen from the camera)
+  kSitterRight,
+  kPushedBox,      // cardboard box pushed across the floor (unknown object)
+  kRollingChair,   // office chair rolling and turning (unknown object)
+  kSwingingDoor,   // door in the back wall swinging open and shut (unknown object)
+};
+
+struct Preset {
+  std::string name;
+  std::string description;
+  CameraMotion motion = CameraMotion::kStatic;
+  int default_frames = 300;
+  std::vector<MoverKind> movers;
+  std::string static_counterpart;  // preset with the same camera path and room and no movers
+
+  bool hasMover(MoverKind kind) const;
+};
+
+const std::vector<Preset>& allPresets();
+// Throws core::Error listing the known names when `name` is not one.
+const Preset& findPreset(const std::string& name);
+
+}  // namespace amos::synth

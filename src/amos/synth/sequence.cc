@@ -1,0 +1,239 @@
+#include "amos/synth/sequence.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "amos/core/error.h"
+#include "amos/core/stage_timer.h"
+#include "amos/synth/camera_path.h"
+#include "amos/synth/furniture.h"
+#include "amos/synth/image_assets.h"
+#include "amos/synth/random.h"
+#include "amos/synth/room.h"
+#include "amos/synth/tum_writer.h"
+
+namespace amos::synth {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+void SequenceOptions::check() const {
+  findPreset(preset);
+  core::require(frames >= 0 && frames <= 100000, "synth.frames must be in [0, 100000] (0 = preset default)");
+  core::require(metres_per_texel >= 0.001 && metres_per_texel <= 0.05, "synth.metres_per_texel must be in [0.001, 0.05]");
+  core::require(start_timestamp >= 0, "synth.start_timestamp must be >= 0");
+  sensor.check();
+}
+
+struct SequenceGenerator::Impl {
+  SequenceOptions options;
+  const Preset* preset = nullptr;
+  int frames = 0;
+  TextureBank textures;
+  Room room;
+  std::unique_ptr<CameraPath> path;
+  std::vector<std::unique_ptr<Mover>> movers;
+  std::vector<InstanceInfo> instances;
+  std::unique_ptr<Renderer> renderer;
+  std::unique_ptr<SensorModel> sensor;
+
+  void buildMovers(const std::vector<cv::Mat>& photos, const std::vector<PersonCutout>& cutouts);
+  SceneGeometry moverGeometry(double t, const Vector3d& camera) const {
+    SceneGeometry g;
+    for (const auto& m : movers) m->addGeometry(t, camera, g);
+    return g;
+  }
+};
+
+void SequenceGenerator::Impl::buildMovers(const std::vector<cv::Mat>& photos, const std::vector<PersonCutout>& cutouts) {
+  Random rng(deriveSeed(options.seed, Stream::kMovers));
+  AssetContext ctx{textures, rng, photos, options.metres_per_texel};
+  const RoomLayout& L = room.layout;
+  std::uint16_t next_id = 1;
+  std::size_t next_standing = 0, next_sitting = 0;
+  const std::size_t cutout_offset = cutouts.empty() ? 0 : options.seed % cutouts.size();
+  // Cut-outs: walkers take standing (or leg-less) photos, sitters prefer seated ones.
+  auto pickCutout = [&](bool sitting) -> const PersonCutout* {
+    std::vector<const PersonCutout*> preferred, other;
+    for (std::size_t i = 0; i < cutouts.size(); ++i) {
+      const PersonCutout& c = cutouts[(i + cutout_offset) % cutouts.size()];
+      const bool seated = c.kind == PersonCutout::Kind::kSitting;
+      (seated == sitting ? preferred : other).push_back(&c);
+    }
+    if (!preferred.empty()) return preferred[(sitting ? next_sitting++ : next_standing++) % preferred.size()];
+    if (!other.empty()) return other[(sitting ? next_sitting++ : next_standing++) % other.size()];
+    return nullptr;
+  };
+  auto lookFor = [&](bool sitting) {
+    const PersonCutout* c = pickCutout(sitting);
+    return c ? cutoutLook(ctx, *c) : proceduralLook(ctx);
+  };
+  for (MoverKind kind : preset->movers) {
+    InstanceInfo info;
+    info.id = next_id++;
+    const double offset = rng.uniform(0, 20);
+    switch (kind) {
+      case MoverKind::kWalkerAcross:
+        info = {info.id, "person", "walker_across"};
+        movers.push_back(std::make_unique<WalkingPerson>(
+            info, lookFor(false), PingPongPath({{1.05, -1.1}, {1.05, 1.2}}, rng.uniform(0.8, 1.0), 1.2, 0.25, offset)));
+        break;
+      case MoverKind::kWalkerAround:
+        info = {info.id, "person", "walker_around"};
+        movers.push_back(std::make_unique<WalkingPerson>(
+            info, lookFor(false),
+            PingPongPath({{0.5, 1.9}, {2.2, 1.65}, {3.2, 0.95}, {3.2, -0.75}, {2.7, -1.0}, {2.2, -1.5}, {0.6, -1.3}},
+                         rng.uniform(0.7, 0.9), 1.5, 0.25, offset)));
+        break;
+      case MoverKind::kSitterLeft:
+      case MoverKind::kSitterRight: {
+        const bool left = kind == MoverKind::kSitterLeft;
+        info = {info.id, "person", left ? "sitter_left" : "sitter_right"};
+        movers.push_back(std::make_unique<SittingPerson>(info, lookFor(true), L.seats[left ? 0 : 1], M_PI,
+                                                         L.seat_height, rng.bits()));
+        break;
+      }
+      case MoverKind::kPushedBox:
+        info = {info.id, "object", "pushed_box"};
+        movers.push_back(std::make_unique<SlidingObject>(info, cardboardBox(ctx, {0.6, 0.5, 0.5}),
+                                                         PingPongPath({{1.2, -1.6}, {1.2, 1.5}}, 0.3, 1.5, 1.0, offset),
+                                                         0.1, 0.12));
+        break;
+      case MoverKind::kRollingChair:
+        info = {info.id, "object", "rolling_chair"};
+        movers.push_back(std::make_unique<SlidingObject>(
+            info, officeChair(ctx), PingPongPath({{0.45, 1.3}, {0.5, 0.2}, {0.45, -1.0}}, 0.45, 2.0, 0.8, offset),
+            M_PI, 1.5));
+        break;
+      case MoverKind::kSwingingDoor:
+        info = {info.id, "object", "swinging_door"};
+        movers.push_back(std::make_unique<SwingingDoor>(
+            info, doorLeaf(ctx, L.door_width, L.door_height, 0.04),
+            Vector3d(L.half_extent.x() - 0.03, L.door_hinge_y + L.door_width, 0), M_PI, -1.3, 9.0, offset));
+        break;
+    }
+    instances.push_back(info);
+  }
+}
+
+SequenceGenerator::SequenceGenerator(const SequenceOptions& options) : impl_(std::make_unique<Impl>()) {
+  options.check();
+  Impl& m = *impl_;
+  m.options = options;
+  m.preset = &findPreset(options.preset);
+  m.frames = options.frames > 0 ? options.frames : m.preset->default_frames;
+  std::vector<cv::Mat> photos;
+  if (!options.photo_dir.empty()) photos = loadPhotos(options.photo_dir);
+  std::vector<PersonCutout> cutouts;
+  if (!options.person_cutout_dir.empty() && options.movers) cutouts = loadPersonCutouts(options.person_cutout_dir);
+  RoomOptions room_options;
+  room_options.metres_per_texel = options.metres_per_texel;
+  room_options.door_is_mover = m.preset->hasMover(MoverKind::kSwingingDoor);
+  m.room = buildRoom(room_options, options.seed, m.textures, photos);
+  m.path = std::make_unique<CameraPath>(m.preset->motion, m.room.layout.stage, options.seed);
+  if (options.movers) m.buildMovers(photos, cutouts);
+  m.renderer = std::make_unique<Renderer>(options.sensor.intrinsics);
+  m.sensor = std::make_unique<SensorModel>(options.sensor);
+}
+
+SequenceGenerator::~SequenceGenerator() = default;
+
+int SequenceGenerator::frameCount() const { return impl_->frames; }
+double SequenceGenerator::time(int index) const { return index / impl_->options.sensor.fps; }
+double SequenceGenerator::timestamp(int index) const { return impl_->options.start_timestamp + time(index); }
+core::SE3 SequenceGenerator::poseWc(int index) const { return impl_->path->poseWc(time(index)); }
+const Preset& SequenceGenerator::preset() const { return *impl_->preset; }
+const SequenceOptions& SequenceGenerator::options() const { return impl_->options; }
+const std::vector<InstanceInfo>& SequenceGenerator::instances() const { return impl_->instances; }
+const core::CameraIntrinsics& SequenceGenerator::intrinsics() const { return impl_->options.sensor.intrinsics; }
+
+SceneGeometry SequenceGenerator::moverGeometry(double t, const Vector3d& camera) const {
+  return impl_->moverGeometry(t, camera);
+}
+
+std::vector<std::uint16_t> SequenceGenerator::movingInstances(double t) const {
+  // A mover moves at t if any of its defining points moved by more than 1 mm over the last frame interval
+  // (seen from the same camera position, so cut-outs turning to the camera do not count).
+  std::vector<std::uint16_t> ids;
+  const double dt = 1.0 / impl_->options.sensor.fps;
+  const double t0 = t >= dt ? t - dt : t + dt;
+  const Vector3d camera = impl_->path->poseWc(t).translation();
+  for (const auto& mover : impl_->movers) {
+    SceneGeometry a, b;
+    mover->addGeometry(t, camera, a);
+    mover->addGeometry(t0, camera, b);
+    if (a.maxDisplacement(b) > 1e-3) ids.push_back(mover->info().id);
+  }
+  return ids;
+}
+
+RenderedImage SequenceGenerator::renderExact(int index, bool with_static, bool with_movers, bool with_color) const {
+  const Impl& m = *impl_;
+  const double t = time(index);
+  const core::SE3 T_wc = m.path->poseWc(t);
+  const SceneGeometry dynamic = m.moverGeometry(t, T_wc.translation());
+  std::vector<const SceneGeometry*> parts;
+  if (with_static) parts.push_back(&m.room.geometry);
+  if (with_movers) parts.push_back(&dynamic);
+  return m.renderer->render(parts, m.textures, m.room.lighting, T_wc.inverse(), with_color);
+}
+
+SyntheticFrame SequenceGenerator::render(int index) const {
+  core::require(index >= 0 && index < impl_->frames, "synth: frame index out of range");
+  const Impl& m = *impl_;
+  const SensorOptions& so = m.options.sensor;
+  SyntheticFrame f;
+  f.index = index;
+  f.timestamp = timestamp(index);
+  const double t = time(index);
+  f.T_wc = m.path->poseWc(t);
+  RenderedImage img = renderExact(index, true, true, true);
+  if (so.motion_blur && so.motion_blur_samples > 1 && so.exposure_s > 0) {
+    // Average the colour over the exposure; depth and masks stay at mid-exposure (the time stamp).
+    cv::Mat sum = img.color.clone();
+    for (int i = 0; i < so.motion_blur_samples; ++i) {
+      const double ts = t + so.exposure_s * (i / (so.motion_blur_samples - 1.0) - 0.5);
+      if (std::abs(ts - t) < 1e-12) continue;
+      const core::SE3 T_wc = m.path->poseWc(ts);
+      const SceneGeometry dynamic = m.moverGeometry(ts, T_wc.translation());
+      sum += m.renderer->render({&m.room.geometry, &dynamic}, m.textures, m.room.lighting, T_wc.inverse(), true).color;
+    }
+    const int used = so.motion_blur_samples % 2 == 1 ? so.motion_blur_samples : so.motion_blur_samples + 1;
+    img.color = sum / used;
+  }
+  Random rng(deriveSeed(m.options.seed, Stream::kSensor, static_cast<std::uint64_t>(index)));
+  f.bgr = m.sensor->measureColor(img.color, rng);
+  f.depth_raw = m.sensor->measureDepth(img.depth, img.incidence, rng);
+  f.depth_raw.convertTo(f.depth, CV_32F, 1.0 / so.depth.depth_factor);
+  f.exact_depth = img.depth;
+  f.mask = img.instance;
+  f.moving = movingInstances(t);
+  return f;
+}
+
+SequenceSummary renderSequence(const SequenceOptions& options, const std::string& output_dir) {
+  core::Stopwatch total;
+  const SequenceGenerator generator(options);
+  SequenceSummary summary;
+  summary.setup_ms = total.elapsedMs();
+  TumWriter writer(output_dir, generator);
+  double render_ms = 0, write_ms = 0;
+  for (int k = 0; k < generator.frameCount(); ++k) {
+    core::Stopwatch sw;
+    const SyntheticFrame frame = generator.render(k);
+    render_ms += sw.elapsedMs();
+    sw.restart();
+    writer.add(frame);
+    write_ms += sw.elapsedMs();
+    if ((k + 1) % 100 == 0) spdlog::debug("synth: {} / {} frames", k + 1, generator.frameCount());
+  }
+  writer.finish();
+  summary.frames = generator.frameCount();
+  summary.render_ms_per_frame = render_ms / std::max(1, summary.frames);
+  summary.write_ms_per_frame = write_ms / std::max(1, summary.frames);
+  summary.total_s = total.elapsedMs() / 1000.0;
+  return summary;
+}
+
+}  // namespace amos::synth
