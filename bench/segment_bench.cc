@@ -1,0 +1,170 @@
+// bench_segment: time per frame of the prior-dynamic-object segmenter (NanoDet-m + selfie masks, mask painting
+// and 31x31 dilation included) on bonn_crowd_dev, at detector input 320 and 416 with 1 and 2 OpenCV threads, and
+// the frame rate when segmentation runs in its worker thread overlapped with ORB extraction in the calling thread
+// (the project's feature::OrbExtractor with its default OrbOptions: 1000 features, 8 levels, scale 1.2, as
+// ORB-SLAM2's TUM settings), against doing both in turn.
+//
+// Each benchmark iteration is one frame; one repetition passes once over 30 frames spread over the sequence.
+// Counters: median_ms / p95_ms = per-frame time within the repetition; fps = frames per second of wall time.
+// Run e.g.: bench_segment --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <future>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "amos/core/stage_timer.h"
+#include "amos/dynamic/segmentation_worker.h"
+#include "amos/dynamic/segmenter_factory.h"
+#include "amos/feature/orb_extractor.h"
+#include "amos/io/dataset.h"
+
+namespace {
+
+using namespace amos;
+
+constexpr std::size_t kFrames = 30;
+
+struct BenchFrame {
+  cv::Mat bgr, gray;
+};
+
+// 30 frames spread over bonn_crowd_dev, read once (immutable afterwards).
+const std::vector<BenchFrame>& benchFrames() {
+  static const std::vector<BenchFrame> frames = [] {
+    const auto index = io::indexSequence(std::string(AMOS_SHARED_DIR) + "/data/bonn_crowd_dev");
+    std::vector<BenchFrame> out;
+    for (std::size_t k = 0; k < kFrames; ++k) {
+      const auto& entry = index.frames[k * index.frames.size() / kFrames];
+      BenchFrame f;
+      f.bgr = cv::imread(entry.rgb_file, cv::IMREAD_COLOR);
+      if (f.bgr.empty()) throw std::runtime_error("cannot read " + entry.rgb_file);
+      cv::cvtColor(f.bgr, f.gray, cv::COLOR_BGR2GRAY);
+      out.push_back(std::move(f));
+    }
+    return out;
+  }();
+  return frames;
+}
+
+std::unique_ptr<dynamic::Segmenter> makeSegmenter(int input_size, int threads) {
+  dynamic::SegmenterOptions options;
+  options.input_size = input_size;
+  options.threads = threads;
+  dynamic::ModelSources sources;
+  sources.environment = dynamic::processEnvironment();
+  sources.default_dirs = {"./models", "../shared/models", std::string(AMOS_SHARED_DIR) + "/models"};
+  return dynamic::createSegmenter(options, sources, dynamic::builtinSegmenterFactory());
+}
+
+feature::OrbExtractor makeOrb() { return feature::OrbExtractor(feature::OrbOptions{}); }
+
+void setTimingCounters(benchmark::State& state, const std::vector<double>& frame_ms) {
+  state.counters["median_ms"] = core::percentile(frame_ms, 0.5);
+  state.counters["p95_ms"] = core::percentile(frame_ms, 0.95);
+  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// Segmentation alone, synchronously: args {input size, OpenCV threads}.
+void BM_Segment(benchmark::State& state) {
+  const auto& frames = benchFrames();
+  cv::setNumThreads(static_cast<int>(state.range(1)));
+  auto segmenter = makeSegmenter(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const dynamic::MaskDilationOptions dilation;
+  std::vector<double> frame_ms;
+  std::size_t i = 0, instances = 0;
+  for (auto _ : state) {
+    core::Stopwatch watch;
+    const auto result = dynamic::segmentFrame(*segmenter, dilation, i, frames[i % frames.size()].bgr);
+    frame_ms.push_back(watch.elapsedMs());
+    instances += result.instances.size();
+    ++i;
+  }
+  setTimingCounters(state, frame_ms);
+  state.counters["people_per_frame"] = static_cast<double>(instances) / static_cast<double>(i);
+}
+
+// ORB extraction alone: arg {OpenCV threads}.
+void BM_OrbExtractor(benchmark::State& state) {
+  const auto& frames = benchFrames();
+  cv::setNumThreads(static_cast<int>(state.range(0)));
+  const auto orb = makeOrb();
+  std::vector<double> frame_ms;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    core::Stopwatch watch;
+    std::vector<cv::KeyPoint> keypoints;
+    cv::Mat descriptors;
+    orb.extract(frames[i % frames.size()].gray, keypoints, descriptors);
+    frame_ms.push_back(watch.elapsedMs());
+    benchmark::DoNotOptimize(descriptors.data);
+    ++i;
+  }
+  setTimingCounters(state, frame_ms);
+}
+
+// Segmentation then ORB in the same thread (the frame time if nothing were overlapped).
+void BM_SegmentThenOrb(benchmark::State& state) {
+  const auto& frames = benchFrames();
+  cv::setNumThreads(static_cast<int>(state.range(1)));
+  auto segmenter = makeSegmenter(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const auto orb = makeOrb();
+  const dynamic::MaskDilationOptions dilation;
+  std::vector<double> frame_ms;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    core::Stopwatch watch;
+    const auto& frame = frames[i % frames.size()];
+    const auto result = dynamic::segmentFrame(*segmenter, dilation, i, frame.bgr);
+    std::vector<cv::KeyPoint> keypoints;
+    cv::Mat descriptors;
+    orb.extract(frame.gray, keypoints, descriptors);
+    benchmark::DoNotOptimize(result.dilated_mask.data);
+    frame_ms.push_back(watch.elapsedMs());
+    ++i;
+  }
+  setTimingCounters(state, frame_ms);
+}
+
+// What the SLAM thread does: submit frame i to the segmentation worker, extract ORB features of frame i while it
+// is segmented, then wait for frame i's masks. args {input size, OpenCV threads}.
+void BM_SegmentOverlappedWithOrb(benchmark::State& state) {
+  const auto& frames = benchFrames();
+  cv::setNumThreads(static_cast<int>(state.range(1)));
+  dynamic::SegmentationWorker worker(
+      makeSegmenter(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))), {}, 2);
+  const auto orb = makeOrb();
+  std::vector<double> frame_ms;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    core::Stopwatch watch;
+    const auto& frame = frames[i % frames.size()];
+    auto pending = worker.submit(i, frame.bgr);
+    std::vector<cv::KeyPoint> keypoints;
+    cv::Mat descriptors;
+    orb.extract(frame.gray, keypoints, descriptors);
+    const auto result = pending.get();
+    benchmark::DoNotOptimize(result.dilated_mask.data);
+    frame_ms.push_back(watch.elapsedMs());
+    ++i;
+  }
+  setTimingCounters(state, frame_ms);
+}
+
+void sizesAndThreads(benchmark::internal::Benchmark* b) {
+  for (int size : {320, 416})
+    for (int threads : {1, 2}) b->Args({size, threads});
+  b->ArgNames({"input", "threads"})->Iterations(kFrames)->Repetitions(3)->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK(BM_Segment)->Apply(sizesAndThreads);
+BENCHMARK(BM_OrbExtractor)->Arg(1)->Arg(2)->ArgName("threads")->Iterations(kFrames)->Repetitions(3)->UseRealTime()->Unit(
+    benchmark::kMillisecond);
+BENCHMARK(BM_SegmentThenOrb)->Apply(sizesAndThreads);
+BENCHMARK(BM_SegmentOverlappedWithOrb)->Apply(sizesAndThreads);
+
+}  // namespace
