@@ -2,6 +2,7 @@
 // two public trajectory pairs, listed in /work/shared/data/README.md, reproduced by evaluate().
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <string>
 
 #include "amos/eval/evaluate.h"
@@ -11,6 +12,7 @@ namespace amos::eval {
 namespace {
 
 struct Reference {
+  const char* name;
   const char* gt_file;
   const char* est_file;
   double ate_rmse_m;
@@ -20,15 +22,17 @@ struct Reference {
 };
 
 const Reference kReferences[] = {
-    {"rgbd_dataset_freiburg2_desk_groundtruth.txt", "evo_testdata_fr2_desk_ORB.txt", 0.008144, 2223, 0.007161,
+    {"fr2_desk_ORB", "rgbd_dataset_freiburg2_desk_groundtruth.txt", "evo_testdata_fr2_desk_ORB.txt", 0.008144, 2223, 0.007161,
      0.455005, 1998},
-    {"rgbd_dataset_freiburg1_xyz_groundtruth.txt", "evo_testdata_freiburg1_xyz-rgbdslam.txt", 0.013473, 786,
+    {"fr1_xyz_rgbdslam", "rgbd_dataset_freiburg1_xyz_groundtruth.txt", "evo_testdata_freiburg1_xyz-rgbdslam.txt", 0.013473, 786,
      0.021217, 0.934480, 753},
 };
 
 std::string trajectoryPath(const std::string& name) {
   return std::string(AMOS_SHARED_DIR) + "/data/trajectories/" + name;
 }
+
+void PrintTo(const Reference& ref, std::ostream* os) { *os << ref.name; }
 
 class TumReference : public ::testing::TestWithParam<Reference> {};
 
@@ -48,7 +52,8 @@ TEST_P(TumReference, ReproducesTheBenchmarkScripts) {
               r.ate_pairs, r.rpe_trans_rmse_m, r.rpe_rot_rmse_deg, r.rpe_pairs);
 }
 
-INSTANTIATE_TEST_SUITE_P(ReadmeRows, TumReference, ::testing::ValuesIn(kReferences));
+INSTANTIATE_TEST_SUITE_P(ReadmeRows, TumReference, ::testing::ValuesIn(kReferences),
+                         [](const ::testing::TestParamInfo<Reference>& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace amos::eval
