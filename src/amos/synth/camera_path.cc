@@ -119,8 +119,8 @@ core::SE3 CameraPath::poseWc(double t) const {
       const Eigen::Vector3d fh = (f - f.dot(up) * up).normalized();
       const Eigen::Vector3d centre = stage_.eye - 0.5 * fh;
       p = centre + 0.5 * (std::cos(el) * std::cos(az) * fh + std::cos(el) * std::sin(az) * right + std::sin(el) * up);
-      // Look at the desk, turned a little further in the direction of travel, as a hand-held camera would be.
-      R = lookAtRotation(stage_.target - p) * cameraYawPitchRoll(0.35 * az, 0.25 * (el - 25 * kDeg), 0);
+      // Look at the desk, turned further in the direction of travel (about TUM's 18 deg/s on average).
+      R = lookAtRotation(stage_.target - p) * cameraYawPitchRoll(0.9 * az, 0.6 * (el - 25 * kDeg), 0);
       break;
     }
     case CameraMotion::kLoop: {

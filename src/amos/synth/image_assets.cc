@@ -36,13 +36,18 @@ std::vector<PersonCutout> extractCutouts(const cv::Mat& bgr, const cv::Mat& mask
     c.alpha = cv::Mat(labels(crop) == i);
     // Masks bleed onto the background by a pixel or two; trim them.
     cv::erode(c.alpha, c.alpha, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
+    // Seated people are squat (about 1.9 times as tall as wide with the legs bent) and may have their feet cut
+    // by the bottom border; a standing person cut there is taller than that and needs legs.
     const double tall = box.height / static_cast<double>(box.width);
-    if (bottom) {
+    if (tall < 2.1) {
+      c.kind = PersonCutout::Kind::kSitting;
+      c.visible_fraction = 1.0;
+    } else if (bottom) {
       c.kind = PersonCutout::Kind::kUpperBody;
       // A standing person with arms down is about 0.33 times as wide as tall.
       c.visible_fraction = std::clamp(box.height / (box.width / 0.33), 0.4, 0.95);
     } else {
-      c.kind = tall < 2.2 ? PersonCutout::Kind::kSitting : PersonCutout::Kind::kStanding;
+      c.kind = PersonCutout::Kind::kStanding;
       c.visible_fraction = 1.0;
     }
     const int band = std::max(2, c.bgr.rows / 8);

@@ -24,8 +24,9 @@ struct PersonCutout {
 };
 
 // Person cut-outs in one photo: each connected region of mask (CV_8UC1, > 127 = person) of at least 1.5% of
-// the image that does not touch the left, right or top border. Regions touching the bottom are kUpperBody;
-// whole regions less than 2.2 times as tall as wide are taken as seated people.
+// the image that does not touch the left, right or top border. Regions less than 2.1 times as tall as wide are
+// taken as seated people (their feet may touch the bottom border); taller ones touching the bottom border are
+// kUpperBody, the others kStanding.
 std::vector<PersonCutout> extractCutouts(const cv::Mat& bgr, const cv::Mat& mask, const std::string& source);
 
 // All cut-outs of a folder laid out as <dir>/rgb/NAME and <dir>/mask/NAME (as ../shared/data/person_masks).

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "amos/core/error.h"
@@ -89,6 +91,17 @@ double hitSphere(const Prepared& p, const Vector3d& d, double near) {
   if (t1 > near) return t1;
   const double t2 = (-B + sq) / (2 * A);
   return t2 > near ? t2 : kInf;
+}
+
+// log2 to about 0.01, enough to pick a mip level: exponent bits plus a quadratic in the mantissa.
+inline float fastLog2(float x) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const float exponent = static_cast<float>(static_cast<int>((bits >> 23) & 0xff) - 128);  // the polynomial adds 1
+  bits = (bits & 0x007fffffu) | 0x3f800000u;  // mantissa in [1, 2)
+  float m;
+  std::memcpy(&m, &bits, sizeof m);
+  return exponent + (-0.34484843f * m + 2.02466578f) * m - 0.67487759f;
 }
 
 // Polygon of a quad clipped to z >= near (Sutherland-Hodgman against one plane).
@@ -298,8 +311,15 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
   out.instance = cv::Mat(H, W, CV_16U, cv::Scalar(0));
   out.incidence = cv::Mat(H, W, CV_32F, cv::Scalar(0));
   if (with_color) out.color = cv::Mat(H, W, CV_32FC3, cv::Scalar::all(0));
-  std::vector<Vector3d> light_c;
-  for (const PointLight& l : lighting.lights) light_c.push_back(T_cw * l.position_w);
+  struct LightTerm {
+    float x, y, z, intensity, inv_falloff2;
+  };
+  std::vector<LightTerm> light_terms;
+  for (const PointLight& l : lighting.lights) {
+    const Vector3d p = T_cw * l.position_w;
+    light_terms.push_back({static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()),
+                           static_cast<float>(l.intensity), static_cast<float>(1.0 / (l.falloff_m * l.falloff_m))});
+  }
   const double f_mean = std::sqrt(intr_.fx * intr_.fy);
 
   for (int y = 0; y < H; ++y) {
@@ -352,19 +372,22 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
       cv::Vec3f albedo(180, 180, 180);
       if (surf.texture >= 0) {
         const double footprint_m = z / f_mean / std::sqrt(std::max(cos_inc, 0.02));
-        const double lod = std::log2(std::max(p.texels_per_m * footprint_m, 1e-6));
+        const double lod = fastLog2(static_cast<float>(std::max(p.texels_per_m * footprint_m, 1e-6)));
         albedo = textures[surf.texture].sample(s * surf.repeat_u, t * surf.repeat_v, lod);
       }
-      double irradiance = lighting.ambient;
-      for (std::size_t i = 0; i < light_c.size(); ++i) {
-        const Vector3d to_light = light_c[i] - hit;
-        const double dist = to_light.norm();
-        const double lambert = normal.dot(to_light) / std::max(dist, 1e-9);
-        if (lambert <= 0) continue;
-        const double r = dist / lighting.lights[i].falloff_m;
-        irradiance += lighting.lights[i].intensity * lambert / (1 + r * r);
+      // Lambert with a soft inverse-square falloff: intensity * cos / (1 + (d / falloff)^2), in float with one
+      // square root and one division per light (this loop was half of the shading time).
+      float irradiance = static_cast<float>(lighting.ambient);
+      const float hx = static_cast<float>(hit.x()), hy = static_cast<float>(hit.y()), hz = static_cast<float>(hit.z());
+      const float nx = static_cast<float>(normal.x()), ny = static_cast<float>(normal.y()), nz = static_cast<float>(normal.z());
+      for (const LightTerm& l : light_terms) {
+        const float lx = l.x - hx, ly = l.y - hy, lz = l.z - hz;
+        const float n_dot_l = nx * lx + ny * ly + nz * lz;
+        if (n_dot_l <= 0) continue;
+        const float d2 = lx * lx + ly * ly + lz * lz;
+        irradiance += l.intensity * n_dot_l / (std::sqrt(d2) * (1 + d2 * l.inv_falloff2));
       }
-      const float g = static_cast<float>(irradiance);
+      const float g = irradiance;
       colrow[x] = cv::Vec3f(albedo[0] * surf.tint[0] * g, albedo[1] * surf.tint[1] * g, albedo[2] * surf.tint[2] * g);
     }
   }

@@ -95,5 +95,49 @@ TEST(Renderer, BackFacesOfBoxesAreCulledButBoxStillOpaque) {
   EXPECT_NEAR(img.depth.at<float>(248, 320), 1.7, 1e-6);
 }
 
+TEST(Renderer, TexturedQuadShowsItsTextureUpright) {
+  // A 2 x 2 texture: top row red | green, bottom row blue | white, on a quad 2 m ahead, no lights.
+  cv::Mat img(2, 2, CV_8UC3);
+  img.at<cv::Vec3b>(0, 0) = {0, 0, 200};
+  img.at<cv::Vec3b>(0, 1) = {0, 200, 0};
+  img.at<cv::Vec3b>(1, 0) = {200, 0, 0};
+  img.at<cv::Vec3b>(1, 1) = {200, 200, 200};
+  TextureBank bank;
+  SceneGeometry g;
+  Quad q;
+  q.origin = {-0.5, -0.5, 2.0};  // top-left (camera y points down)
+  q.edge_u = {1.0, 0, 0};
+  q.edge_v = {0, 1.0, 0};
+  q.surface.texture = bank.add(Texture(img));
+  g.quads.push_back(q);
+  Lighting flat;
+  flat.ambient = 1.0;
+  const RenderedImage out = Renderer(tumFr3()).render({&g}, bank, flat, kIdentity, true);
+  auto at = [&](double X, double Y) {  // colour where the point (X, Y, 2) projects
+    return out.color.at<cv::Vec3f>(static_cast<int>(std::lround(539.2 * Y / 2 + 247.6)),
+                                   static_cast<int>(std::lround(535.4 * X / 2 + 320.1)));
+  };
+  EXPECT_NEAR(at(-0.4, -0.4)[2], 200, 1);  // red, top left
+  EXPECT_NEAR(at(0.4, -0.4)[1], 200, 1);   // green, top right
+  EXPECT_NEAR(at(-0.4, 0.4)[0], 200, 1);   // blue, bottom left
+  EXPECT_NEAR(at(0.4, 0.4)[0] + at(0.4, 0.4)[1] + at(0.4, 0.4)[2], 600, 3);
+}
+
+TEST(Texture, MipLevelsAverageAndAlphaCuts) {
+  cv::Mat checker(64, 64, CV_8UC3);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) checker.at<cv::Vec3b>(y, x) = ((x + y) % 2) ? cv::Vec3b(255, 255, 255) : cv::Vec3b(0, 0, 0);
+  cv::Mat alpha(64, 64, CV_8UC1, cv::Scalar(0));
+  alpha(cv::Rect(0, 0, 32, 64)).setTo(255);
+  const Texture t(checker, alpha, true);
+  EXPECT_GT(t.levelCount(), 3);
+  // Far away (many texels per pixel) the checker averages to grey.
+  EXPECT_NEAR(t.sample(0.3, 0.7, 4.0)[0], 127.5, 2);
+  EXPECT_NEAR(t.alpha(0.2, 0.5), 1.0, 1e-6);
+  EXPECT_NEAR(t.alpha(0.8, 0.5), 0.0, 1e-6);
+  // Repeat wraps: s and s + 3 sample the same texel.
+  EXPECT_EQ(t.sample(0.123, 0.456, 0), t.sample(3.123, 0.456, 0));
+}
+
 }  // namespace
 }  // namespace amos::synth

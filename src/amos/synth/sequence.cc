@@ -153,11 +153,12 @@ SceneGeometry SequenceGenerator::moverGeometry(double t, const Vector3d& camera)
 }
 
 std::vector<std::uint16_t> SequenceGenerator::movingInstances(double t) const {
-  // A mover moves at t if any of its defining points moved by more than 1 mm over the last frame interval
-  // (seen from the same camera position, so cut-outs turning to the camera do not count).
+  // A mover moves at t if any of its defining points moved by more than 1 mm over the last 0.1 s, i.e. faster
+  // than 1 cm/s (seen from one camera position, so cut-outs turning to the camera do not count). A seated person
+  // shifting slowly moves by less than a millimetre per frame, hence the window.
   std::vector<std::uint16_t> ids;
-  const double dt = 1.0 / impl_->options.sensor.fps;
-  const double t0 = t >= dt ? t - dt : t + dt;
+  const double window = 0.1;
+  const double t0 = t >= window ? t - window : t + window;
   const Vector3d camera = impl_->path->poseWc(t).translation();
   for (const auto& mover : impl_->movers) {
     SceneGeometry a, b;

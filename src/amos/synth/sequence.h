@@ -38,7 +38,7 @@ struct SyntheticFrame {
   cv::Mat depth;       // CV_32F metres (depth_raw / depth_factor, 0 = no reading)
   cv::Mat exact_depth; // CV_32F metres, the scene's true depth before the sensor model
   cv::Mat mask;        // CV_16U instance ids as written to masks/ (0 = static)
-  std::vector<std::uint16_t> moving;  // instances whose geometry moved since the previous frame (> 1 mm)
+  std::vector<std::uint16_t> moving;  // instances moving at this instant (> 1 mm over the last 0.1 s)
 };
 
 class SequenceGenerator {

@@ -170,11 +170,11 @@ TEST(Sequence, EveryMoverShowsUpAndMovesInItsPreset) {
   for (const char* preset : {"walking_static", "sitting_xyz", "box_push", "objects_xyz"}) {
     const SequenceGenerator gen(quick(preset, 300));
     std::vector<long> seen(gen.instances().size() + 1, 0), moving(gen.instances().size() + 1, 0);
-    for (int index = 0; index < gen.frameCount(); index += 25) {
-      const SyntheticFrame f = gen.render(index);
-      for (int y = 0; y < f.mask.rows; y += 2)
-        for (int x = 0; x < f.mask.cols; x += 2) ++seen[f.mask.at<std::uint16_t>(y, x)];
-      for (std::uint16_t id : f.moving) ++moving[id];
+    for (int index = 0; index < gen.frameCount(); index += 30) {
+      const cv::Mat mask = gen.renderExact(index, true, true, false).instance;
+      for (int y = 0; y < mask.rows; y += 2)
+        for (int x = 0; x < mask.cols; x += 2) ++seen[mask.at<std::uint16_t>(y, x)];
+      for (std::uint16_t id : gen.movingInstances(gen.time(index))) ++moving[id];
     }
     for (const InstanceInfo& info : gen.instances()) {
       EXPECT_GT(seen[info.id], 200) << preset << " " << info.name;

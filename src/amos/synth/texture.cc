@@ -63,11 +63,13 @@ cv::Vec3f Texture::sample(double s, double t, double lod) const {
   const int last = levelCount() - 1;
   if (!(lod > 0)) return sampleLevel(0, s, t);
   if (lod >= last) return sampleLevel(last, s, t);
+  // "Brilinear": blend two levels only in the middle half between them, one level elsewhere. Halves the cost of
+  // trilinear filtering and still has no visible step between levels.
   const int l0 = static_cast<int>(lod);
-  const float f = static_cast<float>(lod - l0);
-  const cv::Vec3f c0 = sampleLevel(l0, s, t);
-  if (f < 1e-3f) return c0;
-  return c0 * (1 - f) + sampleLevel(l0 + 1, s, t) * f;
+  const float f = std::clamp(static_cast<float>(lod - l0) * 2.0f - 0.5f, 0.0f, 1.0f);
+  if (f <= 0.0f) return sampleLevel(l0, s, t);
+  if (f >= 1.0f) return sampleLevel(l0 + 1, s, t);
+  return sampleLevel(l0, s, t) * (1 - f) + sampleLevel(l0 + 1, s, t) * f;
 }
 
 float Texture::alpha(double s, double t) const {

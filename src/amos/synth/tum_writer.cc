@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
 
 #include "amos/core/error.h"
+#include "amos/synth/png_writer.h"
 
 namespace amos::synth {
 
@@ -23,11 +23,6 @@ void openIndex(std::ofstream& out, const fs::path& path, const std::string& what
   out << "# " << what << "\n# file: '" << title << "'\n# " << columns << "\n";
 }
 
-void writePng(const fs::path& path, const cv::Mat& image) {
-  // Fast zlib level: the files are mostly noise, higher levels cost time for a few percent.
-  core::require(cv::imwrite(path.string(), image, {cv::IMWRITE_PNG_COMPRESSION, 1}),
-                "synth: cannot write " + path.string());
-}
 }  // namespace
 
 TumWriter::TumWriter(const std::string& output_dir, const SequenceGenerator& generator)
@@ -48,9 +43,9 @@ TumWriter::TumWriter(const std::string& output_dir, const SequenceGenerator& gen
 
 void TumWriter::add(const SyntheticFrame& f) {
   const std::string stamp = formatTimestamp(f.timestamp);
-  writePng(fs::path(dir_) / "rgb" / (stamp + ".png"), f.bgr);
-  writePng(fs::path(dir_) / "depth" / (stamp + ".png"), f.depth_raw);
-  writePng(fs::path(dir_) / "masks" / (stamp + ".png"), f.mask);
+  writePng((fs::path(dir_) / "rgb" / (stamp + ".png")).string(), f.bgr);
+  writePng((fs::path(dir_) / "depth" / (stamp + ".png")).string(), f.depth_raw);
+  writePng((fs::path(dir_) / "masks" / (stamp + ".png")).string(), f.mask);
   rgb_ << stamp << " rgb/" << stamp << ".png\n";
   depth_ << stamp << " depth/" << stamp << ".png\n";
   masks_ << stamp << " masks/" << stamp << ".png\n";
