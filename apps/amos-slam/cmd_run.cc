@@ -1,16 +1,104 @@
-#include <iostream>
+// amos-slam run: SLAM over one RGB-D sequence. Writes trajectory.txt, keyframes.txt, map.ply and stats.json into
+// --output and prints ATE / RPE when the sequence has ground truth. All work is in amos::report / amos::system.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
 
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "amos/config/settings.h"
+#include "amos/report/run_report.h"
+#include "amos/report/sequence_run.h"
 #include "commands.h"
 
 namespace amos::app {
+namespace {
+
+struct RunArgs {
+  std::string sequence, config, output, mode = "none", models;
+  bool deterministic = false;
+  std::size_t max_frames = 0;
+};
+
+void printSummary(const report::SequenceRunResult& r, const std::string& output) {
+  const system::SlamStats s = r.slam->stats();
+  const auto stages = r.slam->times().summary();
+  auto median = [&](const char* name) {
+    const auto it = stages.find(name);
+    return it == stages.end() ? 0.0 : it->second.median_ms;
+  };
+  std::cout << fmt::format("frames {}  tracked {}  lost {}  relocalised {}  keyframes {}  map points {}\n", s.frames,
+                           s.tracked, s.lost, s.relocalized, s.keyframes, s.map_points);
+  std::cout << fmt::format("median ms per frame: extract {:.1f}  track {:.1f}  total {:.1f};  wall {:.2f} s = {:.1f} fps\n",
+                           median("frame.extract"), median("frame.track"), median("frame.total"), r.info.wall_time_s,
+                           r.info.wall_time_s > 0 ? s.frames / r.info.wall_time_s : 0.0);
+  if (r.info.evaluation) {
+    const auto& e = *r.info.evaluation;
+    std::cout << fmt::format("ATE RMSE {:.4f} m ({} poses)", e.ate_rmse_m, e.ate_pairs);
+    if (!std::isnan(e.rpe_trans_rmse_m)) {
+      std::cout << fmt::format("  RPE(1 s) {:.4f} m  {:.3f} deg ({} pairs)", e.rpe_trans_rmse_m, e.rpe_rot_rmse_deg,
+                               e.rpe_pairs);
+    }
+    std::cout << "\n";
+  }
+  std::cout << "outputs written to " << output << "\n";
+}
+
+void runSlam(const RunArgs& args, int& exit_code) {
+  if (args.mode != "none") {
+    std::cerr << "amos-slam run: --mode " << args.mode
+              << " is not available yet in this build (the dynamic front end is not wired); use --mode none\n";
+    exit_code = 2;
+    return;
+  }
+  const config::Settings settings = config::loadSettings(args.config);
+  const bool tty = isatty(fileno(stderr)) != 0;
+  report::SequenceRunOptions options;
+  options.sequence_dir = args.sequence;
+  options.config_label = args.config;
+  options.mode = args.mode;
+  options.deterministic = args.deterministic;
+  options.max_frames = args.max_frames;
+  options.on_frame = [tty](const report::SequenceProgress& p) {
+    const auto& t = p.output->track;
+    const std::string line =
+        fmt::format("frame {}/{}  {}  inliers {}  {:.1f} ms  {:.1f} fps", p.frame, p.total,
+                    tracking::toString(t.state), t.inliers, p.output->total_ms,
+                    p.elapsed_s > 0 ? p.frame / p.elapsed_s : 0.0);
+    if (tty) {
+      std::fprintf(stderr, "\r%-78s", line.c_str());
+      if (p.frame == p.total) std::fprintf(stderr, "\n");
+    } else if (p.frame % 100 == 0 || p.frame == p.total) {
+      spdlog::info("{}", line);
+    }
+  };
+  const report::SequenceRunResult result = report::runSequence(settings, options);
+  report::writeRunOutputs(args.output, *result.slam, result.info);
+  printSummary(result, args.output);
+  exit_code = 0;
+}
+
+}  // namespace
 
 void addRunCommand(CLI::App& app, int& exit_code) {
-  auto* cmd = app.add_subcommand("run", "(not available yet)");
-  cmd->allow_extras();
-  cmd->callback([&exit_code] {
-    std::cerr << "amos-slam run: this subcommand is not available yet in this build\n";
-    exit_code = 2;
-  });
+  auto args = std::make_shared<RunArgs>();
+  auto* cmd = app.add_subcommand("run", "Run RGB-D SLAM over a TUM/Bonn-layout sequence");
+  cmd->add_option("--sequence", args->sequence, "Sequence folder (rgb/, depth/, rgb.txt, depth.txt)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--config", args->config, "Settings file (configs/*.yaml)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--output", args->output, "Output folder (created if needed)")->required();
+  cmd->add_option("--mode", args->mode, "Dynamic front end: none | prior | geometry | full")
+      ->check(CLI::IsMember({"none", "prior", "geometry", "full"}));
+  cmd->add_option("--models", args->models, "Folder with the segmentation models");
+  cmd->add_flag("--deterministic", args->deterministic,
+                "Bit-identical runs: local mapping in lock-step with tracking");
+  cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)");
+  cmd->callback([args, &exit_code] { runSlam(*args, exit_code); });
 }
 
 }  // namespace amos::app

@@ -1,0 +1,36 @@
+#include "amos/map/sensor.h"
+
+#include <cmath>
+#include <string>
+
+#include "amos/core/error.h"
+
+namespace amos::map {
+
+void SensorOptions::check() const {
+  core::require(bf > 0, "Camera.bf must be > 0, got " + std::to_string(bf));
+  core::require(th_depth > 0, "ThDepth must be > 0, got " + std::to_string(th_depth));
+}
+
+Sensor::Sensor(const core::CameraIntrinsics& intrinsics, const SensorOptions& options,
+               const feature::OrbOptions& orb)
+    : camera_(intrinsics) {
+  intrinsics.check();
+  options.check();
+  orb.check();
+  bf_ = options.bf;
+  close_depth_ = options.th_depth * options.bf / intrinsics.fx;
+  scale_factor_ = static_cast<float>(orb.scale_factor);
+  log_scale_factor_ = std::log(scale_factor_);
+  scale_.resize(orb.num_levels);
+  sigma2_.resize(orb.num_levels);
+  inv_sigma2_.resize(orb.num_levels);
+  for (int l = 0; l < orb.num_levels; ++l) {
+    scale_[l] = static_cast<float>(std::pow(orb.scale_factor, l));
+    sigma2_[l] = scale_[l] * scale_[l];
+    inv_sigma2_[l] = 1.0f / sigma2_[l];
+  }
+  bounds_ = camera_.undistortedBounds();
+}
+
+}  // namespace amos::map

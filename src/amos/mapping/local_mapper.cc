@@ -1,0 +1,214 @@
+#include "amos/mapping/local_mapper.h"
+
+#include <spdlog/spdlog.h>
+
+#include <shared_mutex>
+
+#include "amos/core/error.h"
+#include "amos/mapping/local_bundle_adjustment.h"
+
+namespace amos::mapping {
+
+void LocalMappingOptions::check() const {
+  core::require(recent_found_ratio >= 0 && recent_found_ratio <= 1, "Mapping.recentFoundRatio must be in [0, 1]");
+  core::require(recent_min_observations >= 0, "Mapping.recentMinObservations must be >= 0");
+  core::require(redundant_ratio > 0 && redundant_ratio <= 1, "Mapping.redundantRatio must be in (0, 1]");
+  core::require(redundant_observers >= 1, "Mapping.redundantObservers must be >= 1");
+  new_points.check();
+  fusion.check();
+  ba.check();
+}
+
+LocalMapper::LocalMapper(const LocalMappingOptions& options, std::shared_ptr<map::Map> map, bool lock_step,
+                         core::StageTimes* times)
+    : options_(options), map_(std::move(map)), lock_step_(lock_step), times_(times) {
+  options_.check();
+  core::require(map_ != nullptr, "LocalMapper: map must not be null");
+  thread_ = std::thread([this] { run(); });
+}
+
+LocalMapper::~LocalMapper() { stop(); }
+
+void LocalMapper::insertKeyFrame(const map::KeyFramePtr& kf, std::vector<map::MapPointPtr> new_points) {
+  {
+    std::lock_guard lock(mutex_);
+    core::require(!stopping_, "LocalMapper: keyframe inserted after stop()");
+    queue_.push_back({kf, std::move(new_points)});
+    abort_ba_.store(true);
+  }
+  work_cv_.notify_one();
+  if (lock_step_) waitUntilIdle();
+}
+
+bool LocalMapper::isIdle() const {
+  std::lock_guard lock(mutex_);
+  return queue_.empty() && !busy_;
+}
+
+std::size_t LocalMapper::queuedKeyFrames() const {
+  std::lock_guard lock(mutex_);
+  return queue_.size();
+}
+
+void LocalMapper::waitUntilIdle() {
+  std::unique_lock lock(mutex_);
+  idle_cv_.wait(lock, [&] { return queue_.empty() && !busy_; });
+}
+
+void LocalMapper::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  work_cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+LocalMappingStats LocalMapper::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+void LocalMapper::run() {
+  for (;;) {
+    Job job;
+    {
+      std::unique_lock lock(mutex_);
+      work_cv_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+      if (queue_.empty()) break;  // stopping and nothing left
+      job = std::move(queue_.front());
+      queue_.pop_front();
+      busy_ = true;
+      abort_ba_.store(!queue_.empty());
+    }
+    try {
+      process(std::move(job));
+    } catch (const std::exception& e) {
+      spdlog::error("local mapping: {}", e.what());
+    }
+    {
+      std::lock_guard lock(mutex_);
+      busy_ = false;
+    }
+    idle_cv_.notify_all();
+  }
+  idle_cv_.notify_all();
+}
+
+void LocalMapper::process(Job job) {
+  core::Stopwatch total, watch;
+  const map::KeyFramePtr& kf = job.kf;
+  LocalMappingStats delta;
+  {
+    std::unique_lock lock(map_->mutex());
+    if (kf->isBad()) return;
+    for (const auto& p : kf->mapPoints()) {
+      if (!p || p->isBad()) continue;
+      map_->updateNormalAndDepth(p);
+      map_->updateDescriptor(p);
+    }
+    map_->updateConnections(kf);
+    for (auto& p : job.new_points) recent_points_.push_back(std::move(p));
+    const int before = static_cast<int>(map_->numMapPoints());
+    cullRecentPoints(kf);
+    delta.points_culled = before - static_cast<int>(map_->numMapPoints());
+  }
+  if (times_) times_->add("mapping.process_keyframe", watch.elapsedMs());
+  watch.restart();
+  std::vector<NewPointCandidate> candidates;
+  {
+    std::shared_lock lock(map_->mutex());
+    candidates = findNewPoints(*map_, kf, options_.new_points);
+  }
+  {
+    std::unique_lock lock(map_->mutex());
+    auto added = addNewPoints(*map_, candidates, kf->frameId());
+    delta.points_triangulated = static_cast<int>(added.size());
+    for (auto& p : added) recent_points_.push_back(std::move(p));
+  }
+  if (times_) times_->add("mapping.new_points", watch.elapsedMs());
+  watch.restart();
+  if (queuedKeyFrames() == 0) {
+    std::unique_lock lock(map_->mutex());
+    delta.points_fused = fuseWithNeighbors(*map_, kf, options_.fusion);
+  }
+  if (times_) times_->add("mapping.fusion", watch.elapsedMs());
+  if (queuedKeyFrames() == 0) {
+    watch.restart();
+    if (options_.local_ba && map_->numKeyFrames() > 2) {
+      const LocalBaStats ba = runLocalBundleAdjustment(*map_, kf, options_.ba, &abort_ba_);
+      ++delta.ba_runs;
+      delta.ba_aborted += ba.aborted;
+      if (times_) times_->add("mapping.local_ba", watch.elapsedMs());
+    }
+    watch.restart();
+    if (options_.cull_keyframes) {
+      std::unique_lock lock(map_->mutex());
+      const auto before = map_->numKeyFrames();
+      cullKeyFrames(kf);
+      delta.keyframes_culled = static_cast<int>(before - map_->numKeyFrames());
+    }
+    if (times_) times_->add("mapping.cull_keyframes", watch.elapsedMs());
+  }
+  if (times_) times_->add("mapping.keyframe_total", total.elapsedMs());
+  std::lock_guard lock(mutex_);
+  ++stats_.keyframes_processed;
+  stats_.keyframes_culled += delta.keyframes_culled;
+  stats_.points_triangulated += delta.points_triangulated;
+  stats_.points_culled += delta.points_culled;
+  stats_.points_fused += delta.points_fused;
+  stats_.ba_runs += delta.ba_runs;
+  stats_.ba_aborted += delta.ba_aborted;
+}
+
+void LocalMapper::cullRecentPoints(const map::KeyFramePtr& kf) {
+  const map::KeyFrameId current = kf->id();
+  for (auto it = recent_points_.begin(); it != recent_points_.end();) {
+    const map::MapPointPtr& p = *it;
+    const map::KeyFrameId age = current >= p->firstKeyFrame() ? current - p->firstKeyFrame() : 0;
+    if (p->isBad()) {
+      it = recent_points_.erase(it);
+    } else if (p->foundRatio() < options_.recent_found_ratio) {
+      map_->setMapPointBad(p);
+      it = recent_points_.erase(it);
+    } else if (age >= 2 && p->numObservations() <= options_.recent_min_observations) {
+      map_->setMapPointBad(p);
+      it = recent_points_.erase(it);
+    } else if (age >= 3) {
+      it = recent_points_.erase(it);  // survived its probation
+    } else {
+      ++it;
+    }
+  }
+}
+
+void LocalMapper::cullKeyFrames(const map::KeyFramePtr& current) {
+  const double close = current->sensor().closeDepth();
+  const auto neighbours = current->orderedConnections();
+  for (const auto& [w, id] : neighbours) {
+    if (id == map_->firstKeyFrameId()) continue;
+    const map::KeyFramePtr kf = map_->keyFrame(id);
+    if (!kf || kf->isBad()) continue;
+    const map::FrameFeatures& f = kf->features();
+    int redundant = 0, considered = 0;
+    for (int i = 0; i < kf->size(); ++i) {
+      const map::MapPointPtr& p = kf->mapPoint(i);
+      if (!p || p->isBad()) continue;
+      if (f.depth[i] > close || f.depth[i] < 0) continue;  // RGB-D: judge on close points only
+      ++considered;
+      if (p->numObservations() <= options_.redundant_observers) continue;
+      const int level = f.keys[i].octave;
+      int observers = 0;
+      for (const auto& [other, idx] : p->observations()) {
+        if (other == id) continue;
+        const map::KeyFramePtr o = map_->keyFrame(other);
+        if (!o) continue;
+        if (o->features().keys[idx].octave <= level + 1 && ++observers >= options_.redundant_observers) break;
+      }
+      if (observers >= options_.redundant_observers) ++redundant;
+    }
+    if (redundant > options_.redundant_ratio * considered) map_->setKeyFrameBad(kf);
+  }
+}
+
+}  // namespace amos::mapping

@@ -1,0 +1,73 @@
+#include "amos/report/run_report.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "amos/core/error.h"
+#include "amos/io/trajectory.h"
+
+namespace amos::report {
+
+nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& times, const RunInfo& info) {
+  nlohmann::json j;
+  j["sequence"] = info.sequence;
+  j["config"] = info.config;
+  j["mode"] = info.mode;
+  j["deterministic"] = info.deterministic;
+  j["frames"] = s.frames;
+  j["tracked"] = s.tracked;
+  j["lost"] = s.lost;
+  j["not_initialized"] = s.not_initialized;
+  j["relocalised"] = s.relocalized;
+  j["keyframes"] = s.keyframes;
+  j["keyframes_created"] = s.keyframes_created;
+  j["map_points"] = s.map_points;
+  j["mapping"] = {{"keyframes_processed", s.mapping.keyframes_processed},
+                  {"keyframes_culled", s.mapping.keyframes_culled},
+                  {"points_triangulated", s.mapping.points_triangulated},
+                  {"points_culled", s.mapping.points_culled},
+                  {"points_fused", s.mapping.points_fused},
+                  {"local_ba_runs", s.mapping.ba_runs},
+                  {"local_ba_aborted", s.mapping.ba_aborted}};
+  nlohmann::json stages = nlohmann::json::object();
+  for (const auto& [name, sum] : times.summary()) {
+    stages[name] = {{"count", sum.count}, {"median_ms", sum.median_ms}, {"p95_ms", sum.p95_ms},
+                    {"mean_ms", sum.mean_ms}, {"max_ms", sum.max_ms}};
+  }
+  j["stages"] = stages;
+  j["wall_time_s"] = info.wall_time_s;
+  j["fps"] = info.wall_time_s > 0 ? static_cast<double>(s.frames) / info.wall_time_s : 0.0;
+  if (info.evaluation) j["evaluation"] = eval::toJson(*info.evaluation);
+  return j;
+}
+
+void writeMapPly(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
+  std::ofstream out(path);
+  core::require(out.good(), "cannot write " + path);
+  out << "ply\nformat ascii 1.0\ncomment Amos-SLAM map points (world frame, metres)\n";
+  out << "element vertex " << points.size() << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  char line[96];
+  for (const auto& p : points) {
+    std::snprintf(line, sizeof(line), "%.6f %.6f %.6f\n", p.x(), p.y(), p.z());
+    out << line;
+  }
+  core::require(out.good(), "error while writing " + path);
+}
+
+void writeRunOutputs(const std::string& dir, const system::SlamSystem& slam, const RunInfo& info) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  core::require(!ec, "cannot create output folder " + dir + ": " + ec.message());
+  const std::filesystem::path d(dir);
+  io::writeTumTrajectory((d / "trajectory.txt").string(), slam.trajectory());
+  io::writeTumTrajectory((d / "keyframes.txt").string(), slam.keyframeTrajectory());
+  writeMapPly((d / "map.ply").string(), slam.mapPointPositions());
+  const std::string stats_path = (d / "stats.json").string();
+  std::ofstream out(stats_path);
+  core::require(out.good(), "cannot write " + stats_path);
+  out << statsJson(slam.stats(), slam.times(), info).dump(2) << "\n";
+  core::require(out.good(), "error while writing " + stats_path);
+}
+
+}  // namespace amos::report

@@ -1,0 +1,31 @@
+#pragma once
+// Writes the outputs of a SLAM run into a folder:
+//   trajectory.txt  every tracked frame, TUM format (T_wc)
+//   keyframes.txt   the map's keyframes, TUM format
+//   map.ply         the map points (ASCII PLY, x y z)
+//   stats.json      frame counts, map size, median / p95 ms per stage and per frame, wall time, frames per second,
+//                   and ATE / RPE when the sequence has ground truth
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "amos/eval/evaluate.h"
+#include "amos/system/slam_system.h"
+
+namespace amos::report {
+
+struct RunInfo {
+  std::string sequence, config, mode;
+  bool deterministic = false;
+  double wall_time_s = 0;
+  std::optional<eval::EvaluationResult> evaluation;
+};
+
+nlohmann::json statsJson(const system::SlamStats& stats, const core::StageTimes& times, const RunInfo& info);
+void writeMapPly(const std::string& path, const std::vector<Eigen::Vector3d>& points);
+// Creates `dir` if needed; throws core::Error naming the file that cannot be written.
+void writeRunOutputs(const std::string& dir, const system::SlamSystem& slam, const RunInfo& info);
+
+}  // namespace amos::report

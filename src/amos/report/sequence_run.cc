@@ -1,0 +1,59 @@
+#include "amos/report/sequence_run.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "amos/core/error.h"
+#include "amos/core/stage_timer.h"
+#include "amos/eval/bonn_ground_truth.h"
+#include "amos/eval/evaluate.h"
+#include "amos/io/dataset.h"
+
+namespace amos::report {
+
+system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bool deterministic) {
+  system::SlamOptions o;
+  o.camera = settings.camera;
+  o.sensor.bf = settings.bf;
+  o.sensor.th_depth = settings.th_depth;
+  o.orb = settings.orb;
+  o.tracking.max_frames_between_keyframes = std::max(1, static_cast<int>(settings.fps + 0.5));
+  o.deterministic = deterministic;
+  return o;
+}
+
+SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options) {
+  SequenceRunResult result;
+  io::SequenceIndex index = io::indexSequence(options.sequence_dir);
+  if (options.max_frames > 0 && index.frames.size() > options.max_frames) index.frames.resize(options.max_frames);
+  const std::string gt_file = index.groundtruth_file;
+  io::SequenceReader reader(std::move(index), settings.readerOptions());
+  result.slam = std::make_unique<system::SlamSystem>(slamOptionsFromSettings(settings, options.deterministic));
+  core::Stopwatch wall;
+  std::size_t n = 0;
+  while (auto frame = reader.next()) {
+    const system::FrameOutput out = result.slam->processFrame(*frame);
+    ++n;
+    if (options.on_frame) options.on_frame({n, reader.size(), &out, wall.elapsedMs() / 1000.0});
+  }
+  result.slam->finish();
+  result.info.wall_time_s = wall.elapsedMs() / 1000.0;
+  result.info.sequence = options.sequence_dir;
+  result.info.config = options.config_label;
+  result.info.mode = options.mode;
+  result.info.deterministic = options.deterministic;
+  result.trajectory = result.slam->trajectory();
+  if (!gt_file.empty() && result.trajectory.size() >= 2) {
+    std::vector<io::StampedPose> gt = io::readTumTrajectory(gt_file);
+    if (settings.groundtruth_format == config::GroundTruthFormat::kBonn) gt = eval::bonnMarkerToCamera(gt);
+    try {
+      result.info.evaluation = eval::evaluate(gt, result.trajectory);
+    } catch (const core::Error& e) {
+      spdlog::warn("no evaluation against {}: {}", gt_file, e.what());
+    }
+  }
+  return result;
+}
+
+}  // namespace amos::report

@@ -1,0 +1,44 @@
+#pragma once
+// Runs the SLAM system over a whole TUM/Bonn-layout sequence: the loop shared by `amos-slam run`, the end-to-end
+// tests and the benchmarks. Settings come from the config module; ground truth, when the sequence has it, is
+// evaluated with the eval module (Bonn marker poses converted to camera poses).
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "amos/config/settings.h"
+#include "amos/io/trajectory.h"
+#include "amos/report/run_report.h"
+#include "amos/system/slam_system.h"
+
+namespace amos::report {
+
+// The SLAM options that follow from a settings file (camera, virtual baseline, ORB; defaults elsewhere).
+system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bool deterministic);
+
+struct SequenceProgress {
+  std::size_t frame = 0, total = 0;
+  const system::FrameOutput* output = nullptr;
+  double elapsed_s = 0;
+};
+
+struct SequenceRunOptions {
+  std::string sequence_dir;
+  std::string config_label;    // recorded in stats.json
+  std::string mode = "none";   // recorded in stats.json
+  bool deterministic = false;
+  std::size_t max_frames = 0;  // 0 = all
+  std::function<void(const SequenceProgress&)> on_frame;  // called after every frame (progress display)
+};
+
+struct SequenceRunResult {
+  std::unique_ptr<system::SlamSystem> slam;  // finished (mapping stopped)
+  RunInfo info;                              // wall time, evaluation when there is ground truth
+  std::vector<io::StampedPose> trajectory;
+};
+
+SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options);
+
+}  // namespace amos::report

@@ -1,0 +1,66 @@
+#include "amos/report/sequence_run.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "amos/config/settings.h"
+
+namespace amos::report {
+namespace {
+
+const std::string kFr2 = std::string(AMOS_SHARED_DIR) + "/data/tum_fr2_desk_first50";
+const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+SequenceRunResult runFr2(bool deterministic) {
+  SequenceRunOptions options;
+  options.sequence_dir = kFr2;
+  options.deterministic = deterministic;
+  return runSequence(config::loadSettings(kTum2), options);
+}
+
+// End to end on real data: ORB-SLAM2 scores 3.76 mm ATE on these 50 frames.
+TEST(SequenceRun, TumFr2DeskFirst50TracksEveryFrameAccurately) {
+  ASSERT_TRUE(std::filesystem::exists(kFr2)) << kFr2;
+  const SequenceRunResult r = runFr2(true);
+  const system::SlamStats s = r.slam->stats();
+  EXPECT_EQ(s.frames, 50u);
+  EXPECT_EQ(s.tracked, 50u);
+  EXPECT_EQ(s.lost, 0u);
+  EXPECT_EQ(r.trajectory.size(), 50u);
+  ASSERT_TRUE(r.info.evaluation.has_value());
+  EXPECT_EQ(r.info.evaluation->ate_pairs, 50u);
+  EXPECT_LE(r.info.evaluation->ate_rmse_m, 0.0038);
+  std::cout << "ATE RMSE " << r.info.evaluation->ate_rmse_m << " m, keyframes " << s.keyframes << ", points "
+            << s.map_points << "\n";
+}
+
+// --deterministic: the same input gives the same trajectory file, byte for byte.
+TEST(SequenceRun, DeterministicModeIsBitIdentical) {
+  ASSERT_TRUE(std::filesystem::exists(kFr2)) << kFr2;
+  const std::filesystem::path dir = std::filesystem::path(AMOS_BINARY_DIR) / "test_outputs" / "determinism";
+  std::string bytes[2];
+  for (int run = 0; run < 2; ++run) {
+    const SequenceRunResult r = runFr2(true);
+    const std::string out = (dir / std::to_string(run)).string();
+    writeRunOutputs(out, *r.slam, r.info);
+    bytes[run] = readFile(out + "/trajectory.txt");
+    EXPECT_TRUE(std::filesystem::exists(out + "/keyframes.txt"));
+    EXPECT_TRUE(std::filesystem::exists(out + "/map.ply"));
+    EXPECT_TRUE(std::filesystem::exists(out + "/stats.json"));
+  }
+  EXPECT_GT(bytes[0].size(), 1000u);
+  EXPECT_EQ(bytes[0], bytes[1]);
+}
+
+}  // namespace
+}  // namespace amos::report

@@ -1,0 +1,136 @@
+#include "amos/system/slam_system.h"
+
+#include <opencv2/imgproc.hpp>
+#include <spdlog/spdlog.h>
+
+#include <shared_mutex>
+
+#include "amos/core/error.h"
+
+namespace amos::system {
+
+void SlamOptions::check() const {
+  camera.check();
+  sensor.check();
+  orb.check();
+  tracking.check();
+  mapping.check();
+  core::require(covisibility.min_weight >= 1, "Mapping.covisibilityMinWeight must be >= 1");
+}
+
+SlamSystem::SlamSystem(const SlamOptions& options)
+    : options_(options),
+      sensor_((options.check(), std::make_shared<map::Sensor>(options.camera, options.sensor, options.orb))),
+      extractor_(options.orb),
+      map_(std::make_shared<map::Map>(options.covisibility)) {
+  mapper_ = std::make_unique<mapping::LocalMapper>(options_.mapping, map_, options_.deterministic, &times_);
+  tracker_ = std::make_unique<tracking::Tracker>(options_.tracking, map_, mapper_.get(), &times_);
+}
+
+SlamSystem::~SlamSystem() { finish(); }
+
+ExtractedFeatures SlamSystem::extract(const io::RgbdFrame& frame) const {
+  core::require(frame.bgr.type() == CV_8UC3, "SlamSystem: colour image must be CV_8UC3");
+  core::Stopwatch watch;
+  ExtractedFeatures out;
+  cv::cvtColor(frame.bgr, out.gray, cv::COLOR_BGR2GRAY);
+  extractor_.extract(out.gray, out.keypoints, out.descriptors);
+  out.extract_ms = watch.elapsedMs();
+  return out;
+}
+
+FrameOutput SlamSystem::processFrame(const io::RgbdFrame& frame, const FrameExtras& extras) {
+  return track(frame, extract(frame), extras);
+}
+
+FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeatures& features,
+                              const FrameExtras& extras) {
+  core::require(!finished_, "SlamSystem: frame given after finish()");
+  core::require(frame.depth.type() == CV_32F, "SlamSystem: depth image must be CV_32F metres");
+  core::Stopwatch total, watch;
+  FrameOutput out;
+  out.extract_ms = features.extract_ms;
+  map::FrameBuildStats build;
+  auto built = map::buildFrameFeatures(*sensor_, features.keypoints, features.descriptors, frame.depth,
+                                       extras.dynamic_mask, &build);
+  map::Frame f = map::makeFrame(next_frame_id_++, frame.timestamp, sensor_, std::move(built),
+                                map::makeThumbnail(features.gray), extras.dynamic_mask);
+  out.build_ms = watch.elapsedMs();
+  watch.restart();
+  out.track = tracker_->track(std::move(f), extras.initial_T_cw);
+  out.track_ms = watch.elapsedMs();
+  out.keypoints = build.extracted - build.removed_dynamic;
+  out.removed_dynamic = build.removed_dynamic;
+  out.with_depth = build.with_depth;
+  out.total_ms = total.elapsedMs() + features.extract_ms;
+
+  times_.add("frame.extract", out.extract_ms);
+  times_.add("frame.build", out.build_ms);
+  times_.add("frame.track", out.track_ms);
+  times_.add("frame.total", out.total_ms);
+
+  ++stats_.frames;
+  switch (out.track.state) {
+    case tracking::TrackingState::kOk: ++stats_.tracked; break;
+    case tracking::TrackingState::kLost: ++stats_.lost; break;
+    case tracking::TrackingState::kNotInitialized: ++stats_.not_initialized; break;
+  }
+  stats_.relocalized += out.track.relocalized;
+  stats_.keyframes_created += out.track.new_keyframe;
+  FrameRecord record;
+  record.timestamp = frame.timestamp;
+  record.state = out.track.state;
+  record.reference_kf = out.track.reference_kf;
+  record.T_cr = out.track.T_cr;
+  records_.push_back(record);
+  return out;
+}
+
+void SlamSystem::finish() {
+  if (finished_) return;
+  finished_ = true;
+  mapper_->stop();
+}
+
+std::vector<io::StampedPose> SlamSystem::trajectory() const {
+  std::vector<io::StampedPose> out;
+  out.reserve(records_.size());
+  std::shared_lock lock(map_->mutex());
+  for (const FrameRecord& r : records_) {
+    if (r.reference_kf == map::kNoKeyFrame) continue;  // before the map existed
+    const core::SE3 T_cw = r.T_cr * map_->keyFramePose(r.reference_kf);
+    out.push_back({r.timestamp, T_cw.inverse()});
+  }
+  return out;
+}
+
+std::vector<io::StampedPose> SlamSystem::keyframeTrajectory() const {
+  std::vector<io::StampedPose> out;
+  std::shared_lock lock(map_->mutex());
+  for (const auto& kf : map_->keyFrames()) {
+    if (!kf->isBad()) out.push_back({kf->timestamp(), kf->T_wc()});
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3d> SlamSystem::mapPointPositions() const {
+  std::vector<Eigen::Vector3d> out;
+  std::shared_lock lock(map_->mutex());
+  for (const auto& p : map_->mapPoints()) {
+    if (!p->isBad()) out.push_back(p->position());
+  }
+  return out;
+}
+
+SlamStats SlamSystem::stats() const {
+  SlamStats s = stats_;
+  {
+    std::shared_lock lock(map_->mutex());
+    s.keyframes = map_->numKeyFrames();
+    s.map_points = map_->numMapPoints();
+  }
+  s.mapping = mapper_->stats();
+  return s;
+}
+
+}  // namespace amos::system

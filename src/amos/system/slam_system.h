@@ -1,0 +1,117 @@
+#pragma once
+// The SLAM system as one object: processFrame() runs the per-frame pipeline in the caller's thread
+//   grey conversion -> ORB extraction -> frame build (undistortion, depth, dynamic-mask removal) -> tracking
+// while local mapping runs in its own thread. The pipeline is also available in two halves (extract() and
+// track()), so the caller can overlap other per-frame work (the person segmenter) with extraction and hand the
+// resulting dynamic mask to track().
+//
+// Every frame's pose is stored relative to its reference keyframe (T_cr), and trajectory() composes it with the
+// keyframe's current pose, so bundle-adjustment corrections made after a frame was tracked reach the output
+// trajectory (as ORB-SLAM2 does).
+#include <opencv2/core.hpp>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "amos/core/camera.h"
+#include "amos/core/stage_timer.h"
+#include "amos/feature/orb_extractor.h"
+#include "amos/io/dataset.h"
+#include "amos/io/trajectory.h"
+#include "amos/map/map.h"
+#include "amos/map/sensor.h"
+#include "amos/mapping/local_mapper.h"
+#include "amos/tracking/tracker.h"
+
+namespace amos::system {
+
+struct SlamOptions {
+  core::CameraIntrinsics camera;       // Camera.*
+  map::SensorOptions sensor;           // Camera.bf, ThDepth
+  feature::OrbOptions orb;             // ORBextractor.*
+  map::CovisibilityOptions covisibility;  // Mapping.covisibilityMinWeight
+  tracking::TrackerOptions tracking;   // Tracking.*, Matching.*, Relocalization.*
+  mapping::LocalMappingOptions mapping;  // Mapping.*, LocalBA.*
+  // System.deterministic: local mapping in lock-step with tracking (each keyframe fully processed before the
+  // next frame is tracked), so the same input gives a bit-identical trajectory.
+  bool deterministic = false;
+  void check() const;
+};
+
+// Per-frame extras from the dynamic front end (paper Sec. III).
+struct FrameExtras {
+  cv::Mat dynamic_mask;                    // CV_8U, 255 = dynamic; keypoints there are removed before matching
+  std::optional<core::SE3> initial_T_cw;   // initial pose from outside (replaces / competes with the motion model)
+};
+
+struct ExtractedFeatures {
+  cv::Mat gray;
+  std::vector<cv::KeyPoint> keypoints;  // distorted, as detected
+  cv::Mat descriptors;
+  double extract_ms = 0;
+};
+
+struct FrameOutput {
+  tracking::TrackResult track;
+  int keypoints = 0, removed_dynamic = 0, with_depth = 0;
+  double extract_ms = 0, build_ms = 0, track_ms = 0, total_ms = 0;
+};
+
+struct SlamStats {
+  std::size_t frames = 0, tracked = 0, lost = 0, not_initialized = 0, relocalized = 0;
+  std::size_t keyframes_created = 0, keyframes = 0, map_points = 0;
+  mapping::LocalMappingStats mapping;
+};
+
+class SlamSystem {
+ public:
+  explicit SlamSystem(const SlamOptions& options);
+  ~SlamSystem();
+  SlamSystem(const SlamSystem&) = delete;
+  SlamSystem& operator=(const SlamSystem&) = delete;
+
+  FrameOutput processFrame(const io::RgbdFrame& frame, const FrameExtras& extras = {});
+  // The two halves of processFrame(): extraction needs only the image; track() takes the rest.
+  ExtractedFeatures extract(const io::RgbdFrame& frame) const;
+  FrameOutput track(const io::RgbdFrame& frame, const ExtractedFeatures& features, const FrameExtras& extras = {});
+
+  // Lets local mapping finish its queue and stops its thread. Further frames are not accepted.
+  void finish();
+
+  // One pose per processed frame (T_wc, TUM convention), composed with the current keyframe poses.
+  std::vector<io::StampedPose> trajectory() const;
+  // Poses of the keyframes in the map (T_wc).
+  std::vector<io::StampedPose> keyframeTrajectory() const;
+  // World positions of the good map points, by id.
+  std::vector<Eigen::Vector3d> mapPointPositions() const;
+  SlamStats stats() const;
+  const core::StageTimes& times() const { return times_; }
+
+  const tracking::Tracker& tracker() const { return *tracker_; }
+  map::Map& map() { return *map_; }
+  const map::Map& map() const { return *map_; }
+  const std::shared_ptr<const map::Sensor>& sensor() const { return sensor_; }
+
+ private:
+  struct FrameRecord {
+    double timestamp = 0;
+    tracking::TrackingState state = tracking::TrackingState::kNotInitialized;
+    map::KeyFrameId reference_kf = map::kNoKeyFrame;
+    core::SE3 T_cr = core::SE3::Identity();
+  };
+
+  SlamOptions options_;
+  std::shared_ptr<const map::Sensor> sensor_;
+  feature::OrbExtractor extractor_;
+  std::shared_ptr<map::Map> map_;
+  core::StageTimes times_;
+  std::unique_ptr<mapping::LocalMapper> mapper_;
+  std::unique_ptr<tracking::Tracker> tracker_;
+  std::vector<FrameRecord> records_;
+  SlamStats stats_;
+  map::FrameId next_frame_id_ = 0;
+  bool finished_ = false;
+};
+
+}  // namespace amos::system

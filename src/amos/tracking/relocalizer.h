@@ -1,0 +1,45 @@
+#pragma once
+// Relocalisation of a lost frame without a bag-of-words vocabulary: keyframes are ranked by the similarity of
+// their thumbnails (small blurred images, as in PTAM), the best few are matched to the frame by brute-force
+// descriptor matching, and each candidate pose comes from EPnP RANSAC, refined by pose optimisation and a
+// projection search for more matches (the ORB-SLAM2 recipe).
+#include "amos/geometry/pnp_ransac.h"
+#include "amos/geometry/pose_optimizer.h"
+#include "amos/map/frame.h"
+#include "amos/map/map.h"
+#include "amos/tracking/matching.h"
+
+namespace amos::tracking {
+
+struct RelocalizerOptions {
+  int num_candidates = 8;          // keyframes tried, best thumbnails first
+  int min_matches = 15;            // brute-force matches needed to try PnP on a keyframe
+  float match_ratio = 0.75f;       // Lowe ratio for those matches
+  int min_inliers = 50;            // inliers needed to accept a pose
+  geometry::PnpRansacOptions pnp;  // reprojection threshold, iterations, seed
+  void check() const;
+};
+
+class Relocalizer {
+ public:
+  Relocalizer(const RelocalizerOptions& options, const MatchingOptions& matching,
+              const geometry::PoseOptimizerOptions& pose);
+
+  // On success sets frame.T_cw and frame.map_points/outlier (inliers only) and returns the keyframe used.
+  // Call with Map::mutex() held (shared).
+  map::KeyFramePtr relocalize(map::Frame& frame, const map::Map& map) const;
+
+ private:
+  // Pose optimisation on the frame's matches; clears outliers, returns inliers.
+  int optimize(map::Frame& frame) const;
+
+  RelocalizerOptions options_;
+  MatchingOptions matching_;
+  geometry::PoseOptimizerOptions pose_;
+};
+
+// Runs pose optimisation on the frame's current matches from frame.T_cw, writes pose and outlier flags back.
+// Returns the number of inliers.
+int optimizeFramePose(map::Frame& frame, const geometry::PoseOptimizerOptions& options);
+
+}  // namespace amos::tracking

@@ -1,0 +1,130 @@
+#pragma once
+// Per-frame RGB-D camera tracking (ORB-SLAM2's Tracking, RGB-D mode): map initialisation from the first frame
+// with enough depth, constant-velocity tracking with projection matching, fall-back to the reference keyframe,
+// tracking of the local map, keyframe decision, relocalisation when lost.
+//
+// Hooks for the dynamic front end (paper Sec. III): keypoints inside the frame's dynamic mask are removed when the
+// frame is built (map::buildFrameFeatures) and map points that project into the mask are counted
+// (MapPoint::dynamicHits); an externally supplied initial pose can replace or compete with the constant-velocity
+// prediction; lastPose(), velocity() and referenceKeyFrameView() expose what the front end needs.
+//
+// Threading: a Tracker is used from one thread (the caller's). It reads the map under a shared lock and takes
+// the exclusive lock only to insert a keyframe.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "amos/core/pose.h"
+#include "amos/core/stage_timer.h"
+#include "amos/geometry/pose_optimizer.h"
+#include "amos/map/frame.h"
+#include "amos/map/map.h"
+#include "amos/tracking/keyframe_sink.h"
+#include "amos/tracking/matching.h"
+#include "amos/tracking/relocalizer.h"
+
+namespace amos::tracking {
+
+// How an externally supplied initial pose is used (Tracking.externalPose: replace | compete).
+enum class ExternalPosePolicy { kReplace, kCompete };
+
+struct TrackerOptions {
+  int init_min_depth_points = 500;   // Tracking.initMinDepthPoints: keypoints with depth to initialise the map
+  double motion_search_radius = 15;  // Tracking.motionSearchRadius: px at level 0 (ORB-SLAM2 RGB-D: 15)
+  int motion_min_matches = 20;       // Tracking.motionMinMatches: below this the window is doubled, then fail
+  int min_map_matches = 10;          // Tracking.minMapMatches: inliers with map points to accept a frame-to-frame step
+  int reference_min_matches = 15;    // Tracking.referenceMinMatches: brute-force matches to try the reference KF
+  double local_search_radius = 3;    // Tracking.localSearchRadius (ORB-SLAM2 RGB-D: 3)
+  double reloc_search_radius = 5;    // Tracking.relocSearchRadius: local-map window in the frames right after relocalisation
+  int local_min_inliers = 30;        // Tracking.localMinInliers
+  int reloc_min_inliers = 50;        // Tracking.relocMinInliers: inliers needed in the frames after a relocalisation
+  int max_local_keyframes = 80;      // Tracking.maxLocalKeyFrames
+  int max_frames_between_keyframes = 30;  // Tracking.maxFrames (ORB-SLAM2: fps)
+  int min_frames_between_keyframes = 0;   // Tracking.minFrames
+  double keyframe_ref_ratio = 0.75;  // Tracking.keyFrameRefRatio: tracked / reference-keyframe points
+  int close_tracked_max = 100;       // Tracking.closeTrackedMax: fewer tracked close points ...
+  int close_untracked_min = 70;      // Tracking.closeUntrackedMin: ... and this many untracked ones -> new keyframe
+  int new_points_min = 100;          // Tracking.newPointsMin: depth points created per keyframe (at least, closest first)
+  int vo_points_min = 100;           // Tracking.voPointsMin: temporary points from the last frame's depth
+  ExternalPosePolicy external_pose = ExternalPosePolicy::kCompete;  // Tracking.externalPose
+  geometry::PoseOptimizerOptions pose;  // Tracking.chi2Mono / chi2Stereo / poseRounds / poseIterations
+  MatchingOptions matching;             // Matching.*
+  RelocalizerOptions relocalization;    // Relocalization.*
+  void check() const;
+};
+
+enum class TrackingState { kNotInitialized, kOk, kLost };
+const char* toString(TrackingState state);
+
+struct TrackResult {
+  TrackingState state = TrackingState::kNotInitialized;
+  bool initialized_map = false;
+  bool relocalized = false;
+  bool new_keyframe = false;
+  bool used_external_pose = false;
+  int inliers = 0;
+  core::SE3 T_cw = core::SE3::Identity();
+  // Pose relative to the reference keyframe (T_cr = T_cw * T_wr), so later map corrections reach the trajectory.
+  map::KeyFrameId reference_kf = map::kNoKeyFrame;
+  core::SE3 T_cr = core::SE3::Identity();
+};
+
+// The reference keyframe as the dynamic front end sees it (paper's model 1: reference keyframe features).
+struct ReferenceKeyFrameView {
+  map::KeyFrameId id = map::kNoKeyFrame;
+  core::SE3 T_cw = core::SE3::Identity();
+  std::vector<cv::KeyPoint> keypoints;         // undistorted
+  std::vector<Eigen::Vector3d> points_w;       // world position of the keypoint's map point ...
+  std::vector<bool> has_point;                 // ... when it has one
+};
+
+class Tracker {
+ public:
+  Tracker(const TrackerOptions& options, std::shared_ptr<map::Map> map, KeyFrameSink* sink,
+          core::StageTimes* times = nullptr);
+
+  // Tracks one frame (built with map::buildFrameFeatures / makeFrame). external_T_cw: optional initial pose from
+  // outside (e.g. the dynamic front end), used according to options.external_pose.
+  TrackResult track(map::Frame frame, const std::optional<core::SE3>& external_T_cw = std::nullopt);
+
+  TrackingState state() const { return state_; }
+  // Pose of the last tracked frame, the constant-velocity motion (T_cur_last), if known.
+  std::optional<core::SE3> lastPose() const;
+  std::optional<core::SE3> velocity() const { return velocity_; }
+  ReferenceKeyFrameView referenceKeyFrameView() const;
+  const map::Frame& lastFrame() const { return last_frame_; }
+
+ private:
+  TrackResult initialize(map::Frame& frame);
+  bool trackWithMotionModel(map::Frame& frame, const std::optional<core::SE3>& external, bool& used_external);
+  bool trackReferenceKeyFrame(map::Frame& frame);
+  bool trackLocalMap(map::Frame& frame, int& inliers);
+  void updateLastFrame();
+  void updateLocalMap(map::Frame& frame);
+  void searchLocalPoints(map::Frame& frame);
+  // Drops outlier matches after pose optimisation; returns matches to points that are in the map.
+  int discardOutliers(map::Frame& frame) const;
+  bool needNewKeyFrame(const map::Frame& frame, int inliers) const;
+  void createNewKeyFrame(map::Frame& frame);
+
+  TrackerOptions options_;
+  std::shared_ptr<map::Map> map_;
+  KeyFrameSink* sink_;
+  core::StageTimes* times_;
+  Relocalizer relocalizer_;
+
+  TrackingState state_ = TrackingState::kNotInitialized;
+  map::Frame last_frame_;
+  bool last_frame_tracked_ = false;
+  core::SE3 last_T_cr_ = core::SE3::Identity();  // last frame relative to its reference keyframe
+  std::optional<core::SE3> velocity_;
+  map::KeyFramePtr reference_kf_;
+  map::FrameId last_keyframe_frame_ = 0;
+  map::FrameId last_reloc_frame_ = 0;
+  bool relocalized_once_ = false;
+  std::vector<map::KeyFramePtr> local_keyframes_;
+  std::vector<map::MapPointPtr> local_points_;
+  std::vector<map::MapPointPtr> temporary_points_;  // visual-odometry points of the last frame (not in the map)
+};
+
+}  // namespace amos::tracking
