@@ -1,16 +1,17 @@
 #include "amos/geometry/pnp_ransac.h"
 
 #include <fmt/format.h>
-#include <opencv2/calib3d.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/geometry/epnp.h"
 
 namespace amos::geometry {
 
@@ -68,19 +69,6 @@ std::array<int, kSampleSize> sampleIndices(std::mt19937& rng, int n) {
     }
   }
   return idx;
-}
-
-bool epnp(const std::vector<cv::Point3d>& object, const std::vector<cv::Point2d>& image, const cv::Mat& K,
-          core::SE3& T_cw) {
-  cv::Mat rvec, tvec;
-  if (!cv::solvePnP(object, image, K, cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_EPNP)) return false;
-  const Eigen::Vector3d r(rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2));
-  const Eigen::Vector3d t(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2));
-  if (!r.allFinite() || !t.allFinite()) return false;
-  T_cw = core::SE3::Identity();
-  T_cw.linear() = core::expSO3(r);
-  T_cw.translation() = t;
-  return true;
 }
 
 // Gauss-Newton with a small Levenberg damping on the reprojection error of `subset`, perturbing on the left
@@ -148,11 +136,14 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
   const int n = static_cast<int>(points_w.size());
   if (n < std::max(kSampleSize, options.min_inliers)) return result;
 
-  const cv::Mat K = camera.K();
   const double threshold2 = options.reprojection_threshold_px * options.reprojection_threshold_px;
   std::mt19937 rng(options.seed);
-  std::vector<cv::Point3d> object(kSampleSize);
-  std::vector<cv::Point2d> image(kSampleSize);
+  // EPnP works on normalised image coordinates.
+  std::vector<Eigen::Vector2d> normalized(pixels.size());
+  for (size_t i = 0; i < pixels.size(); ++i)
+    normalized[i] = {(pixels[i].x() - camera.cx()) / camera.fx(), (pixels[i].y() - camera.cy()) / camera.fy()};
+  std::vector<Eigen::Vector3d> sample_w(kSampleSize);
+  std::vector<Eigen::Vector2d> sample_xy(kSampleSize);
 
   // RANSAC over EPnP hypotheses; the iteration budget shrinks as the best inlier ratio grows (confidence).
   core::SE3 best_T = core::SE3::Identity();
@@ -161,16 +152,15 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
   for (int it = 0; it < budget; ++it) {
     const auto idx = sampleIndices(rng, n);
     for (int k = 0; k < kSampleSize; ++k) {
-      const auto& p = points_w[idx[k]];
-      object[k] = {p.x(), p.y(), p.z()};
-      image[k] = {pixels[idx[k]].x(), pixels[idx[k]].y()};
+      sample_w[k] = points_w[idx[k]];
+      sample_xy[k] = normalized[idx[k]];
     }
-    core::SE3 T;
-    if (!epnp(object, image, K, T)) continue;
-    const int count = countInliers(T, points_w, pixels, camera, threshold2);
+    const std::optional<core::SE3> T = solveEpnp(sample_w, sample_xy);
+    if (!T) continue;
+    const int count = countInliers(*T, points_w, pixels, camera, threshold2);
     if (count > best_count) {
       best_count = count;
-      best_T = T;
+      best_T = *T;
       const double w = static_cast<double>(count) / n;
       const double p_all_inliers = std::pow(w, kSampleSize);
       if (p_all_inliers >= 1.0 - 1e-12) {

@@ -72,6 +72,28 @@ TEST(PnpRansac, RecoversPoseWithHalfOutliers) {
   EXPECT_TRUE(std::is_sorted(r.inliers.begin(), r.inliers.end()));
 }
 
+TEST(PnpRansac, RecoversPoseFacingAWall) {
+  // Every point on one plane (a wall 2.5 m in front of the camera): EPnP's general form degenerates there.
+  Scene s = makeScene(300, 0.4, 0.5, 21);
+  const auto camera = tumCamera();
+  const core::SE3 T_wc = s.T_cw.inverse();
+  std::mt19937 rng(4);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  for (size_t i = 0; i < s.points_w.size(); ++i) {
+    const Eigen::Vector3d p_c = camera.backProject(s.pixels[i].x(), s.pixels[i].y(), 2.5);
+    s.points_w[i] = T_wc * p_c;
+    if (!s.is_outlier[i]) s.pixels[i] = camera.project(p_c) + Eigen::Vector2d(noise(rng), noise(rng));
+  }
+  // Outliers: move their 3D points elsewhere on the wall.
+  for (size_t i = 0; i < s.points_w.size(); ++i)
+    if (s.is_outlier[i]) s.points_w[i] = T_wc * camera.backProject(640.0 - s.pixels[i].x(), 480.0 - s.pixels[i].y(), 2.5);
+  const PnpResult r = solvePnpRansac(s.points_w, s.pixels, camera, PnpRansacOptions{});
+  ASSERT_TRUE(r.success);
+  const core::SE3 error = r.T_cw * s.T_cw.inverse();
+  EXPECT_LT(core::translationNorm(error), 5e-3);
+  EXPECT_LT(core::rotationAngle(error) * 180.0 / M_PI, 0.2);
+}
+
 TEST(PnpRansac, DeterministicForASeed) {
   const Scene s = makeScene(200, 0.3, 1.0, 11);
   PnpRansacOptions options;
