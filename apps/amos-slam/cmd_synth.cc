@@ -1,9 +1,8 @@
 // amos-slam synth: renders a synthetic dynamic RGB-D sequence with exact ground truth (src/amos/synth).
 #include <spdlog/spdlog.h>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include <iostream>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 
 #include "amos/core/error.h"
@@ -28,19 +27,21 @@ struct SynthArgs {
 
 void listPresets() {
   for (const synth::Preset& p : synth::allPresets())
-    std::cout << p.name << "  (" << synth::toString(p.motion) << ", " << p.default_frames << " frames, static twin: "
-              << p.static_counterpart << ")\n    " << p.description << "\n";
+    std::cout << p.name << "  (" << synth::toString(p.motion) << ", " << p.default_frames
+              << " frames, static twin: " << p.static_counterpart << ")\n    " << p.description << "\n";
 }
 }  // namespace
 
 void addSynthCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SynthArgs>();
   auto* cmd = app.add_subcommand(
-      "synth", "Render a synthetic dynamic RGB-D sequence (TUM layout + per-pixel instance masks + exact ground truth)");
+      "synth",
+      "Render a synthetic dynamic RGB-D sequence (TUM layout + per-pixel instance masks + exact ground truth)");
   cmd->add_flag("--list", args->list, "List the presets and their static counterparts, then exit");
   cmd->add_option("--preset", args->options.preset, "Preset name (see --list)")->capture_default_str();
   cmd->add_option("--seed", args->options.seed, "Seed: room, textures, paths, movers and noise")->capture_default_str();
-  cmd->add_option("--frames", args->options.frames, "Number of frames (0 = the preset's default)")->capture_default_str();
+  cmd->add_option("--frames", args->options.frames, "Number of frames (0 = the preset's default)")
+      ->capture_default_str();
   cmd->add_option("--output", args->output, "Output folder (TUM layout)");
   cmd->add_flag("--no-movers", args->no_movers,
                 "Render the preset's static counterpart: same room and camera path, nothing moving");
@@ -68,10 +69,11 @@ void addSynthCommand(CLI::App& app, int& exit_code) {
     }
     if (!args->output.empty()) {
       const synth::SequenceSummary s = synth::renderSequence(args->options, args->output);
-      spdlog::info("synth: {} frames of '{}' (seed {}) in {:.1f} s -> {}; setup {:.0f} ms, render {:.1f} ms/frame, "
-                   "write {:.1f} ms/frame",
-                   s.frames, args->options.preset, args->options.seed, s.total_s, args->output, s.setup_ms,
-                   s.render_ms_per_frame, s.write_ms_per_frame);
+      spdlog::info(
+          "synth: {} frames of '{}' (seed {}) in {:.1f} s -> {}; setup {:.0f} ms, render {:.1f} ms/frame, "
+          "write {:.1f} ms/frame",
+          s.frames, args->options.preset, args->options.seed, s.total_s, args->output, s.setup_ms,
+          s.render_ms_per_frame, s.write_ms_per_frame);
     }
     if (!args->contact_sheet.empty()) {
       core::Stopwatch sw;

@@ -23,18 +23,23 @@ Eigen::Matrix3d cameraYawPitchRoll(double yaw, double pitch, double roll) {
 
 std::string toString(CameraMotion motion) {
   switch (motion) {
-    case CameraMotion::kStatic: return "static";
-    case CameraMotion::kXyz: return "xyz";
-    case CameraMotion::kRpy: return "rpy";
-    case CameraMotion::kHalfsphere: return "halfsphere";
-    case CameraMotion::kLoop: return "loop";
+    case CameraMotion::kStatic:
+      return "static";
+    case CameraMotion::kXyz:
+      return "xyz";
+    case CameraMotion::kRpy:
+      return "rpy";
+    case CameraMotion::kHalfsphere:
+      return "halfsphere";
+    case CameraMotion::kLoop:
+      return "loop";
   }
   return "?";
 }
 
 CameraMotion cameraMotionFromString(const std::string& name) {
-  for (CameraMotion m : {CameraMotion::kStatic, CameraMotion::kXyz, CameraMotion::kRpy, CameraMotion::kHalfsphere,
-                         CameraMotion::kLoop})
+  for (CameraMotion m :
+       {CameraMotion::kStatic, CameraMotion::kXyz, CameraMotion::kRpy, CameraMotion::kHalfsphere, CameraMotion::kLoop})
     if (toString(m) == name) return m;
   throw core::Error("unknown camera motion '" + name + "' (static, xyz, rpy, halfsphere, loop)");
 }
@@ -130,8 +135,8 @@ core::SE3 CameraPath::poseWc(double t) const {
                           stage_.loop_height + 0.08 * std::sin(2 * theta + phase0_));
       // Walking anticlockwise, looking 55 degrees outwards from the direction of travel at the walls and
       // furniture (1-4 m away), slightly down, with a slow glance left and right.
-      const double heading = std::atan2(b * std::cos(theta), -a * std::sin(theta)) - 55 * kDeg +
-                              8 * kDeg * std::sin(3 * theta + phase0_);
+      const double heading =
+          std::atan2(b * std::cos(theta), -a * std::sin(theta)) - 55 * kDeg + 8 * kDeg * std::sin(3 * theta + phase0_);
       const Eigen::Vector3d forward(std::cos(heading), std::sin(heading), 0);
       R = lookAtRotation(forward) * cameraYawPitchRoll(0, -(10 + 5 * std::sin(2 * theta)) * kDeg, 0);
       break;

@@ -25,7 +25,7 @@ struct CameraStage {
   Eigen::Vector2d loop_centre{0.0, 0.0};   // room-scale loop: an ellipse on the floor plan
   Eigen::Vector2d loop_radii{1.0, 0.8};
   double loop_height = 1.4;
-  double loop_period_s = 20.0;             // one lap; the loop closes after this time
+  double loop_period_s = 20.0;  // one lap; the loop closes after this time
 };
 
 // Rotation R_wc of a camera looking along `forward` with the world's z axis up in the image (x right, y down).

@@ -37,10 +37,10 @@ TEST(CameraPath, SpeedsAreLikeTumFr3AndWithinTheLimits) {
     CameraMotion motion;
     double mps_lo, mps_hi, dps_lo, dps_hi;
   };
-  for (const Expect& e : {Expect{CameraMotion::kStatic, 0.0, 0.03, 0.0, 3.0}, Expect{CameraMotion::kXyz, 0.1, 0.3, 0.0, 5.0},
-                          Expect{CameraMotion::kRpy, 0.0, 0.05, 10.0, 35.0},
-                          Expect{CameraMotion::kHalfsphere, 0.1, 0.35, 10.0, 30.0},
-                          Expect{CameraMotion::kLoop, 0.2, 0.4, 10.0, 30.0}}) {
+  for (const Expect& e :
+       {Expect{CameraMotion::kStatic, 0.0, 0.03, 0.0, 3.0}, Expect{CameraMotion::kXyz, 0.1, 0.3, 0.0, 5.0},
+        Expect{CameraMotion::kRpy, 0.0, 0.05, 10.0, 35.0}, Expect{CameraMotion::kHalfsphere, 0.1, 0.35, 10.0, 30.0},
+        Expect{CameraMotion::kLoop, 0.2, 0.4, 10.0, 30.0}}) {
     for (std::uint32_t seed : {1u, 2u, 3u}) {
       const Speeds s = measure(CameraPath(e.motion, stage, seed), 60);
       if (seed == 1)

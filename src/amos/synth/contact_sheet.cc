@@ -2,9 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
+#include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
 
@@ -37,10 +36,13 @@ cv::Mat contactSheet(const SequenceGenerator& generator, const ContactSheetOptio
   const int n = std::min(options.columns, generator.frameCount());
   const int header = 30;
   cv::Mat sheet(header + 3 * th, n * tw, CV_8UC3, cv::Scalar(40, 40, 40));
-  std::string legend = fmt::format("{}  seed {}  {} frames  camera {}", generator.preset().name,
-                                   generator.options().seed, generator.frameCount(), toString(generator.preset().motion));
-  for (const InstanceInfo& info : generator.instances()) legend += fmt::format("  [{}] {} ({})", info.id, info.name, info.category);
-  cv::putText(sheet, legend, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  std::string legend =
+      fmt::format("{}  seed {}  {} frames  camera {}", generator.preset().name, generator.options().seed,
+                  generator.frameCount(), toString(generator.preset().motion));
+  for (const InstanceInfo& info : generator.instances())
+    legend += fmt::format("  [{}] {} ({})", info.id, info.name, info.category);
+  cv::putText(sheet, legend, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1,
+              cv::LINE_AA);
   for (int c = 0; c < n; ++c) {
     const int index = n == 1 ? 0 : static_cast<int>(static_cast<long>(c) * (generator.frameCount() - 1) / (n - 1));
     const SyntheticFrame f = generator.render(index);

@@ -9,8 +9,8 @@
 namespace amos::synth {
 
 struct ContactSheetOptions {
-  int columns = 6;          // frames shown
-  int tile_width = 320;     // pixels per tile (aspect kept)
+  int columns = 6;       // frames shown
+  int tile_width = 320;  // pixels per tile (aspect kept)
   void check() const;
 };
 

@@ -1,9 +1,8 @@
 #include "amos/synth/furniture.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "amos/synth/procedural_textures.h"
 
@@ -37,12 +36,15 @@ Eigen::Isometry3d floorPose(double x, double y, double yaw, double z) {
 }
 
 namespace {
-Eigen::Isometry3d at(const Vector3d& centre, double yaw = 0) { return floorPose(centre.x(), centre.y(), yaw, centre.z()); }
+Eigen::Isometry3d at(const Vector3d& centre, double yaw = 0) {
+  return floorPose(centre.x(), centre.y(), yaw, centre.z());
+}
 }  // namespace
 
 SceneGeometry officeChair(AssetContext& ctx, std::uint16_t instance) {
   SceneGeometry g;
-  const Surface cloth = ctx.add(textures::fabric(ctx.texels(0.5, 0.5), textures::randomColour(ctx.rng, 0.2, 0.7, 0.15, 0.45), ctx.rng));
+  const Surface cloth =
+      ctx.add(textures::fabric(ctx.texels(0.5, 0.5), textures::randomColour(ctx.rng, 0.2, 0.7, 0.15, 0.45), ctx.rng));
   const Surface steel = ctx.add(textures::metal(cv::Size(64, 64), cv::Scalar(60, 60, 65), ctx.rng));
   g.addBox(at({0, 0, 0.47}), {0.46, 0.46, 0.07}, allFaces(cloth), instance);
   g.addBox(at({-0.22, 0, 0.82}), {0.06, 0.44, 0.5}, allFaces(cloth), instance);
@@ -81,7 +83,8 @@ SceneGeometry desk(AssetContext& ctx, double depth, double width, double height,
 
 SceneGeometry monitor(AssetContext& ctx) {
   SceneGeometry g;
-  const Surface screen = ctx.add(textures::screen(ctx.texels(0.56, 0.34), ctx.rng, ctx.rng.chance(0.5) ? ctx.anyPhoto() : cv::Mat()));
+  const Surface screen =
+      ctx.add(textures::screen(ctx.texels(0.56, 0.34), ctx.rng, ctx.rng.chance(0.5) ? ctx.anyPhoto() : cv::Mat()));
   const Surface plastic = ctx.add(textures::metal(cv::Size(64, 64), cv::Scalar(30, 30, 32), ctx.rng));
   g.addBox(at({0, 0, 0.27}), {0.04, 0.56, 0.34}, BoxSurfaces{screen, plastic, plastic, plastic, plastic, plastic});
   g.addBox(at({-0.04, 0, 0.07}), {0.03, 0.06, 0.14}, allFaces(plastic));
@@ -93,7 +96,8 @@ SceneGeometry keyboardProp(AssetContext& ctx) {
   SceneGeometry g;
   const Surface keys = ctx.add(textures::keyboard(ctx.texels(0.45, 0.15), ctx.rng));
   const Surface plastic = ctx.add(textures::metal(cv::Size(32, 32), cv::Scalar(45, 45, 48), ctx.rng));
-  g.addBox(floorPose(0, 0, -M_PI / 2, 0.012), {0.45, 0.15, 0.024}, BoxSurfaces{plastic, plastic, plastic, plastic, keys, plastic});
+  g.addBox(floorPose(0, 0, -M_PI / 2, 0.012), {0.45, 0.15, 0.024},
+           BoxSurfaces{plastic, plastic, plastic, plastic, keys, plastic});
   return g;
 }
 
@@ -101,7 +105,8 @@ SceneGeometry bookshelf(AssetContext& ctx, double width, double height, double d
   SceneGeometry g;
   const Surface board = ctx.add(textures::wood(ctx.texels(depth, width), ctx.rng.uniform(0.1, 0.7), ctx.rng));
   const double t = 0.02;
-  for (double side : {-1.0, 1.0}) g.addBox(at({0, side * (width / 2 - t / 2), height / 2}), {depth, t, height}, allFaces(board));
+  for (double side : {-1.0, 1.0})
+    g.addBox(at({0, side * (width / 2 - t / 2), height / 2}), {depth, t, height}, allFaces(board));
   g.addBox(at({-depth / 2 + t / 2, 0, height / 2}), {t, width - 2 * t, height}, allFaces(board));
   const double gap = (height - t) / shelves;
   for (int i = 0; i <= shelves; ++i) g.addBox(at({0, 0, t / 2 + i * gap}), {depth, width - 2 * t, t}, allFaces(board));
@@ -138,10 +143,12 @@ SceneGeometry plant(AssetContext& ctx, double height) {
 
 SceneGeometry sofa(AssetContext& ctx, double width) {
   SceneGeometry g;
-  const Surface cloth = ctx.add(textures::fabric(ctx.texels(width, 0.5), textures::randomColour(ctx.rng, 0.3, 0.8, 0.3, 0.7), ctx.rng));
+  const Surface cloth =
+      ctx.add(textures::fabric(ctx.texels(width, 0.5), textures::randomColour(ctx.rng, 0.3, 0.8, 0.3, 0.7), ctx.rng));
   g.addBox(at({0.05, 0, 0.22}), {0.8, width, 0.44}, allFaces(cloth));
   g.addBox(at({-0.3, 0, 0.6}), {0.2, width, 0.5}, allFaces(cloth));
-  for (double side : {-1.0, 1.0}) g.addBox(at({0.05, side * (width / 2 - 0.1), 0.32}), {0.8, 0.2, 0.64}, allFaces(cloth));
+  for (double side : {-1.0, 1.0})
+    g.addBox(at({0.05, side * (width / 2 - 0.1), 0.32}), {0.8, 0.2, 0.64}, allFaces(cloth));
   // Two cushions with a print.
   for (double side : {-1.0, 1.0}) {
     const Surface cushion = ctx.add(textures::poster(cv::Size(128, 128), ctx.rng));
@@ -162,8 +169,8 @@ SceneGeometry cabinet(AssetContext& ctx, const Vector3d& size) {
     cv::rectangle(front, cv::Rect(front.cols / 2 - front.cols / 10, i * h + h / 3, front.cols / 5, h / 6),
                   cv::Scalar(240, 240, 240), cv::FILLED);
     cv::putText(front, std::string(1, static_cast<char>('A' + ctx.rng.uniformInt(0, 25))) + std::to_string(i + 1),
-                cv::Point(front.cols / 2 - front.cols / 14, i * h + h / 3 + h / 7), cv::FONT_HERSHEY_SIMPLEX,
-                h / 120.0, cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
+                cv::Point(front.cols / 2 - front.cols / 14, i * h + h / 3 + h / 7), cv::FONT_HERSHEY_SIMPLEX, h / 120.0,
+                cv::Scalar(20, 20, 20), 2, cv::LINE_AA);
   }
   const Surface f = ctx.add(front);
   const Surface side = ctx.add(textures::metal(cv::Size(64, 64), cv::Scalar(170, 160, 150), ctx.rng));
@@ -209,8 +216,8 @@ SceneGeometry doorLeaf(AssetContext& ctx, double width, double height, double th
   const Surface front = ctx.add(textures::door(ctx.texels(width, height), ctx.rng));
   const Surface edge = ctx.add(textures::wood(cv::Size(16, 128), 0.4, ctx.rng));
   // Seen from +x the texture's right side (where the handle is drawn) is +y: the free edge.
-  g.addBox(at({0, width / 2, height / 2}), {thickness, width, height}, BoxSurfaces{front, front, edge, edge, edge, edge},
-           instance);
+  g.addBox(at({0, width / 2, height / 2}), {thickness, width, height},
+           BoxSurfaces{front, front, edge, edge, edge, edge}, instance);
   return g;
 }
 

@@ -4,7 +4,6 @@
 // the room (static) and by the object movers (the pushed box, the rolling chair, the door).
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
-
 #include <vector>
 
 #include "amos/synth/random.h"

@@ -2,11 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
 
@@ -31,7 +30,8 @@ std::vector<PersonCutout> extractCutouts(const cv::Mat& bgr, const cv::Mat& mask
     if (left || right || top) continue;  // half a person
     PersonCutout c;
     c.source = source;
-    const cv::Rect crop = cv::Rect(box.x - 2, box.y - 2, box.width + 4, box.height + 4) & cv::Rect(0, 0, bgr.cols, bgr.rows);
+    const cv::Rect crop =
+        cv::Rect(box.x - 2, box.y - 2, box.width + 4, box.height + 4) & cv::Rect(0, 0, bgr.cols, bgr.rows);
     c.bgr = bgr(crop).clone();
     c.alpha = cv::Mat(labels(crop) == i);
     // Masks bleed onto the background by a pixel or two; trim them.
@@ -101,7 +101,8 @@ std::vector<cv::Mat> loadPhotos(const std::string& dir, std::size_t max_count) {
     }
     if (!it->is_regular_file()) continue;
     std::string ext = it->path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") files.push_back(it->path());
   }
   std::sort(files.begin(), files.end());
@@ -112,8 +113,10 @@ std::vector<cv::Mat> loadPhotos(const std::string& dir, std::size_t max_count) {
       const cv::Mat raw = cv::imread(files[i].string(), cv::IMREAD_UNCHANGED);
       if (raw.empty() || raw.depth() != CV_8U || raw.channels() < 3) continue;
       cv::Mat bgr;
-      if (raw.channels() == 4) cv::cvtColor(raw, bgr, cv::COLOR_BGRA2BGR);
-      else bgr = raw;
+      if (raw.channels() == 4)
+        cv::cvtColor(raw, bgr, cv::COLOR_BGRA2BGR);
+      else
+        bgr = raw;
       if (bgr.cols > 640) cv::resize(bgr, bgr, cv::Size(), 640.0 / bgr.cols, 640.0 / bgr.cols, cv::INTER_AREA);
       photos.push_back(bgr.clone());
     }

@@ -3,7 +3,6 @@
 // cut-outs (RGB + mask) that dress the people so that a real person detector finds them. This is the only
 // part of the synth module that reads files (besides the writer); everything else is drawn.
 #include <opencv2/core.hpp>
-
 #include <string>
 #include <vector>
 

@@ -23,7 +23,10 @@ void WalkingPerson::addGeometry(double t, const Eigen::Vector3d& camera, SceneGe
 
 SittingPerson::SittingPerson(InstanceInfo info, PersonLook look, Eigen::Vector2d seat, double heading,
                              double seat_height, std::uint32_t seed)
-    : Mover(std::move(info)), look_(std::move(look)), seat_(std::move(seat)), heading_(heading),
+    : Mover(std::move(info)),
+      look_(std::move(look)),
+      seat_(std::move(seat)),
+      heading_(heading),
       seat_height_(seat_height) {
   Random rng(seed);
   for (double& p : phase_) p = rng.uniform(0, 2 * M_PI);
@@ -63,8 +66,13 @@ void SlidingObject::addGeometry(double t, const Eigen::Vector3d&, SceneGeometry&
 
 SwingingDoor::SwingingDoor(InstanceInfo info, SceneGeometry leaf, Eigen::Vector3d hinge, double closed_yaw,
                            double open_angle, double period_s, double start_offset_s)
-    : Mover(std::move(info)), leaf_(std::move(leaf)), hinge_(std::move(hinge)), closed_yaw_(closed_yaw),
-      open_angle_(open_angle), period_(period_s), offset_(start_offset_s) {
+    : Mover(std::move(info)),
+      leaf_(std::move(leaf)),
+      hinge_(std::move(hinge)),
+      closed_yaw_(closed_yaw),
+      open_angle_(open_angle),
+      period_(period_s),
+      offset_(start_offset_s) {
   for (Quad& q : leaf_.quads) q.instance = this->info().id;
 }
 
@@ -74,10 +82,14 @@ double SwingingDoor::angleAt(double t) const {
   if (f < 0) f += 1;
   auto smooth = [](double x) { return 0.5 - 0.5 * std::cos(M_PI * std::clamp(x, 0.0, 1.0)); };
   double open;
-  if (f < 0.25) open = 0;
-  else if (f < 0.5) open = smooth((f - 0.25) / 0.25);
-  else if (f < 0.7) open = 1;
-  else open = 1 - smooth((f - 0.7) / 0.3);
+  if (f < 0.25)
+    open = 0;
+  else if (f < 0.5)
+    open = smooth((f - 0.25) / 0.25);
+  else if (f < 0.7)
+    open = 1;
+  else
+    open = 1 - smooth((f - 0.7) / 0.3);
   return open_angle_ * open;
 }
 

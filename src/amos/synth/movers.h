@@ -4,7 +4,6 @@
 // no detector knows them, the case the paper's geometric stage exists for) are a box pushed across the floor,
 // an office chair that rolls, a door that swings. A mover's geometry is a pure function of time.
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -13,7 +13,8 @@ PingPongPath::PingPongPath(std::vector<Eigen::Vector2d> waypoints, double speed,
   core::require(points_.size() >= 2, "PingPongPath needs at least two waypoints");
   core::require(speed > 0 && rest_s >= 0 && ease >= 0 && ease <= 1, "PingPongPath: invalid speed, rest or ease");
   cumulative_.push_back(0);
-  for (std::size_t i = 1; i < points_.size(); ++i) cumulative_.push_back(cumulative_.back() + (points_[i] - points_[i - 1]).norm());
+  for (std::size_t i = 1; i < points_.size(); ++i)
+    cumulative_.push_back(cumulative_.back() + (points_[i] - points_[i - 1]).norm());
   length_ = cumulative_.back();
   core::require(length_ > 0, "PingPongPath: waypoints must not all coincide");
   travel_time_ = length_ / speed_;

@@ -27,8 +27,7 @@ struct Legs {
 // leg_scale shortens the legs (under a cut-out that already shows the thighs).
 Legs addLegs(const PersonLook& look, const BodyPose& pose, double s, std::uint16_t id, SceneGeometry& g,
              double leg_scale = 1.0) {
-  const double thigh = 0.44 * s * leg_scale, shin = 0.43 * s * leg_scale, foot_h = 0.07 * s,
-               hip_half = 0.09 * s;
+  const double thigh = 0.44 * s * leg_scale, shin = 0.43 * s * leg_scale, foot_h = 0.07 * s, hip_half = 0.09 * s;
   const double A = pose.gait_amplitude;
   double theta[2], kappa[2], drop[2];
   for (int leg = 0; leg < 2; ++leg) {
@@ -68,8 +67,8 @@ void addUpperBody(const PersonLook& look, const BodyPose& pose, double s, double
   g.addCylinder(base, shoulders + 0.04 * s * axis, 0.17 * s, look.shirt, id, front);
   const Vector3d neck_top = shoulders + 0.11 * s * axis;
   g.addCylinder(shoulders, neck_top, 0.05 * s, look.skin, id, front);
-  g.addSphere(neck_top + 0.1 * s * axis, 0.105 * s, look.head, id, rotZ(pose.twist + pose.head_turn) * Vector3d::UnitX(),
-              axis);
+  g.addSphere(neck_top + 0.1 * s * axis, 0.105 * s, look.head, id,
+              rotZ(pose.twist + pose.head_turn) * Vector3d::UnitX(), axis);
   for (int arm = 0; arm < 2; ++arm) {
     const double side = arm == 0 ? 1.0 : -1.0;
     double upper_angle, elbow;

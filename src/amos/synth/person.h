@@ -6,9 +6,8 @@
 //    real person detector finds it. A cut-out cut by the photo's bottom border stands on procedural legs.
 // Every primitive of one person carries the person's instance id.
 #include <Eigen/Core>
-#include <opencv2/core.hpp>
-
 #include <cstdint>
+#include <opencv2/core.hpp>
 
 #include "amos/synth/furniture.h"
 #include "amos/synth/scene.h"
@@ -23,9 +22,9 @@ struct PersonLook {
   Surface shirt, trousers, skin, head, shoes;
   // Cut-out look (used when cutout.texture >= 0).
   Surface cutout;
-  double cutout_aspect = 0.4;     // width / height of the cut-out image
-  double cutout_fraction = 1.0;   // part of the standing height the cut-out shows from the top of the head
-  bool cutout_sitting = false;    // the photo shows a seated person (feet on the floor)
+  double cutout_aspect = 0.4;    // width / height of the cut-out image
+  double cutout_fraction = 1.0;  // part of the standing height the cut-out shows from the top of the head
+  bool cutout_sitting = false;   // the photo shows a seated person (feet on the floor)
   bool usesCutout() const { return cutout.texture >= 0; }
 };
 
@@ -36,15 +35,15 @@ PersonLook cutoutLook(AssetContext& ctx, const PersonCutout& cutout);
 // Pose of a person at one instant (world frame).
 struct BodyPose {
   Eigen::Vector2d position = Eigen::Vector2d::Zero();  // floor point under the hips
-  double heading = 0;          // yaw the body faces (radians)
-  double gait_phase = 0;       // radians; one cycle = two steps
-  double gait_amplitude = 0;   // 0 standing still .. 1 walking
+  double heading = 0;                                  // yaw the body faces (radians)
+  double gait_phase = 0;                               // radians; one cycle = two steps
+  double gait_amplitude = 0;                           // 0 standing still .. 1 walking
   bool sitting = false;
   double seat_height = 0.47;
-  double lean = 0;             // torso pitch forwards (radians)
-  double twist = 0;            // torso yaw relative to heading (radians)
-  double head_turn = 0;        // head yaw relative to the torso (radians)
-  double arm_raise = 0;        // 0 .. 1: the right forearm lifted in a gesture
+  double lean = 0;       // torso pitch forwards (radians)
+  double twist = 0;      // torso yaw relative to heading (radians)
+  double head_turn = 0;  // head yaw relative to the torso (radians)
+  double arm_raise = 0;  // 0 .. 1: the right forearm lifted in a gesture
 };
 
 // Appends the person's geometry. Cut-outs turn to face camera_position_w (about the vertical axis).

@@ -4,7 +4,6 @@
 // frame. Paeth for colour and Up for depth and masks, zlib level 1 with run-length matching: as small as the
 // adaptive choice on these noisy images, at about two thirds of the time.
 #include <opencv2/core.hpp>
-
 #include <string>
 
 namespace amos::synth {

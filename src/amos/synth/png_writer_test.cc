@@ -2,9 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 
 #include "amos/core/error.h"
 #include "amos/synth/random.h"
@@ -20,8 +19,10 @@ TEST(PngWriter, RoundTripsColourGreyAndSixteenBit) {
     cv::Mat image(37, 53, type);
     for (int y = 0; y < image.rows; ++y)
       for (int x = 0; x < image.cols * image.channels(); ++x) {
-        if (type == CV_16UC1) image.ptr<std::uint16_t>(y)[x] = static_cast<std::uint16_t>(rng.bits());
-        else image.ptr<uchar>(y)[x] = static_cast<uchar>(rng.bits());
+        if (type == CV_16UC1)
+          image.ptr<std::uint16_t>(y)[x] = static_cast<std::uint16_t>(rng.bits());
+        else
+          image.ptr<uchar>(y)[x] = static_cast<uchar>(rng.bits());
       }
     const std::string path = (dir / ("t" + std::to_string(type) + ".png")).string();
     writePng(path, image);

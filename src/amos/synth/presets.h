@@ -13,13 +13,13 @@
 namespace amos::synth {
 
 enum class MoverKind {
-  kWalkerAcross,   // person walking across in front of the desk, back and forth
-  kWalkerAround,   // person walking round the desk and behind it (the desk hides the legs)
-  kSitterLeft,     // person sitting behind the desk (left seat seen from the camera)
+  kWalkerAcross,  // person walking across in front of the desk, back and forth
+  kWalkerAround,  // person walking round the desk and behind it (the desk hides the legs)
+  kSitterLeft,    // person sitting behind the desk (left seat seen from the camera)
   kSitterRight,
-  kPushedBox,      // cardboard box pushed across the floor (unknown object)
-  kRollingChair,   // office chair rolling and turning (unknown object)
-  kSwingingDoor,   // door in the back wall swinging open and shut (unknown object)
+  kPushedBox,     // cardboard box pushed across the floor (unknown object)
+  kRollingChair,  // office chair rolling and turning (unknown object)
+  kSwingingDoor,  // door in the back wall swinging open and shut (unknown object)
 };
 
 struct Preset {

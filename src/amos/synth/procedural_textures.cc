@@ -1,9 +1,8 @@
 #include "amos/synth/procedural_textures.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 namespace amos::synth::textures {
@@ -70,7 +69,8 @@ std::string randomWord(Random& rng, int lo, int hi, bool digits = false) {
   static const char* numbers = "0123456789";
   std::string w;
   const int n = rng.uniformInt(lo, hi);
-  for (int i = 0; i < n; ++i) w += digits && rng.chance(0.5) ? numbers[rng.uniformInt(0, 9)] : letters[rng.uniformInt(0, 24)];
+  for (int i = 0; i < n; ++i)
+    w += digits && rng.chance(0.5) ? numbers[rng.uniformInt(0, 9)] : letters[rng.uniformInt(0, 24)];
   return w;
 }
 
@@ -102,8 +102,8 @@ void textBlock(cv::Mat& img, const cv::Rect& area, double line_px, const cv::Sca
       int base = 0;
       const cv::Size sz = cv::getTextSize(w, cv::FONT_HERSHEY_SIMPLEX, scale, thickness, &base);
       if (x + sz.width > end) break;
-      cv::putText(img, w, cv::Point(static_cast<int>(x), static_cast<int>(y)), cv::FONT_HERSHEY_SIMPLEX, scale,
-                  colour, thickness, cv::LINE_AA);
+      cv::putText(img, w, cv::Point(static_cast<int>(x), static_cast<int>(y)), cv::FONT_HERSHEY_SIMPLEX, scale, colour,
+                  thickness, cv::LINE_AA);
       x += sz.width + line_px * 0.5;
     }
   }
@@ -114,7 +114,8 @@ void barcode(cv::Mat& img, const cv::Rect& area, Random& rng) {
   int x = area.x + 2;
   while (x < area.x + area.width - 2) {
     const int w = rng.uniformInt(1, 3);
-    if (rng.chance(0.55)) cv::rectangle(img, cv::Rect(x, area.y + 2, w, area.height - 4), cv::Scalar(20, 20, 20), cv::FILLED);
+    if (rng.chance(0.55))
+      cv::rectangle(img, cv::Rect(x, area.y + 2, w, area.height - 4), cv::Scalar(20, 20, 20), cv::FILLED);
     x += w;
   }
 }
@@ -167,7 +168,8 @@ void drawPosterInto(cv::Mat& img, const cv::Rect& area, Random& rng, const cv::M
   const cv::Scalar ink = inkFor(bg, rng);
   const int m = std::max(2, area.width / 14);
   const cv::Rect title(area.x + m, area.y + m, area.width - 2 * m, std::max(3, area.height / 8));
-  putTextFit(img, randomWord(rng, 4, 9), title, ink, rng.chance(0.5) ? cv::FONT_HERSHEY_DUPLEX : cv::FONT_HERSHEY_TRIPLEX);
+  putTextFit(img, randomWord(rng, 4, 9), title, ink,
+             rng.chance(0.5) ? cv::FONT_HERSHEY_DUPLEX : cv::FONT_HERSHEY_TRIPLEX);
   const cv::Rect middle(area.x + m, title.y + title.height + m, area.width - 2 * m, area.height * 11 / 20);
   if (!photo.empty()) {
     pastePhoto(img, middle, photo);
@@ -182,8 +184,8 @@ void drawPosterInto(cv::Mat& img, const cv::Rect& area, Random& rng, const cv::M
                     randomColour(rng, 0.5, 1.0, 0.4, 0.9), cv::FILLED);
     }
     cv::line(img, middle.tl(), cv::Point(middle.x, middle.y + middle.height), cv::Scalar(0, 0, 0), 2);
-    cv::line(img, cv::Point(middle.x, middle.y + middle.height - 1), middle.br() - cv::Point(0, 1),
-             cv::Scalar(0, 0, 0), 2);
+    cv::line(img, cv::Point(middle.x, middle.y + middle.height - 1), middle.br() - cv::Point(0, 1), cv::Scalar(0, 0, 0),
+             2);
   } else {
     shapes(img, middle, rng.uniformInt(6, 14), rng);
   }
@@ -212,8 +214,8 @@ void drawWhiteboard(cv::Mat& img, const cv::Rect& area, Random& rng) {
     putTextFit(img, randomWord(rng, 3, 6), cv::Rect(b.x + 3, b.y + 3, b.width - 6, b.height - 6), c,
                cv::FONT_HERSHEY_SCRIPT_SIMPLEX);
     if (!boxes.empty())
-      cv::arrowedLine(img, (boxes.back().tl() + boxes.back().br()) / 2, (b.tl() + b.br()) / 2, c,
-                      std::max(2, m / 2), cv::LINE_AA, 0, 0.05);
+      cv::arrowedLine(img, (boxes.back().tl() + boxes.back().br()) / 2, (b.tl() + b.br()) / 2, c, std::max(2, m / 2),
+                      cv::LINE_AA, 0, 0.05);
     boxes.push_back(b);
   }
   textBlock(img, cv::Rect(area.x + m, area.y + area.height / 2 + m, area.width - 2 * m, area.height / 2 - 2 * m),
@@ -358,7 +360,8 @@ void wallPattern(cv::Mat& img, int style, double mpt, Random& rng) {
         const int s = static_cast<int>(cell * rng.uniform(0.18, 0.3));
         switch (motif) {
           case 0: {
-            std::vector<cv::Point> d = {c + cv::Point(0, -s), c + cv::Point(s, 0), c + cv::Point(0, s), c + cv::Point(-s, 0)};
+            std::vector<cv::Point> d = {c + cv::Point(0, -s), c + cv::Point(s, 0), c + cv::Point(0, s),
+                                        c + cv::Point(-s, 0)};
             cv::fillConvexPoly(img, d, ink, cv::LINE_AA);
             break;
           }
@@ -381,8 +384,8 @@ void wallPattern(cv::Mat& img, int style, double mpt, Random& rng) {
 }  // namespace
 
 cv::Scalar randomColour(Random& rng, double sat_lo, double sat_hi, double val_lo, double val_hi) {
-  cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar(rng.uniformInt(0, 179), rng.uniform(sat_lo, sat_hi) * 255,
-                                        rng.uniform(val_lo, val_hi) * 255));
+  cv::Mat hsv(1, 1, CV_8UC3,
+              cv::Scalar(rng.uniformInt(0, 179), rng.uniform(sat_lo, sat_hi) * 255, rng.uniform(val_lo, val_hi) * 255));
   cv::Mat bgr;
   cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
   const cv::Vec3b c = bgr.at<cv::Vec3b>(0, 0);
@@ -428,17 +431,39 @@ cv::Mat wall(const WallSpec& spec, Random& rng, const std::vector<cv::Mat>& phot
     const int kind = static_cast<int>(rng.pickWeighted({4, 2, 1.5, 0.7, 1.0}));
     double w = 0, h = 0, top = 0;
     switch (kind) {
-      case 0: w = rng.uniform(0.45, 0.8); h = w * rng.uniform(1.2, 1.45); top = rng.uniform(0.55, 0.85); break;  // poster
-      case 1: w = rng.uniform(0.7, 1.1); h = rng.uniform(0.3, 0.45); top = rng.uniform(0.7, 0.9); break;        // frames
-      case 2: w = rng.uniform(0.6, 0.9); h = w * rng.uniform(0.6, 0.8); top = rng.uniform(0.7, 0.9); break;     // notices
-      case 3: w = 0.3; h = 0.3; top = rng.uniform(0.45, 0.6); break;                                            // clock
-      default: w = rng.uniform(0.35, 0.6); h = w * 1.4; top = rng.uniform(0.6, 0.9); break;                    // poster
+      case 0:
+        w = rng.uniform(0.45, 0.8);
+        h = w * rng.uniform(1.2, 1.45);
+        top = rng.uniform(0.55, 0.85);
+        break;  // poster
+      case 1:
+        w = rng.uniform(0.7, 1.1);
+        h = rng.uniform(0.3, 0.45);
+        top = rng.uniform(0.7, 0.9);
+        break;  // frames
+      case 2:
+        w = rng.uniform(0.6, 0.9);
+        h = w * rng.uniform(0.6, 0.8);
+        top = rng.uniform(0.7, 0.9);
+        break;  // notices
+      case 3:
+        w = 0.3;
+        h = 0.3;
+        top = rng.uniform(0.45, 0.6);
+        break;  // clock
+      default:
+        w = rng.uniform(0.35, 0.6);
+        h = w * 1.4;
+        top = rng.uniform(0.6, 0.9);
+        break;  // poster
     }
     w = std::min(w, spec.length_m - x - 0.1);
     const cv::Rect r = toPixels(cv::Rect2d(x, top, w, h));
     if (w > 0.25 && r.area() > 0 && isFree(r)) {
       occupied.push_back(r);
-      const cv::Mat photo = photos.empty() || rng.chance(0.35) ? cv::Mat() : photos[static_cast<std::size_t>(photo_index++) % photos.size()];
+      const cv::Mat photo = photos.empty() || rng.chance(0.35)
+                                ? cv::Mat()
+                                : photos[static_cast<std::size_t>(photo_index++) % photos.size()];
       if (kind == 0 || kind == 4) {
         drawPosterInto(img, r, rng, photo);
         if (rng.chance(0.5)) drawFrame(img, r, std::max(2, px(0.015, m)), cv::Scalar(30, 30, 30));
@@ -488,10 +513,12 @@ cv::Mat floorPlanks(double width_m, double height_m, double mpt, const cv::Point
     while (x < width_m) {
       const double len = rng.uniform(0.7, 1.8);
       // Shared, rounded ends: no gaps between planks.
-      const int x0 = static_cast<int>(std::lround(std::max(0.0, x) / mpt)), x1 = static_cast<int>(std::lround((x + len) / mpt));
+      const int x0 = static_cast<int>(std::lround(std::max(0.0, x) / mpt)),
+                x1 = static_cast<int>(std::lround((x + len) / mpt));
       const cv::Rect r(x0, y0, x1 - x0, plank_w);
       cv::rectangle(img, r & cv::Rect(0, 0, img.cols, img.rows), jitter(wood_base, 0.18, rng), cv::FILLED);
-      cv::line(img, cv::Point(r.x, y0), cv::Point(r.x, y0 + plank_w), cv::Scalar(25, 40, 60), std::max(1, px(0.004, mpt)));
+      cv::line(img, cv::Point(r.x, y0), cv::Point(r.x, y0 + plank_w), cv::Scalar(25, 40, 60),
+               std::max(1, px(0.004, mpt)));
       x += len;
     }
     cv::line(img, cv::Point(0, y0), cv::Point(img.cols, y0), cv::Scalar(25, 40, 60), std::max(1, px(0.004, mpt)));
@@ -595,15 +622,17 @@ cv::Mat cardboard(cv::Size size, Random& rng) {
   shade(img, smoothField(size, size.width / 6.0, size.height / 6.0, rng), 0.06);
   grain(img, 8, rng);
   const int tape_h = size.height / 7;
-  cv::rectangle(img, cv::Rect(0, size.height / 2 - tape_h / 2, size.width, tape_h), cv::Scalar(120, 175, 205), cv::FILLED);
+  cv::rectangle(img, cv::Rect(0, size.height / 2 - tape_h / 2, size.width, tape_h), cv::Scalar(120, 175, 205),
+                cv::FILLED);
   cv::line(img, cv::Point(0, size.height / 2 - tape_h / 2), cv::Point(size.width, size.height / 2 - tape_h / 2),
            cv::Scalar(70, 110, 140), 2);
   cv::line(img, cv::Point(0, size.height / 2 + tape_h / 2), cv::Point(size.width, size.height / 2 + tape_h / 2),
            cv::Scalar(70, 110, 140), 2);
   // Printed pictograms and text.
   const cv::Scalar print = rng.chance(0.5) ? cv::Scalar(30, 30, 30) : cv::Scalar(30, 30, 170);
-  putTextFit(img, rng.chance(0.5) ? "FRAGILE" : randomWord(rng, 4, 8), cv::Rect(size.width / 10, size.height / 14,
-             size.width * 8 / 10, size.height / 6), print, cv::FONT_HERSHEY_DUPLEX);
+  putTextFit(img, rng.chance(0.5) ? "FRAGILE" : randomWord(rng, 4, 8),
+             cv::Rect(size.width / 10, size.height / 14, size.width * 8 / 10, size.height / 6), print,
+             cv::FONT_HERSHEY_DUPLEX);
   for (int i = 0; i < 2; ++i) {
     const int ax = size.width / 8 + i * size.width / 8;
     cv::arrowedLine(img, cv::Point(ax, size.height * 9 / 10), cv::Point(ax, size.height * 7 / 10), print,
@@ -624,7 +653,8 @@ cv::Mat wood(cv::Size size, double tone, Random& rng) {
   shade(img, smoothField(size, size.width / 3.0, std::max(2.0, size.height / 60.0), rng), 0.15);
   for (int i = 0; i < size.height / 6; ++i) {
     const int y = rng.uniformInt(0, size.height);
-    cv::line(img, cv::Point(0, y), cv::Point(size.width, y + rng.uniformInt(-4, 4)), scaleColour(base, 0.8), 1, cv::LINE_AA);
+    cv::line(img, cv::Point(0, y), cv::Point(size.width, y + rng.uniformInt(-4, 4)), scaleColour(base, 0.8), 1,
+             cv::LINE_AA);
   }
   grain(img, 5, rng);
   return img;
@@ -634,8 +664,10 @@ cv::Mat deskTop(cv::Size size, Random& rng) {
   cv::Mat img = wood(size, rng.uniform(0.0, 0.3), rng);
   for (int i = 0; i < rng.uniformInt(4, 7); ++i) {
     const double w = size.width * rng.uniform(0.12, 0.2), h = w * 1.41;
-    const cv::Point2f c(static_cast<float>(rng.uniform(0.1, 0.9) * size.width), static_cast<float>(rng.uniform(0.15, 0.85) * size.height));
-    const cv::RotatedRect rr(c, cv::Size2f(static_cast<float>(w), static_cast<float>(h)), static_cast<float>(rng.uniform(-30, 30)));
+    const cv::Point2f c(static_cast<float>(rng.uniform(0.1, 0.9) * size.width),
+                        static_cast<float>(rng.uniform(0.15, 0.85) * size.height));
+    const cv::RotatedRect rr(c, cv::Size2f(static_cast<float>(w), static_cast<float>(h)),
+                             static_cast<float>(rng.uniform(-30, 30)));
     cv::Point2f pts[4];
     rr.points(pts);
     std::vector<cv::Point> poly(pts, pts + 4);
@@ -691,10 +723,13 @@ cv::Mat screen(cv::Size size, Random& rng, const cv::Mat& photo) {
   const int bezel = std::max(3, size.width / 40);
   if (!photo.empty()) pastePhoto(img, cv::Rect(0, 0, size.width, size.height), photo);
   for (int i = 0; i < rng.uniformInt(2, 3); ++i) {
-    const int w = static_cast<int>(size.width * rng.uniform(0.35, 0.6)), h = static_cast<int>(size.height * rng.uniform(0.35, 0.6));
-    const cv::Rect r(rng.uniformInt(bezel, size.width - w - bezel), rng.uniformInt(bezel, size.height - h - bezel), w, h);
+    const int w = static_cast<int>(size.width * rng.uniform(0.35, 0.6)),
+              h = static_cast<int>(size.height * rng.uniform(0.35, 0.6));
+    const cv::Rect r(rng.uniformInt(bezel, size.width - w - bezel), rng.uniformInt(bezel, size.height - h - bezel), w,
+                     h);
     cv::rectangle(img, r, cv::Scalar(245, 245, 245), cv::FILLED);
-    cv::rectangle(img, cv::Rect(r.x, r.y, r.width, std::max(3, h / 10)), randomColour(rng, 0.4, 0.8, 0.4, 0.8), cv::FILLED);
+    cv::rectangle(img, cv::Rect(r.x, r.y, r.width, std::max(3, h / 10)), randomColour(rng, 0.4, 0.8, 0.4, 0.8),
+                  cv::FILLED);
     textBlock(img, cv::Rect(r.x + 4, r.y + h / 8, r.width - 8, r.height - h / 8 - 4), std::max(4.0, h / 14.0),
               cv::Scalar(30, 30, 30), rng);
   }
@@ -711,10 +746,12 @@ cv::Mat keyboard(cv::Size size, Random& rng) {
   const double kw = size.width / static_cast<double>(cols), kh = size.height / static_cast<double>(rows);
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
-      const cv::Rect key(static_cast<int>(c * kw + 1), static_cast<int>(r * kh + 1), static_cast<int>(kw - 2), static_cast<int>(kh - 2));
+      const cv::Rect key(static_cast<int>(c * kw + 1), static_cast<int>(r * kh + 1), static_cast<int>(kw - 2),
+                         static_cast<int>(kh - 2));
       cv::rectangle(img, key, cv::Scalar(70, 70, 74), cv::FILLED);
-      putTextFit(img, randomWord(rng, 1, 1), cv::Rect(key.x + key.width / 4, key.y + key.height / 4, key.width / 2,
-                 key.height / 2), cv::Scalar(220, 220, 220), cv::FONT_HERSHEY_SIMPLEX, 1);
+      putTextFit(img, randomWord(rng, 1, 1),
+                 cv::Rect(key.x + key.width / 4, key.y + key.height / 4, key.width / 2, key.height / 2),
+                 cv::Scalar(220, 220, 220), cv::FONT_HERSHEY_SIMPLEX, 1);
     }
   return img;
 }
@@ -734,8 +771,8 @@ cv::Mat door(cv::Size size, Random& rng) {
   cv::rectangle(img, sign, cv::Scalar(240, 240, 240), cv::FILLED);
   putTextFit(img, "ROOM " + std::to_string(rng.uniformInt(1, 4)) + "." + std::to_string(rng.uniformInt(10, 99)), sign,
              cv::Scalar(20, 20, 20), cv::FONT_HERSHEY_SIMPLEX);
-  drawPosterInto(img, cv::Rect(size.width / 4, size.height / 4 + size.height / 20, size.width / 2, size.height / 5), rng,
-                 cv::Mat());
+  drawPosterInto(img, cv::Rect(size.width / 4, size.height / 4 + size.height / 20, size.width / 2, size.height / 5),
+                 rng, cv::Mat());
   return img;
 }
 
@@ -784,7 +821,9 @@ cv::Mat shirt(cv::Size size, Random& rng) {
 
 cv::Mat trousers(cv::Size size, Random& rng) {
   const int kind = rng.uniformInt(0, 2);
-  const cv::Scalar base = kind == 0 ? cv::Scalar(120, 75, 40) : kind == 1 ? cv::Scalar(90, 140, 160) : cv::Scalar(40, 40, 45);
+  const cv::Scalar base = kind == 0   ? cv::Scalar(120, 75, 40)
+                          : kind == 1 ? cv::Scalar(90, 140, 160)
+                                      : cv::Scalar(40, 40, 45);
   cv::Mat img(size, CV_8UC3, base);
   for (int i = -size.height; i < size.width; i += 3)
     cv::line(img, cv::Point(i, 0), cv::Point(i + size.height, size.height), scaleColour(base, 1.15), 1);
@@ -810,12 +849,14 @@ cv::Mat skin(cv::Size size, Random& rng, bool with_face) {
     grain(hair_roi, 12, rng);
     const int ey = H * 45 / 100, ex = W / 28;
     for (int s : {-1, 1}) {
-      cv::ellipse(img, cv::Point(W / 2 + s * ex, ey), cv::Size(W / 70 + 1, H / 70 + 1), 0, 0, 360, cv::Scalar(245, 245, 245), cv::FILLED);
+      cv::ellipse(img, cv::Point(W / 2 + s * ex, ey), cv::Size(W / 70 + 1, H / 70 + 1), 0, 0, 360,
+                  cv::Scalar(245, 245, 245), cv::FILLED);
       cv::circle(img, cv::Point(W / 2 + s * ex, ey), H / 110 + 1, cv::Scalar(40, 30, 20), cv::FILLED);
       cv::line(img, cv::Point(W / 2 + s * ex - W / 60, ey - H / 30), cv::Point(W / 2 + s * ex + W / 60, ey - H / 30),
                scaleColour(hair_c, 0.8), std::max(1, H / 120));
     }
-    cv::line(img, cv::Point(W / 2, ey + H / 40), cv::Point(W / 2 + W / 120, ey + H / 12), scaleColour(base, 0.75), std::max(1, H / 150));
+    cv::line(img, cv::Point(W / 2, ey + H / 40), cv::Point(W / 2 + W / 120, ey + H / 12), scaleColour(base, 0.75),
+             std::max(1, H / 150));
     cv::ellipse(img, cv::Point(W / 2, H * 62 / 100), cv::Size(W / 40, H / 80 + 1), 0, 0, 180, cv::Scalar(60, 60, 150),
                 std::max(1, H / 120), cv::LINE_AA);
   }

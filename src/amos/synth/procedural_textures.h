@@ -4,7 +4,6 @@
 // looks, and each large surface gets its own non-repeating image so that features are distinctive. All images
 // are CV_8UC3 BGR; everything is drawn from the Random passed in, so a seed fixes every texel.
 #include <opencv2/core.hpp>
-
 #include <vector>
 
 #include "amos/synth/random.h"

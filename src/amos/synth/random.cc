@@ -40,7 +40,7 @@ std::size_t Random::pickWeighted(const std::vector<double>& weights) {
 }
 
 double inverseNormalCdf(double p) {
-  static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
+  static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
                                  1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
   static constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
                                  6.680131188771972e+01, -1.328068155288572e+01};
@@ -70,8 +70,7 @@ double inverseNormalCdf(double p) {
 }
 
 GaussianTable::GaussianTable() : table_(65536) {
-  for (std::size_t i = 0; i < table_.size(); ++i)
-    table_[i] = static_cast<float>(inverseNormalCdf((i + 0.5) / 65536.0));
+  for (std::size_t i = 0; i < table_.size(); ++i) table_[i] = static_cast<float>(inverseNormalCdf((i + 0.5) / 65536.0));
 }
 
 }  // namespace amos::synth

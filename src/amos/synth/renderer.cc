@@ -29,12 +29,15 @@ struct Prepared {
   std::uint16_t instance = 0;
   Vector3d o = Vector3d::Zero();  // quad origin / cylinder base / sphere centre
   Vector3d n = Vector3d::Zero();  // quad unit normal / cylinder axis / sphere up
-  Vector3d du = Vector3d::Zero(), dv = Vector3d::Zero();  // quad: dual basis (a = (p - o) . du); cylinder and sphere: front and side directions
+  Vector3d du = Vector3d::Zero(),
+           dv =
+               Vector3d::Zero();  // quad: dual basis (a = (p - o) . du); cylinder and sphere: front and side directions
   double n_dot_o = 0, du_dot_o = 0, dv_dot_o = 0;
   double radius = 0, length = 0;
   bool capped = false;
   double texels_per_m = 0;  // geometric mean over the two texture axes, for the mip level
-  std::array<Vector3d, 4> corners{Vector3d::Zero(), Vector3d::Zero(), Vector3d::Zero(), Vector3d::Zero()};  // quads only
+  std::array<Vector3d, 4> corners{Vector3d::Zero(), Vector3d::Zero(), Vector3d::Zero(),
+                                  Vector3d::Zero()};  // quads only
 };
 
 double texelsPerMetre(const Surface& s, const TextureBank& textures, double metres_u, double metres_v) {
@@ -98,7 +101,7 @@ inline float fastLog2(float x) {
   std::uint32_t bits;
   std::memcpy(&bits, &x, sizeof bits);
   const float exponent = static_cast<float>(static_cast<int>((bits >> 23) & 0xff) - 128);  // the polynomial adds 1
-  bits = (bits & 0x007fffffu) | 0x3f800000u;  // mantissa in [1, 2)
+  bits = (bits & 0x007fffffu) | 0x3f800000u;                                               // mantissa in [1, 2)
   float m;
   std::memcpy(&m, &bits, sizeof m);
   return exponent + (-0.34484843f * m + 2.02466578f) * m - 0.67487759f;
@@ -200,8 +203,7 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
   for (int id = 0; id < static_cast<int>(prims.size()); ++id) {
     const Prepared& p = prims[static_cast<std::size_t>(id)];
     if (p.kind == Kind::kQuad) {
-      const std::vector<Vector3d> poly = clipNear(
-          {p.corners[0], p.corners[1], p.corners[2], p.corners[3]}, near);
+      const std::vector<Vector3d> poly = clipNear({p.corners[0], p.corners[1], p.corners[2], p.corners[3]}, near);
       if (poly.size() < 3) continue;
       std::vector<double> pu(poly.size()), pv(poly.size());
       double vmin = kInf, vmax = -kInf;
@@ -263,8 +265,7 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
     if (p.kind == Kind::kCylinder) {
       for (double h : {0.0, p.length})
         for (double sf : {-1.0, 1.0})
-          for (double ss : {-1.0, 1.0})
-            box.push_back(p.o + h * p.n + p.radius * (sf * p.du + ss * p.dv));
+          for (double ss : {-1.0, 1.0}) box.push_back(p.o + h * p.n + p.radius * (sf * p.du + ss * p.dv));
     } else {
       for (double a : {-1.0, 1.0})
         for (double b : {-1.0, 1.0})
@@ -379,7 +380,8 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
       // square root and one division per light (this loop was half of the shading time).
       float irradiance = static_cast<float>(lighting.ambient);
       const float hx = static_cast<float>(hit.x()), hy = static_cast<float>(hit.y()), hz = static_cast<float>(hit.z());
-      const float nx = static_cast<float>(normal.x()), ny = static_cast<float>(normal.y()), nz = static_cast<float>(normal.z());
+      const float nx = static_cast<float>(normal.x()), ny = static_cast<float>(normal.y()),
+                  nz = static_cast<float>(normal.z());
       for (const LightTerm& l : light_terms) {
         const float lx = l.x - hx, ly = l.y - hy, lz = l.z - hz;
         const float n_dot_l = nx * lx + ny * ly + nz * lz;

@@ -6,7 +6,6 @@
 // Shading is deferred: one trilinear texture lookup and Lambertian lighting from world-fixed lights per pixel,
 // so a static surface keeps its colour from every viewpoint.
 #include <opencv2/core.hpp>
-
 #include <vector>
 
 #include "amos/core/camera.h"

@@ -53,8 +53,8 @@ TEST(Renderer, NearerPrimitiveWinsWhateverTheDrawingOrder) {
   back.addBox(Eigen::Vector3d(-1, -1, 3), Eigen::Vector3d(1, 1, 3.2), allFaces(Surface()), 1);
   front.addSphere(Eigen::Vector3d(0, 0, 2), 0.3, Surface(), 2);
   const Renderer r(tumFr3());
-  for (const auto& parts : {std::vector<const SceneGeometry*>{&back, &front},
-                            std::vector<const SceneGeometry*>{&front, &back}}) {
+  for (const auto& parts :
+       {std::vector<const SceneGeometry*>{&back, &front}, std::vector<const SceneGeometry*>{&front, &back}}) {
     const RenderedImage img = r.render(parts, TextureBank(), Lighting(), kIdentity, false);
     // The sphere's nearest point lies on the optical axis.
     const int cx = 320, cy = 248;
@@ -126,7 +126,8 @@ TEST(Renderer, TexturedQuadShowsItsTextureUpright) {
 TEST(Texture, MipLevelsAverageAndAlphaCuts) {
   cv::Mat checker(64, 64, CV_8UC3);
   for (int y = 0; y < 64; ++y)
-    for (int x = 0; x < 64; ++x) checker.at<cv::Vec3b>(y, x) = ((x + y) % 2) ? cv::Vec3b(255, 255, 255) : cv::Vec3b(0, 0, 0);
+    for (int x = 0; x < 64; ++x)
+      checker.at<cv::Vec3b>(y, x) = ((x + y) % 2) ? cv::Vec3b(255, 255, 255) : cv::Vec3b(0, 0, 0);
   cv::Mat alpha(64, 64, CV_8UC1, cv::Scalar(0));
   alpha(cv::Rect(0, 0, 32, 64)).setTo(255);
   const Texture t(checker, alpha, true);

@@ -62,7 +62,8 @@ Room buildRoom(const RoomOptions& options, std::uint32_t seed, TextureBank& text
   const int styles[4] = {rng.uniformInt(0, 1), rng.uniformInt(0, 3), rng.uniformInt(0, 3), rng.uniformInt(0, 3)};
   // East wall (x = +X), behind the desk; seen from inside its left end is y = +Y. Door at y in [hinge, hinge+w].
   addWall({X, Y, H}, {0, -1, 0}, 2 * Y, styles[0],
-          {{Type::kDoorway, cv::Rect2d(Y - L.door_hinge_y - L.door_width, H - L.door_height, L.door_width, L.door_height)}});
+          {{Type::kDoorway,
+            cv::Rect2d(Y - L.door_hinge_y - L.door_width, H - L.door_height, L.door_width, L.door_height)}});
   // North wall (y = +Y): a whiteboard.
   addWall({-X, Y, H}, {1, 0, 0}, 2 * X, styles[1], {{Type::kWhiteboard, cv::Rect2d(2.4, 0.75, 1.8, 1.0)}});
   // West wall (x = -X): a window above the sofa.
@@ -76,8 +77,8 @@ Room buildRoom(const RoomOptions& options, std::uint32_t seed, TextureBank& text
     f.origin = Vector3d(-X - e, Y + e, 0);
     f.edge_u = Vector3d(2 * X + 2 * e, 0, 0);
     f.edge_v = Vector3d(0, -2 * Y - 2 * e, 0);
-    f.surface.texture = textures.add(Texture(textures::floorPlanks(2 * X + 2 * e, 2 * Y + 2 * e, mpt,
-                                                                   cv::Point2d(X + 0.2, Y), cv::Size2d(2.4, 1.8), rng)));
+    f.surface.texture = textures.add(Texture(
+        textures::floorPlanks(2 * X + 2 * e, 2 * Y + 2 * e, mpt, cv::Point2d(X + 0.2, Y), cv::Size2d(2.4, 1.8), rng)));
     g.quads.push_back(f);
     Quad c;
     c.origin = Vector3d(-X - e, -Y - e, H);
@@ -96,7 +97,8 @@ Room buildRoom(const RoomOptions& options, std::uint32_t seed, TextureBank& text
   place(g, bookStack(ctx, 4), floorPose(dx - 0.2, dy - 0.62, 0.2, top));
   place(g, bookStack(ctx, 2), floorPose(dx - 0.15, dy + 0.45, -0.3, top));
   place(g, mug(ctx), floorPose(dx - 0.25, dy + 0.72, 0, top));
-  for (const Eigen::Vector2d& s : L.seats) place(g, officeChair(ctx), floorPose(s.x(), s.y(), M_PI + rng.uniform(-0.2, 0.2)));
+  for (const Eigen::Vector2d& s : L.seats)
+    place(g, officeChair(ctx), floorPose(s.x(), s.y(), M_PI + rng.uniform(-0.2, 0.2)));
 
   // Against the east wall: bookshelf and a filing cabinet; boxes stacked near the shelf.
   place(g, bookshelf(ctx, 1.2, 1.9, 0.35, 5), floorPose(X - 0.175, -2.1, M_PI));

@@ -4,9 +4,8 @@
 // stage, office chairs, shelves, boxes, a sofa, a second desk, plants and a door. Built from one seed; the
 // movers never change it (except that a swinging door replaces the static closed one).
 #include <Eigen/Core>
-#include <opencv2/core.hpp>
-
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "amos/synth/camera_path.h"

@@ -24,12 +24,12 @@ void SceneGeometry::addBox(const Eigen::Isometry3d& pose, const Eigen::Vector3d&
   using V = Eigen::Vector3d;
   // Top-left corner and right/down edges of each face as seen from outside (see Quad).
   const std::array<std::array<V, 3>, 6> local = {{
-      {V(hx, -hy, hz), V(0, 2 * hy, 0), V(0, 0, -2 * hz)},    // +x
-      {V(-hx, hy, hz), V(0, -2 * hy, 0), V(0, 0, -2 * hz)},   // -x
-      {V(hx, hy, hz), V(-2 * hx, 0, 0), V(0, 0, -2 * hz)},    // +y
-      {V(-hx, -hy, hz), V(2 * hx, 0, 0), V(0, 0, -2 * hz)},   // -y
-      {V(-hx, hy, hz), V(2 * hx, 0, 0), V(0, -2 * hy, 0)},    // +z
-      {V(-hx, -hy, -hz), V(2 * hx, 0, 0), V(0, 2 * hy, 0)},   // -z
+      {V(hx, -hy, hz), V(0, 2 * hy, 0), V(0, 0, -2 * hz)},   // +x
+      {V(-hx, hy, hz), V(0, -2 * hy, 0), V(0, 0, -2 * hz)},  // -x
+      {V(hx, hy, hz), V(-2 * hx, 0, 0), V(0, 0, -2 * hz)},   // +y
+      {V(-hx, -hy, hz), V(2 * hx, 0, 0), V(0, 0, -2 * hz)},  // -y
+      {V(-hx, hy, hz), V(2 * hx, 0, 0), V(0, -2 * hy, 0)},   // +z
+      {V(-hx, -hy, -hz), V(2 * hx, 0, 0), V(0, 2 * hy, 0)},  // -z
   }};
   for (std::size_t f = 0; f < 6; ++f) {
     Quad q;
@@ -82,8 +82,7 @@ void SceneGeometry::addSphere(const Eigen::Vector3d& centre, double radius, cons
 }
 
 double SceneGeometry::maxDisplacement(const SceneGeometry& o) const {
-  if (quads.size() != o.quads.size() || cylinders.size() != o.cylinders.size() ||
-      spheres.size() != o.spheres.size())
+  if (quads.size() != o.quads.size() || cylinders.size() != o.cylinders.size() || spheres.size() != o.spheres.size())
     return std::numeric_limits<double>::infinity();
   double m = 0;
   for (std::size_t i = 0; i < quads.size(); ++i) {

@@ -4,10 +4,9 @@
 // (0 = static scene). Geometry is plain data: movers build theirs anew for each instant.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <opencv2/core.hpp>
-
 #include <array>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
 namespace amos::synth {

@@ -1,33 +1,35 @@
 #include "amos/synth/sensor_model.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
 
 namespace amos::synth {
 
 void DepthNoiseOptions::check() const {
-  core::require(sigma_base_m >= 0 && sigma_quadratic >= 0, "synth.depth.sigma_base_m / sigma_quadratic must be >= 0");
-  core::require(min_range_m >= 0 && max_range_m > min_range_m, "synth.depth.max_range_m must exceed min_range_m");
-  core::require(max_range_m * depth_factor < 65535, "synth.depth.max_range_m * depth_factor must fit 16 bits");
-  core::require(depth_factor > 0, "synth.depth.depth_factor must be > 0");
+  core::require(sigma_base_m >= 0 && sigma_quadratic >= 0,
+                "synth.sensor.depth.sigma_base_m / sigma_quadratic must be >= 0");
+  core::require(min_range_m >= 0 && max_range_m > min_range_m,
+                "synth.sensor.depth.max_range_m must exceed min_range_m");
+  core::require(max_range_m * depth_factor < 65535, "synth.sensor.depth.max_range_m * depth_factor must fit 16 bits");
+  core::require(depth_factor > 0, "synth.sensor.depth.depth_factor must be > 0");
   for (double p : {edge_hole_probability, edge_band_probability, grazing_hole_probability, dropout_probability})
-    core::require(p >= 0 && p <= 1, "synth.depth.*_probability must be in [0, 1]");
-  core::require(edge_jump_m > 0 && edge_jump_relative >= 0, "synth.depth.edge_jump_m must be > 0");
+    core::require(p >= 0 && p <= 1, "synth.sensor.depth.*_probability must be in [0, 1]");
+  core::require(edge_jump_m > 0 && edge_jump_relative >= 0, "synth.sensor.depth.edge_jump_m must be > 0");
 }
 
 void ColorNoiseOptions::check() const {
-  core::require(sigma >= 0, "synth.color.sigma must be >= 0");
-  core::require(blur_sigma_px >= 0 && blur_sigma_px < 5, "synth.color.blur_sigma_px must be in [0, 5)");
+  core::require(sigma >= 0, "synth.sensor.color.sigma must be >= 0");
+  core::require(blur_sigma_px >= 0 && blur_sigma_px < 5, "synth.sensor.color.blur_sigma_px must be in [0, 5)");
 }
 
 void SensorOptions::check() const {
   intrinsics.check();
-  core::require(fps > 0 && fps <= 1000, "synth.fps must be in (0, 1000]");
-  core::require(exposure_s >= 0 && exposure_s < 1 / fps, "synth.exposure_s must be in [0, 1 / fps)");
-  core::require(motion_blur_samples >= 1 && motion_blur_samples <= 64, "synth.motion_blur_samples must be in [1, 64]");
+  core::require(fps > 0 && fps <= 1000, "synth.sensor.fps must be in (0, 1000]");
+  core::require(exposure_s >= 0 && exposure_s < 1 / fps, "synth.sensor.exposure_s must be in [0, 1 / fps)");
+  core::require(motion_blur_samples >= 1 && motion_blur_samples <= 64,
+                "synth.sensor.motion_blur_samples must be in [1, 64]");
   depth.check();
   color.check();
 }

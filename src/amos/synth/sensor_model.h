@@ -16,13 +16,13 @@ struct DepthNoiseOptions {
   double sigma_base_m = 0.0012;     // sigma(z) = sigma_base_m + sigma_quadratic * (z - sigma_offset_m)^2
   double sigma_quadratic = 0.0019;  // per metre
   double sigma_offset_m = 0.4;
-  double min_range_m = 0.4;         // closer than this: no reading
-  double max_range_m = 5.0;         // farther than this: no reading
-  double edge_jump_m = 0.04;        // neighbours differing by more than edge_jump_m + edge_jump_relative * z
-  double edge_jump_relative = 0.03; //   mark a depth edge
-  double edge_hole_probability = 0.75;  // an edge pixel loses its reading
-  double edge_band_probability = 0.3;   // a pixel next to an edge pixel loses its reading
-  double grazing_cos = 0.1;             // surfaces seen at |cos| below this ...
+  double min_range_m = 0.4;               // closer than this: no reading
+  double max_range_m = 5.0;               // farther than this: no reading
+  double edge_jump_m = 0.04;              // neighbours differing by more than edge_jump_m + edge_jump_relative * z
+  double edge_jump_relative = 0.03;       //   mark a depth edge
+  double edge_hole_probability = 0.75;    // an edge pixel loses its reading
+  double edge_band_probability = 0.3;     // a pixel next to an edge pixel loses its reading
+  double grazing_cos = 0.1;               // surfaces seen at |cos| below this ...
   double grazing_hole_probability = 0.7;  // ... lose their reading with this probability
   double dropout_probability = 0.002;     // isolated missing pixels anywhere
   double depth_factor = 5000;             // stored value = metres * depth_factor (TUM)

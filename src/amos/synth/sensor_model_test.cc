@@ -42,9 +42,9 @@ TEST(SensorModel, HolesBeyondRangeAtEdgesAndGrazingAngles) {
   SensorOptions o;
   const SensorModel sensor(o);
   cv::Mat exact(100, 100, CV_32F, cv::Scalar(2.0)), incidence(100, 100, CV_32F, cv::Scalar(1));
-  exact(cv::Rect(0, 0, 100, 10)).setTo(6.0);    // beyond 5 m
-  exact(cv::Rect(0, 10, 100, 10)).setTo(0.3);   // closer than 0.4 m
-  exact(cv::Rect(50, 20, 50, 80)).setTo(3.0);   // a depth edge at x = 49 / 50
+  exact(cv::Rect(0, 0, 100, 10)).setTo(6.0);       // beyond 5 m
+  exact(cv::Rect(0, 10, 100, 10)).setTo(0.3);      // closer than 0.4 m
+  exact(cv::Rect(50, 20, 50, 80)).setTo(3.0);      // a depth edge at x = 49 / 50
   incidence(cv::Rect(0, 90, 40, 10)).setTo(0.05);  // grazing
   Random rng(3);
   const cv::Mat d = sensor.measureDepth(exact, incidence, rng);

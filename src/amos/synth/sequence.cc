@@ -21,7 +21,8 @@ using Eigen::Vector3d;
 void SequenceOptions::check() const {
   findPreset(preset);
   core::require(frames >= 0 && frames <= 100000, "synth.frames must be in [0, 100000] (0 = preset default)");
-  core::require(metres_per_texel >= 0.001 && metres_per_texel <= 0.05, "synth.metres_per_texel must be in [0.001, 0.05]");
+  core::require(metres_per_texel >= 0.001 && metres_per_texel <= 0.05,
+                "synth.metres_per_texel must be in [0.001, 0.05]");
   core::require(start_timestamp >= 0, "synth.start_timestamp must be >= 0");
   sensor.check();
 }
@@ -46,7 +47,8 @@ struct SequenceGenerator::Impl {
   }
 };
 
-void SequenceGenerator::Impl::buildMovers(const std::vector<cv::Mat>& photos, const std::vector<PersonCutout>& cutouts) {
+void SequenceGenerator::Impl::buildMovers(const std::vector<cv::Mat>& photos,
+                                          const std::vector<PersonCutout>& cutouts) {
   Random rng(deriveSeed(options.seed, Stream::kMovers));
   AssetContext ctx{textures, rng, photos, options.metres_per_texel};
   const RoomLayout& L = room.layout;
@@ -103,8 +105,8 @@ void SequenceGenerator::Impl::buildMovers(const std::vector<cv::Mat>& photos, co
       case MoverKind::kRollingChair:
         info = {info.id, "object", "rolling_chair"};
         movers.push_back(std::make_unique<SlidingObject>(
-            info, officeChair(ctx), PingPongPath({{0.45, 1.3}, {0.5, 0.2}, {0.45, -1.0}}, 0.45, 2.0, 0.8, offset),
-            M_PI, 1.5));
+            info, officeChair(ctx), PingPongPath({{0.45, 1.3}, {0.5, 0.2}, {0.45, -1.0}}, 0.45, 2.0, 0.8, offset), M_PI,
+            1.5));
         break;
       case MoverKind::kSwingingDoor:
         info = {info.id, "object", "swinging_door"};

@@ -2,9 +2,8 @@
 // The generator: a preset, a seed and a frame count in, frames out. SequenceGenerator renders any frame on
 // demand (frames are independent: every random draw of frame k comes from its own seeded stream), and
 // renderSequence() writes a whole sequence in the TUM layout. The same options give byte-identical files.
-#include <opencv2/core.hpp>
-
 #include <memory>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
@@ -25,7 +24,7 @@ struct SequenceOptions {
   std::string person_cutout_dir;       // synth.person_cutout_dir: rgb/ + mask/ person cut-outs ("" = procedural people)
   double metres_per_texel = 0.004;     // synth.metres_per_texel: texture resolution of walls and floor
   double start_timestamp = 1700000000.0;  // synth.start_timestamp: seconds, first frame's time stamp
-  SensorOptions sensor;                // synth.sensor.*
+  SensorOptions sensor;                   // synth.sensor.*
   void check() const;
 };
 
@@ -33,12 +32,12 @@ struct SyntheticFrame {
   int index = 0;
   double timestamp = 0;
   core::SE3 T_wc = core::SE3::Identity();  // ground truth, camera to world
-  cv::Mat bgr;         // CV_8UC3, as written to rgb/
-  cv::Mat depth_raw;   // CV_16U, as written to depth/ (metres * depth_factor, 0 = no reading)
-  cv::Mat depth;       // CV_32F metres (depth_raw / depth_factor, 0 = no reading)
-  cv::Mat exact_depth; // CV_32F metres, the scene's true depth before the sensor model
-  cv::Mat mask;        // CV_16U instance ids as written to masks/ (0 = static)
-  std::vector<std::uint16_t> moving;  // instances moving at this instant (> 1 mm over the last 0.1 s)
+  cv::Mat bgr;                             // CV_8UC3, as written to rgb/
+  cv::Mat depth_raw;                       // CV_16U, as written to depth/ (metres * depth_factor, 0 = no reading)
+  cv::Mat depth;                           // CV_32F metres (depth_raw / depth_factor, 0 = no reading)
+  cv::Mat exact_depth;                     // CV_32F metres, the scene's true depth before the sensor model
+  cv::Mat mask;                            // CV_16U instance ids as written to masks/ (0 = static)
+  std::vector<std::uint16_t> moving;       // instances moving at this instant (> 1 mm over the last 0.1 s)
 };
 
 class SequenceGenerator {

@@ -4,12 +4,11 @@
 
 #include <gtest/gtest.h>
 
-#include <opencv2/features2d.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace amos::synth {
 namespace {
@@ -214,6 +213,27 @@ TEST(Sequence, FramesAreIndependentAndSeedsMatter) {
   EXPECT_FALSE(gen.poseWc(7).isApprox(other.poseWc(7), 1e-6));
 }
 
+TEST(Sequence, MotionBlurSmearsColourOnlyWhereThingsMove) {
+  SequenceOptions sharp = quick("walking_static", 300), blurred = sharp;
+  blurred.sensor.motion_blur = true;
+  blurred.sensor.exposure_s = 0.03;
+  const SequenceGenerator a(sharp), b(blurred);
+  int index = 0;  // a frame where a walker is well in view
+  for (; index < 300; index += 15)
+    if (cv::countNonZero(a.renderExact(index, true, true, false).instance) > 20000) break;
+  ASSERT_LT(index, 300);
+  const SyntheticFrame fa = a.render(index), fb = b.render(index);
+  EXPECT_EQ(cv::norm(fa.mask, fb.mask, cv::NORM_INF), 0);  // ground truth stays at mid-exposure
+  EXPECT_EQ(cv::norm(fa.exact_depth, fb.exact_depth, cv::NORM_INF), 0);
+  cv::Mat diff;
+  cv::absdiff(fa.bgr, fb.bgr, diff);
+  cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
+  cv::Mat mover = fa.mask > 0, still = fa.mask == 0;
+  cv::erode(still, still, cv::Mat::ones(15, 15, CV_8U));  // away from the movers' smeared outlines
+  // The almost-still camera blurs the room a little; the walking people a lot more.
+  EXPECT_GT(cv::mean(diff, mover)[0], 2 * cv::mean(diff, still)[0]);
+}
+
 TEST(Sequence, LoopIsTrackableEverywhere) {
   // ORB-SLAM needs corners all over every view, walls at a few metres and depth on most of the image.
   SequenceOptions o = quick("static_loop", 0);
@@ -227,7 +247,8 @@ TEST(Sequence, LoopIsTrackableEverywhere) {
     std::vector<cv::KeyPoint> corners;
     cv::FAST(grey, corners, 20, true);
     int cells[4][4] = {};
-    for (const cv::KeyPoint& kp : corners) ++cells[static_cast<int>(kp.pt.y) * 4 / grey.rows][static_cast<int>(kp.pt.x) * 4 / grey.cols];
+    for (const cv::KeyPoint& kp : corners)
+      ++cells[static_cast<int>(kp.pt.y) * 4 / grey.rows][static_cast<int>(kp.pt.x) * 4 / grey.cols];
     int good_cells = 0;
     for (auto& row : cells)
       for (int n : row) good_cells += n >= 10;

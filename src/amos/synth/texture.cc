@@ -1,9 +1,8 @@
 #include "amos/synth/texture.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
 

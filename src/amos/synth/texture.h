@@ -3,7 +3,6 @@
 // linear between levels), so that far or slanted surfaces do not alias into flickering fake corners. An optional
 // alpha channel turns a texture into a cut-out (billboards of people).
 #include <opencv2/core.hpp>
-
 #include <vector>
 
 namespace amos::synth {

@@ -1,10 +1,9 @@
 #include "amos/synth/tum_writer.h"
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "amos/core/error.h"
 #include "amos/synth/png_writer.h"
@@ -29,14 +28,17 @@ TumWriter::TumWriter(const std::string& output_dir, const SequenceGenerator& gen
     : dir_(output_dir), generator_(generator) {
   std::error_code ec;
   for (const char* sub : {"rgb", "depth", "masks"}) fs::create_directories(fs::path(dir_) / sub, ec);
-  core::require(!ec && fs::is_directory(fs::path(dir_) / "masks"), "synth: cannot create " + output_dir + ": " + ec.message());
+  core::require(!ec && fs::is_directory(fs::path(dir_) / "masks"),
+                "synth: cannot create " + output_dir + ": " + ec.message());
   const SequenceOptions& o = generator.options();
-  const std::string title = fmt::format("amos synth preset {} seed {}{}", o.preset, o.seed, o.movers ? "" : " no movers");
+  const std::string title =
+      fmt::format("amos synth preset {} seed {}{}", o.preset, o.seed, o.movers ? "" : " no movers");
   openIndex(rgb_, fs::path(dir_) / "rgb.txt", "color images", title, "timestamp filename");
   openIndex(depth_, fs::path(dir_) / "depth.txt", "depth maps", title, "timestamp filename");
   openIndex(masks_, fs::path(dir_) / "masks.txt", "instance masks (16-bit, 0 = static, else instance id)", title,
             "timestamp filename");
-  openIndex(gt_, fs::path(dir_) / "groundtruth.txt", "ground truth trajectory", title, "timestamp tx ty tz qx qy qz qw");
+  openIndex(gt_, fs::path(dir_) / "groundtruth.txt", "ground truth trajectory", title,
+            "timestamp tx ty tz qx qy qz qw");
   assoc_.open(fs::path(dir_) / "associations.txt");
   core::require(assoc_.good(), "synth: cannot write associations.txt in " + output_dir);
 }
@@ -52,12 +54,15 @@ void TumWriter::add(const SyntheticFrame& f) {
   assoc_ << stamp << " rgb/" << stamp << ".png " << stamp << " depth/" << stamp << ".png\n";
   const Eigen::Quaterniond q(f.T_wc.linear());
   const Eigen::Vector3d t = f.T_wc.translation();
-  gt_ << stamp << fmt::format(" {:.6f} {:.6f} {:.6f} {:.9f} {:.9f} {:.9f} {:.9f}\n", t.x(), t.y(), t.z(), q.x(), q.y(),
-                              q.z(), q.w());
+  gt_ << stamp
+      << fmt::format(" {:.6f} {:.6f} {:.6f} {:.9f} {:.9f} {:.9f} {:.9f}\n", t.x(), t.y(), t.z(), q.x(), q.y(), q.z(),
+                     q.w());
   for (std::uint16_t id : f.moving) {
     auto& ranges = moving_ranges_[id];
-    if (!ranges.empty() && ranges.back().second == f.index - 1) ranges.back().second = f.index;
-    else ranges.emplace_back(f.index, f.index);
+    if (!ranges.empty() && ranges.back().second == f.index - 1)
+      ranges.back().second = f.index;
+    else
+      ranges.emplace_back(f.index, f.index);
   }
   ++frames_;
 }
@@ -70,26 +75,29 @@ void TumWriter::finish() {
   for (const InstanceInfo& info : generator_.instances()) {
     nlohmann::json ranges = nlohmann::json::array();
     for (const auto& r : moving_ranges_[info.id]) ranges.push_back({r.first, r.second});
-    j["instances"][std::to_string(info.id)] = {{"class", info.category}, {"name", info.name}, {"moving_frames", ranges}};
+    j["instances"][std::to_string(info.id)] = {
+        {"class", info.category}, {"name", info.name}, {"moving_frames", ranges}};
   }
   const core::CameraIntrinsics& k = o.sensor.intrinsics;
-  j["sequence"] = {{"preset", o.preset},
-                   {"description", p.description},
-                   {"seed", o.seed},
-                   {"frames", frames_},
-                   {"movers", o.movers},
-                   {"camera_motion", toString(p.motion)},
-                   {"static_counterpart", p.static_counterpart},
-                   {"fps", o.sensor.fps},
-                   {"camera", {{"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}, {"width", k.width}, {"height", k.height}}},
-                   {"depth_factor", o.sensor.depth.depth_factor},
-                   {"depth_noise", {{"enabled", o.sensor.depth.enabled},
-                                    {"sigma", fmt::format("{} + {} * (z - {})^2", o.sensor.depth.sigma_base_m,
-                                                          o.sensor.depth.sigma_quadratic, o.sensor.depth.sigma_offset_m)},
-                                    {"min_range_m", o.sensor.depth.min_range_m},
-                                    {"max_range_m", o.sensor.depth.max_range_m}}},
-                   {"motion_blur", o.sensor.motion_blur},
-                   {"mask_convention", "masks/*.png 16-bit: 0 = static scene, otherwise the instance id"}};
+  j["sequence"] = {
+      {"preset", o.preset},
+      {"description", p.description},
+      {"seed", o.seed},
+      {"frames", frames_},
+      {"movers", o.movers},
+      {"camera_motion", toString(p.motion)},
+      {"static_counterpart", p.static_counterpart},
+      {"fps", o.sensor.fps},
+      {"camera", {{"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}, {"width", k.width}, {"height", k.height}}},
+      {"depth_factor", o.sensor.depth.depth_factor},
+      {"depth_noise",
+       {{"enabled", o.sensor.depth.enabled},
+        {"sigma", fmt::format("{} + {} * (z - {})^2", o.sensor.depth.sigma_base_m, o.sensor.depth.sigma_quadratic,
+                              o.sensor.depth.sigma_offset_m)},
+        {"min_range_m", o.sensor.depth.min_range_m},
+        {"max_range_m", o.sensor.depth.max_range_m}}},
+      {"motion_blur", o.sensor.motion_blur},
+      {"mask_convention", "masks/*.png 16-bit: 0 = static scene, otherwise the instance id"}};
   std::ofstream out(fs::path(dir_) / "instances.json");
   core::require(out.good(), "synth: cannot write instances.json in " + dir_);
   out << j.dump(2) << "\n";

@@ -1,12 +1,11 @@
 #include "amos/synth/tum_writer.h"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "amos/core/error.h"
@@ -78,9 +77,12 @@ TEST(TumWriter, WritesTheTumLayoutWithMasksAndGroundTruth) {
     const core::SE3 T = core::makeSE3(q, Eigen::Vector3d(std::stod(g[1]), std::stod(g[2]), std::stod(g[3])));
     EXPECT_LT(core::translationNorm(T.inverse() * f.T_wc), 2e-6);
     EXPECT_LT(core::rotationAngle(T.inverse() * f.T_wc), 1e-7);
-    const cv::Mat depth = cv::imread((dir / rows(dir / "depth.txt")[static_cast<std::size_t>(k)][1]).string(), cv::IMREAD_UNCHANGED);
-    const cv::Mat mask = cv::imread((dir / rows(dir / "masks.txt")[static_cast<std::size_t>(k)][1]).string(), cv::IMREAD_UNCHANGED);
-    const cv::Mat rgb = cv::imread((dir / rows(dir / "rgb.txt")[static_cast<std::size_t>(k)][1]).string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat depth =
+        cv::imread((dir / rows(dir / "depth.txt")[static_cast<std::size_t>(k)][1]).string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat mask =
+        cv::imread((dir / rows(dir / "masks.txt")[static_cast<std::size_t>(k)][1]).string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat rgb =
+        cv::imread((dir / rows(dir / "rgb.txt")[static_cast<std::size_t>(k)][1]).string(), cv::IMREAD_UNCHANGED);
     ASSERT_EQ(depth.type(), CV_16UC1);
     ASSERT_EQ(mask.type(), CV_16UC1);
     ASSERT_EQ(rgb.type(), CV_8UC3);
