@@ -16,6 +16,8 @@ void CornerTrackingOptions::check() const {
                 fmt::format("Dynamic.Corners.qualityLevel must lie in (0, 1), got {}", quality_level));
   core::require(min_distance_px >= 0,
                 fmt::format("Dynamic.Corners.minDistance must be >= 0, got {}", min_distance_px));
+  core::require(detection_scale > 0 && detection_scale <= 1,
+                fmt::format("Dynamic.Corners.detectionScale must lie in (0, 1], got {}", detection_scale));
   core::require(lk_window >= 5 && lk_window % 2 == 1,
                 fmt::format("Dynamic.LK.window must be an odd number >= 5, got {}", lk_window));
   core::require(lk_levels >= 0 && lk_levels <= 6,
@@ -75,8 +77,20 @@ std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const cv::Mat& cu
                                      const CornerTrackingOptions& options, const cv::Mat& mask) {
   const FramePairPyramids pyramids = buildPyramids(last_gray, current_gray, options);
   std::vector<cv::Point2f> corners;
-  cv::goodFeaturesToTrack(last_gray, corners, options.max_corners, options.quality_level, options.min_distance_px,
-                          mask);
+  if (options.detection_scale < 1.0) {
+    const double s = options.detection_scale;
+    cv::Mat small, small_mask;
+    cv::resize(last_gray, small, cv::Size(), s, s, cv::INTER_AREA);
+    if (!mask.empty()) cv::resize(mask, small_mask, small.size(), 0, 0, cv::INTER_NEAREST);
+    cv::goodFeaturesToTrack(small, corners, options.max_corners, options.quality_level,
+                            options.min_distance_px * s, small_mask);
+    // Pixel centres: small (x + 0.5) / s - 0.5 in the full image.
+    for (cv::Point2f& c : corners) c = cv::Point2f(static_cast<float>((c.x + 0.5) / s - 0.5),
+                                                   static_cast<float>((c.y + 0.5) / s - 0.5));
+  } else {
+    cv::goodFeaturesToTrack(last_gray, corners, options.max_corners, options.quality_level,
+                            options.min_distance_px, mask);
+  }
   return trackPoints(pyramids, corners, options);
 }
 

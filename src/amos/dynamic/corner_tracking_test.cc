@@ -50,7 +50,7 @@ TEST(CornerTracking, ForwardBackwardCheckDropsOccludedPoints) {
   for (const PointTrack& t : tracks) {
     EXPECT_EQ(t.last, points[t.source_index]);
     if (deep.contains(t.last)) ++inside;
-    // Far from the occluder (beyond the coarsest level's window, 21 px * 2^3) tracks are exact.
+    // Far from the occluder (beyond half the coarsest level's window, 15 px * 2^3 / 2) tracks are exact.
     const cv::Rect reach(240 - 90, 160 - 90, 160 + 180, 160 + 180);
     if (!reach.contains(t.last)) {
       EXPECT_LT(cv::norm(t.current - t.last), 0.05);

@@ -1,0 +1,237 @@
+// Micro-benchmarks of the anti-dynamics front end (paper Section III) on two consecutive real frames of Bonn
+// crowd (three people walking, moving camera) and on the synthetic depth-edge scene. OpenCV runs on one thread
+// so the figures are single-core. Counters: superpixels, boundary recall of depth edges, tracks, clusters...
+//   ./bin/bench_dynamic --benchmark_min_time=0.5
+#include <benchmark/benchmark.h>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/superpixel_metrics.h"
+
+namespace {
+
+using namespace amos;
+using namespace amos::dynamic;
+
+struct Frame {
+  cv::Mat bgr, gray, depth;
+};
+
+struct BenchData {
+  Frame last, current;
+  core::PinholeCamera camera;
+  cv::Mat depth_edges;  // reference edges of the current frame: depth steps > 0.1 m
+  std::vector<PointTrack> tracks;
+  core::SE3 T_cw_initial;
+};
+
+Frame loadFrame(const std::string& dir, const std::string& rgb, const std::string& depth) {
+  Frame f;
+  f.bgr = cv::imread(dir + rgb, cv::IMREAD_COLOR);
+  const cv::Mat raw = cv::imread(dir + depth, cv::IMREAD_UNCHANGED);
+  if (f.bgr.empty() || raw.type() != CV_16U) throw std::runtime_error("cannot read " + dir + rgb);
+  raw.convertTo(f.depth, CV_32F, 1.0 / 5000.0);
+  cv::cvtColor(f.bgr, f.gray, cv::COLOR_BGR2GRAY);
+  return f;
+}
+
+// Frames 100 and 101 of the slice (people in view, camera moving).
+const BenchData& data() {
+  static const BenchData d = [] {
+    cv::setNumThreads(1);
+    const std::string dir = std::string(AMOS_SHARED_DIR) + "/data/bonn_crowd_dev/";
+    std::ifstream assoc(dir + "associations.txt");
+    std::vector<std::pair<std::string, std::string>> rows;
+    std::string line;
+    while (std::getline(assoc, line)) {
+      std::istringstream s(line);
+      std::string t1, rgb, t2, depth;
+      if (s >> t1 >> rgb >> t2 >> depth) rows.emplace_back(rgb, depth);
+    }
+    if (rows.size() < 102) throw std::runtime_error("missing " + dir + "associations.txt");
+    BenchData b;
+    b.last = loadFrame(dir, rows[100].first, rows[100].second);
+    b.current = loadFrame(dir, rows[101].first, rows[101].second);
+    core::CameraIntrinsics intr;
+    intr.fx = 542.822841, intr.fy = 542.576870, intr.cx = 315.593520, intr.cy = 237.756098;
+    intr.k1 = 0.039903, intr.k2 = -0.099343, intr.p1 = -0.000730, intr.p2 = -0.000144;
+    b.camera = core::PinholeCamera(intr);
+    b.depth_edges = depthEdges(b.current.depth, 0.1);
+    const DynamicOptions options;
+    b.tracks = trackCorners(b.last.gray, b.current.gray, options.tracking);
+    const auto points_w = backProjectTracks(b.tracks, b.last.depth, core::SE3::Identity(), b.camera,
+                                            options.reprojection);
+    b.T_cw_initial = estimateInitialPose({}, lastFrameCorrespondences(b.tracks, points_w, b.camera),
+                                         core::SE3::Identity(), std::nullopt, b.camera, options.initial_pose)
+                         .T_cw;
+    return b;
+  }();
+  return d;
+}
+
+// Depth-SLIC on the real frame. Args: scale in percent, superpixel count, iterations.
+void BM_DepthSlic(benchmark::State& state) {
+  const BenchData& d = data();
+  DepthSlicOptions options;
+  options.scale = state.range(0) / 100.0;
+  options.num_superpixels = static_cast<int>(state.range(1));
+  options.iterations = static_cast<int>(state.range(2));
+  SuperpixelSegmentation seg;
+  for (auto _ : state) {
+    seg = computeDepthSlic(d.current.bgr, d.current.depth, options);
+    benchmark::DoNotOptimize(seg.labels.data);
+  }
+  state.counters["superpixels"] = static_cast<double>(seg.superpixels.size());
+  state.counters["recall_2px"] = boundaryRecall(seg.labels, d.depth_edges, 2);
+  state.counters["recall_4px"] = boundaryRecall(seg.labels, d.depth_edges, 4);
+  DepthSlicOptions colour_only = options;
+  colour_only.depth_scale_m = 1e9;
+  state.counters["colour_only_recall_2px"] =
+      boundaryRecall(computeDepthSlic(d.current.bgr, d.current.depth, colour_only).labels, d.depth_edges, 2);
+}
+BENCHMARK(BM_DepthSlic)
+    ->Args({25, 300, 5})
+    ->Args({50, 150, 5})
+    ->Args({50, 300, 5})
+    ->Args({50, 300, 10})
+    ->Args({50, 600, 5})
+    ->Args({100, 300, 5})
+    ->Unit(benchmark::kMillisecond);
+
+// Depth-SLIC on the synthetic scene of depth_slic_test: same grey texture everywhere, a disc 1.5 m in front of a
+// wall at 3 m. Arg: 1 = with the depth term, 0 = colour only.
+void BM_DepthSlicSyntheticDisc(benchmark::State& state) {
+  cv::Mat bgr(480, 640, CV_8UC3);
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> grey(90, 170);
+  for (int by = 0; by < 480; by += 4)
+    for (int bx = 0; bx < 640; bx += 4) {
+      const int g = grey(rng);
+      bgr(cv::Rect(bx, by, 4, 4)).setTo(cv::Scalar(g, g, g));
+    }
+  cv::Mat depth(480, 640, CV_32F, cv::Scalar(3.0f)), reference(480, 640, CV_32S, cv::Scalar(0));
+  cv::circle(depth, {301, 237}, 113, cv::Scalar(1.5f), cv::FILLED);
+  cv::circle(reference, {301, 237}, 113, cv::Scalar(1), cv::FILLED);
+  DepthSlicOptions options;
+  if (state.range(0) == 0) options.depth_scale_m = 1e9;
+  SuperpixelSegmentation seg;
+  for (auto _ : state) seg = computeDepthSlic(bgr, depth, options);
+  state.counters["recall_2px"] = boundaryRecall(seg.labels, labelBoundaries(reference), 2);
+  state.counters["leakage"] = leakage(seg.labels, reference);
+}
+BENCHMARK(BM_DepthSlicSyntheticDisc)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+
+void BM_KMeansClusters(benchmark::State& state) {
+  const BenchData& d = data();
+  SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
+  const ClusteringOptions options;
+  cv::Mat map;
+  for (auto _ : state) {
+    map = clusterSuperpixels(seg, options);
+    benchmark::DoNotOptimize(map.data);
+  }
+  state.counters["superpixels"] = static_cast<double>(seg.superpixels.size());
+  state.counters["clusters"] = clusterCount(seg);
+}
+BENCHMARK(BM_KMeansClusters)->Unit(benchmark::kMillisecond);
+
+void BM_CornerTracking(benchmark::State& state) {
+  const BenchData& d = data();
+  const CornerTrackingOptions options;
+  std::vector<PointTrack> tracks;
+  for (auto _ : state) tracks = trackCorners(d.last.gray, d.current.gray, options);
+  state.counters["tracks"] = static_cast<double>(tracks.size());
+}
+BENCHMARK(BM_CornerTracking)->Unit(benchmark::kMillisecond);
+
+// Eq. 5-6: back-projection, reprojection under the initial pose, per-cluster Cauchy means.
+void BM_ReprojectionScoring(benchmark::State& state) {
+  const BenchData& d = data();
+  SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
+  const cv::Mat map = clusterSuperpixels(seg, ClusteringOptions{});
+  const ReprojectionOptions options;
+  std::vector<int> cluster_of_track;
+  for (const PointTrack& t : d.tracks) cluster_of_track.push_back(map.at<int>(cvRound(t.current.y), cvRound(t.current.x)));
+  std::vector<ClusterScore> scores;
+  for (auto _ : state) {
+    const auto points = backProjectTracks(d.tracks, d.last.depth, core::SE3::Identity(), d.camera, options);
+    const auto errors = reprojectionErrors(d.tracks, points, d.T_cw_initial, d.camera);
+    scores = scoreClusters(errors, cluster_of_track, clusterCount(seg), options);
+  }
+  int candidates = 0;
+  for (const ClusterScore& s : scores) candidates += s.candidate;
+  state.counters["tracks"] = static_cast<double>(d.tracks.size());
+  state.counters["candidates"] = candidates;
+}
+BENCHMARK(BM_ReprojectionScoring)->Unit(benchmark::kMillisecond);
+
+// Eq. 7-8: RANSAC + refit of F on all undistorted tracks, then every track's epipolar distance.
+void BM_EpipolarJudgement(benchmark::State& state) {
+  const BenchData& d = data();
+  std::vector<cv::Point2f> a, b;
+  for (const PointTrack& t : d.tracks) a.push_back(t.last), b.push_back(t.current);
+  a = d.camera.undistort(a), b = d.camera.undistort(b);
+  const EpipolarOptions options;
+  FundamentalFit fit;
+  int violators = 0;
+  for (auto _ : state) {
+    fit = fitFundamental(a, b, options);
+    violators = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      violators += epipolarDistance(fit.F, {a[i].x, a[i].y}, {b[i].x, b[i].y}) > options.dynamic_threshold_px;
+  }
+  state.counters["f_inliers"] = fit.final_inliers;
+  state.counters["violators"] = violators;
+}
+BENCHMARK(BM_EpipolarJudgement)->Unit(benchmark::kMillisecond);
+
+void BM_InitialPoseLastFrameModel(benchmark::State& state) {
+  const BenchData& d = data();
+  const DynamicOptions options;
+  InitialPoseResult r;
+  for (auto _ : state) {
+    const auto points_w =
+        backProjectTracks(d.tracks, d.last.depth, core::SE3::Identity(), d.camera, options.reprojection);
+    r = estimateInitialPose({}, lastFrameCorrespondences(d.tracks, points_w, d.camera), core::SE3::Identity(),
+                            core::SE3::Identity(), d.camera, options.initial_pose);
+  }
+  state.counters["common_inliers"] = r.candidates[static_cast<int>(r.model)].common_inliers;
+}
+BENCHMARK(BM_InitialPoseLastFrameModel)->Unit(benchmark::kMillisecond);
+
+// The whole geometric stage (mode geometry: superpixels, clusters, corner tracking, scoring, F, decision).
+void BM_FrontEndGeometry(benchmark::State& state) {
+  const BenchData& d = data();
+  DynamicOptions options;
+  options.mode = DynamicMode::kGeometry;
+  const DynamicFrontEnd front_end(d.camera, options);
+  DynamicFrameInput in;
+  in.gray = d.current.gray, in.bgr = d.current.bgr, in.depth = d.current.depth;
+  in.last_gray = d.last.gray, in.last_depth = d.last.depth;
+  in.T_cw_initial = d.T_cw_initial;
+  DynamicFrameOutput out;
+  std::map<std::string, double> stage_ms;
+  for (auto _ : state) {
+    out = front_end.process(in);
+    for (const auto& [stage, ms] : out.timings_ms) stage_ms[stage] += ms;
+  }
+  for (const auto& [stage, ms] : stage_ms) state.counters["ms_" + stage] = ms / state.iterations();
+  state.counters["clusters"] = out.diagnostics.clusters;
+  state.counters["candidates"] = out.diagnostics.candidate_clusters;
+  state.counters["dynamic"] = out.diagnostics.dynamic_clusters;
+  state.counters["dynamic_points"] = out.diagnostics.dynamic_points;
+  state.counters["mask_share"] = static_cast<double>(cv::countNonZero(out.mask)) / out.mask.total();
+}
+BENCHMARK(BM_FrontEndGeometry)->Unit(benchmark::kMillisecond);
+
+}  // namespace
