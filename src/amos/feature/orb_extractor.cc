@@ -4,6 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
+#include <utility>
 
 #include "amos/core/error.h"
 #include "amos/feature/fast_cells.h"
@@ -57,6 +58,10 @@ OrbExtractor::OrbExtractor(const OrbOptions& options) : options_(options), centr
     desired *= factor;
   }
   features_per_level_.back() = std::max(options_.num_features - assigned, 0);
+}
+
+OrbExtractor::OrbExtractor(const OrbOptions& options, std::vector<BriefPair> pattern) : OrbExtractor(options) {
+  brief_ = SteeredBrief(std::move(pattern));
 }
 
 void OrbExtractor::extract(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,

@@ -23,6 +23,8 @@ struct OrbOptions {
 class OrbExtractor {
  public:
   explicit OrbExtractor(const OrbOptions& options);
+  // With another descriptor test pattern (kDescriptorBits pairs within radius 15), e.g. to compare patterns.
+  OrbExtractor(const OrbOptions& options, std::vector<BriefPair> pattern);
 
   // gray: CV_8UC1. Keypoints are in level-0 pixel coordinates (distorted, as detected), with octave, angle (deg)
   // and size set; descriptors is N x 32 CV_8U, row i belongs to keypoint i. Deterministic for a given image.

@@ -1,11 +1,17 @@
 #include "amos/feature/steered_brief.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
 #include <set>
 #include <tuple>
+#include <utility>
+
+#include "amos/core/error.h"
+#include "amos/feature/learned_brief_pattern.h"
 
 namespace amos::feature {
 
@@ -36,7 +42,16 @@ std::vector<BriefPair> makeGaussianBriefPattern(unsigned seed, int num_pairs, in
   return pattern;
 }
 
-SteeredBrief::SteeredBrief(unsigned seed) : pattern_(makeGaussianBriefPattern(seed)) {
+SteeredBrief::SteeredBrief() : SteeredBrief(learnedBriefPattern()) {}
+
+SteeredBrief::SteeredBrief(unsigned seed) : SteeredBrief(makeGaussianBriefPattern(seed)) {}
+
+SteeredBrief::SteeredBrief(std::vector<BriefPair> pattern) : pattern_(std::move(pattern)) {
+  core::require(static_cast<int>(pattern_.size()) == kDescriptorBits,
+                fmt::format("SteeredBrief needs {} point pairs, got {}", kDescriptorBits, pattern_.size()));
+  for (const BriefPair& p : pattern_)
+    core::require(p.x1 * p.x1 + p.y1 * p.y1 <= 225 && p.x2 * p.x2 + p.y2 * p.y2 <= 225,
+                  "SteeredBrief pattern points must lie within radius 15 of the keypoint");
   for (const BriefPair& p : pattern_) {
     xs_.push_back(static_cast<float>(p.x1));
     ys_.push_back(static_cast<float>(p.y1));

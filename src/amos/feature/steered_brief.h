@@ -1,8 +1,9 @@
 #pragma once
 // 256-bit binary descriptor steered by the keypoint angle (steered BRIEF as in ORB, Rublee et al. 2011).
-// The test pattern is our own: point pairs drawn from an isotropic Gaussian (sigma = patch size / 5, Calonder et
-// al.'s "G II" BRIEF sampling) with a fixed seed, kept inside the radius-15 disc so that every rotation of the
-// pattern stays inside the 31x31 patch.
+// Test patterns are our own: by default the learned table of learned_brief_pattern.h (unbiased, decorrelated
+// tests, like ORB's rBRIEF); alternatively point pairs drawn from an isotropic Gaussian (sigma = patch size / 5,
+// Calonder et al.'s "G II" BRIEF sampling) with a fixed seed. Points lie inside the radius-15 disc, so every
+// rotation of the pattern stays inside the 31x31 patch.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -24,7 +25,12 @@ std::vector<BriefPair> makeGaussianBriefPattern(unsigned seed, int num_pairs = k
 class SteeredBrief {
  public:
   static constexpr unsigned kDefaultSeed = 20240531u;
-  explicit SteeredBrief(unsigned seed = kDefaultSeed);
+  // The learned pattern (learnedBriefPattern()).
+  SteeredBrief();
+  // A Gaussian pattern from this seed (makeGaussianBriefPattern).
+  explicit SteeredBrief(unsigned seed);
+  // Any pattern of exactly kDescriptorBits pairs within radius 15 (e.g. a learned one).
+  explicit SteeredBrief(std::vector<BriefPair> pattern);
   const std::vector<BriefPair>& pattern() const { return pattern_; }
   // Pixels within 15 of (x, y) must be readable in `smoothed` (CV_8UC1, e.g. a blurred padded pyramid level).
   // Bit i (byte i / 8, bit i % 8, least significant first) is I(a_i) < I(b_i), with a_i, b_i rotated by angle.
