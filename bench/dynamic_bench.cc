@@ -3,12 +3,12 @@
 // so the figures are single-core. Counters: superpixels, boundary recall of depth edges, tracks, clusters...
 //   ./bin/bench_dynamic --benchmark_min_time=0.5
 #include <benchmark/benchmark.h>
-#include <opencv2/core/utility.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <fstream>
 #include <map>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -69,8 +69,8 @@ const BenchData& data() {
     b.depth_edges = depthEdges(b.current.depth, 0.1);
     const DynamicOptions options;
     b.tracks = trackCorners(b.last.gray, b.current.gray, options.tracking);
-    const auto points_w = backProjectTracks(b.tracks, b.last.depth, core::SE3::Identity(), b.camera,
-                                            options.reprojection);
+    const auto points_w =
+        backProjectTracks(b.tracks, b.last.depth, core::SE3::Identity(), b.camera, options.reprojection);
     b.T_cw_initial = estimateInitialPose({}, lastFrameCorrespondences(b.tracks, points_w, b.camera),
                                          core::SE3::Identity(), std::nullopt, b.camera, options.initial_pose)
                          .T_cw;
@@ -161,7 +161,8 @@ void BM_ReprojectionScoring(benchmark::State& state) {
   const cv::Mat map = clusterSuperpixels(seg, ClusteringOptions{});
   const ReprojectionOptions options;
   std::vector<int> cluster_of_track;
-  for (const PointTrack& t : d.tracks) cluster_of_track.push_back(map.at<int>(cvRound(t.current.y), cvRound(t.current.x)));
+  for (const PointTrack& t : d.tracks)
+    cluster_of_track.push_back(map.at<int>(cvRound(t.current.y), cvRound(t.current.x)));
   std::vector<ClusterScore> scores;
   for (auto _ : state) {
     const auto points = backProjectTracks(d.tracks, d.last.depth, core::SE3::Identity(), d.camera, options);

@@ -10,8 +10,7 @@
 namespace amos::dynamic {
 
 void BoundaryOptions::check() const {
-  core::require(search_radius_px >= 0,
-                fmt::format("Dynamic.Boundary.radius must be >= 0, got {}", search_radius_px));
+  core::require(search_radius_px >= 0, fmt::format("Dynamic.Boundary.radius must be >= 0, got {}", search_radius_px));
   core::require(border_margin_px >= 0,
                 fmt::format("Dynamic.Boundary.borderMargin must be >= 0, got {}", border_margin_px));
 }
@@ -55,12 +54,9 @@ int assignToNeighbourCluster(cv::Point2f p, const cv::Mat& decision_map, const s
                              int radius_px) {
   core::require(decision_map.type() == CV_32S, "assignToNeighbourCluster: map must be CV_32S");
   const int px = static_cast<int>(std::lround(p.x)), py = static_cast<int>(std::lround(p.y));
-  const int own = (px >= 0 && py >= 0 && px < decision_map.cols && py < decision_map.rows)
-                      ? decision_map.at<int>(py, px)
-                      : -1;
-  auto error_of = [&](int c) {
-    return c >= 0 && c < static_cast<int>(cluster_error.size()) ? cluster_error[c] : 0.0;
-  };
+  const int own =
+      (px >= 0 && py >= 0 && px < decision_map.cols && py < decision_map.rows) ? decision_map.at<int>(py, px) : -1;
+  auto error_of = [&](int c) { return c >= 0 && c < static_cast<int>(cluster_error.size()) ? cluster_error[c] : 0.0; };
   int best = own;
   double best_error = own >= 0 ? error_of(own) : -1.0;
   const int r2 = radius_px * radius_px;

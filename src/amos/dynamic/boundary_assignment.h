@@ -4,7 +4,6 @@
 // is given to the cluster around it (within ~30 px) whose mean reprojection error is the largest. Superpixel
 // blocks touching the image border take no part in the decision.
 #include <opencv2/core.hpp>
-
 #include <vector>
 
 namespace amos::dynamic {

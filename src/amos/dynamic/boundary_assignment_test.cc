@@ -37,8 +37,8 @@ TEST(BoundaryAssignment, IgnoredPixelsAreNeverChosen) {
   const std::vector<double> error = {1.0, 5.0, 2.0};
   EXPECT_EQ(assignToNeighbourCluster({45, 30}, map, error, 30), 0);
   EXPECT_EQ(assignToNeighbourCluster({100, 30}, map, error, 10), -1);  // nothing but ignored pixels in reach
-  EXPECT_EQ(assignToNeighbourCluster({100, 30}, map, error, 45), 0);  // reaches x = 59 (41 px), not y = 80
-  EXPECT_EQ(assignToNeighbourCluster({100, 30}, map, error, 55), 2);  // now reaches the strip (50 px) too
+  EXPECT_EQ(assignToNeighbourCluster({100, 30}, map, error, 45), 0);   // reaches x = 59 (41 px), not y = 80
+  EXPECT_EQ(assignToNeighbourCluster({100, 30}, map, error, 55), 2);   // now reaches the strip (50 px) too
 }
 
 TEST(BoundaryAssignment, BorderBlocksAreThoseTouchingTheImageEdge) {

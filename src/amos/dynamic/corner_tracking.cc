@@ -1,10 +1,10 @@
 #include "amos/dynamic/corner_tracking.h"
 
 #include <fmt/format.h>
-#include <opencv2/imgproc.hpp>
-#include <opencv2/video/tracking.hpp>
 
 #include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
 
 #include "amos/core/error.h"
 
@@ -14,8 +14,7 @@ void CornerTrackingOptions::check() const {
   core::require(max_corners >= 8, fmt::format("Dynamic.Corners.maxCorners must be >= 8, got {}", max_corners));
   core::require(quality_level > 0 && quality_level < 1,
                 fmt::format("Dynamic.Corners.qualityLevel must lie in (0, 1), got {}", quality_level));
-  core::require(min_distance_px >= 0,
-                fmt::format("Dynamic.Corners.minDistance must be >= 0, got {}", min_distance_px));
+  core::require(min_distance_px >= 0, fmt::format("Dynamic.Corners.minDistance must be >= 0, got {}", min_distance_px));
   core::require(detection_scale > 0 && detection_scale <= 1,
                 fmt::format("Dynamic.Corners.detectionScale must lie in (0, 1], got {}", detection_scale));
   core::require(lk_window >= 5 && lk_window % 2 == 1,
@@ -82,14 +81,14 @@ std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const cv::Mat& cu
     cv::Mat small, small_mask;
     cv::resize(last_gray, small, cv::Size(), s, s, cv::INTER_AREA);
     if (!mask.empty()) cv::resize(mask, small_mask, small.size(), 0, 0, cv::INTER_NEAREST);
-    cv::goodFeaturesToTrack(small, corners, options.max_corners, options.quality_level,
-                            options.min_distance_px * s, small_mask);
+    cv::goodFeaturesToTrack(small, corners, options.max_corners, options.quality_level, options.min_distance_px * s,
+                            small_mask);
     // Pixel centres: small (x + 0.5) / s - 0.5 in the full image.
-    for (cv::Point2f& c : corners) c = cv::Point2f(static_cast<float>((c.x + 0.5) / s - 0.5),
-                                                   static_cast<float>((c.y + 0.5) / s - 0.5));
+    for (cv::Point2f& c : corners)
+      c = cv::Point2f(static_cast<float>((c.x + 0.5) / s - 0.5), static_cast<float>((c.y + 0.5) / s - 0.5));
   } else {
-    cv::goodFeaturesToTrack(last_gray, corners, options.max_corners, options.quality_level,
-                            options.min_distance_px, mask);
+    cv::goodFeaturesToTrack(last_gray, corners, options.max_corners, options.quality_level, options.min_distance_px,
+                            mask);
   }
   return trackPoints(pyramids, corners, options);
 }

@@ -3,7 +3,6 @@
 // from the last frame and tracked through the LK optical flow"): Shi-Tomasi corners, pyramidal Lucas-Kanade,
 // and a forward-backward check that drops tracks which do not return to where they started.
 #include <opencv2/core.hpp>
-
 #include <vector>
 
 namespace amos::dynamic {

@@ -1,6 +1,7 @@
 #include "amos/dynamic/corner_tracking.h"
 
 #include <gtest/gtest.h>
+
 #include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
@@ -73,8 +74,7 @@ TEST(CornerTracking, RejectsBadOptionsAndImages) {
   CornerTrackingOptions bad;
   bad.lk_window = 20;
   EXPECT_THROW(bad.check(), core::Error);
-  EXPECT_THROW(buildPyramids(cv::Mat(10, 10, CV_8UC3), cv::Mat(10, 10, CV_8UC3), CornerTrackingOptions{}),
-               core::Error);
+  EXPECT_THROW(buildPyramids(cv::Mat(10, 10, CV_8UC3), cv::Mat(10, 10, CV_8UC3), CornerTrackingOptions{}), core::Error);
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 #include "amos/dynamic/depth_slic.h"
 
 #include <fmt/format.h>
-#include <opencv2/core/hal/intrin.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/core/hal/intrin.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
 
@@ -29,9 +29,9 @@ namespace {
 // Working-resolution image planes, one float per pixel, so the assignment loop reads contiguous rows.
 struct Planes {
   int width = 0, height = 0;
-  cv::Mat L, A, B;   // CIELAB, CV_32F
-  cv::Mat Z;         // depth [m], 0 where invalid, CV_32F
-  cv::Mat valid;     // 1 where Z is valid, else 0, CV_32F (a multiplier that switches the depth term off)
+  cv::Mat L, A, B;  // CIELAB, CV_32F
+  cv::Mat Z;        // depth [m], 0 where invalid, CV_32F
+  cv::Mat valid;    // 1 where Z is valid, else 0, CV_32F (a multiplier that switches the depth term off)
 };
 
 struct Centre {
@@ -123,15 +123,17 @@ std::vector<Centre> seedCentres(const Planes& p, int num_superpixels, float& ste
 }
 
 // One SLIC assignment pass: every pixel within +-step of a centre takes the nearest centre under Eq. 1.
-void assignPixels(const Planes& p, const std::vector<Centre>& centres, float step, float inv_colour,
-                  float inv_depth, cv::Mat& labels, cv::Mat& distance) {
+void assignPixels(const Planes& p, const std::vector<Centre>& centres, float step, float inv_colour, float inv_depth,
+                  cv::Mat& labels, cv::Mat& distance) {
   distance.setTo(std::numeric_limits<float>::max());
   const float inv_step = 1.f / step;
   const int radius = static_cast<int>(std::ceil(step));
   for (int k = 0; k < static_cast<int>(centres.size()); ++k) {
     const Centre& c = centres[k];
-    const int x0 = std::max(0, static_cast<int>(c.x) - radius), x1 = std::min(p.width, static_cast<int>(c.x) + radius + 1);
-    const int y0 = std::max(0, static_cast<int>(c.y) - radius), y1 = std::min(p.height, static_cast<int>(c.y) + radius + 1);
+    const int x0 = std::max(0, static_cast<int>(c.x) - radius),
+              x1 = std::min(p.width, static_cast<int>(c.x) + radius + 1);
+    const int y0 = std::max(0, static_cast<int>(c.y) - radius),
+              y1 = std::min(p.height, static_cast<int>(c.y) + radius + 1);
     // The depth weight carries the centre's validity, so the inner loop needs no branch for it.
     const float depth_w = c.z_weight * inv_depth;
     for (int y = y0; y < y1; ++y) {
@@ -150,8 +152,8 @@ void assignPixels(const Planes& p, const std::vector<Centre>& centres, float ste
         constexpr int kLanes = cv::v_float32::nlanes;
         float ramp[kLanes];
         for (int i = 0; i < kLanes; ++i) ramp[i] = static_cast<float>(i);
-        const cv::v_float32 v_cl = cv::vx_setall_f32(c.L), v_ca = cv::vx_setall_f32(c.A),
-                            v_cb = cv::vx_setall_f32(c.B), v_cz = cv::vx_setall_f32(c.z);
+        const cv::v_float32 v_cl = cv::vx_setall_f32(c.L), v_ca = cv::vx_setall_f32(c.A), v_cb = cv::vx_setall_f32(c.B),
+                            v_cz = cv::vx_setall_f32(c.z);
         const cv::v_float32 v_dy2 = cv::vx_setall_f32(dy2), v_ic = cv::vx_setall_f32(inv_colour),
                             v_is = cv::vx_setall_f32(inv_step), v_dw = cv::vx_setall_f32(depth_w),
                             v_lanes = cv::vx_setall_f32(static_cast<float>(kLanes));
@@ -175,7 +177,7 @@ void assignPixels(const Planes& p, const std::vector<Centre>& centres, float ste
         const float dl = L[x] - c.L, da = A[x] - c.A, db = B[x] - c.B;
         const float dx = x - c.x;
         const float d_colour = std::sqrt(dl * dl + da * da + db * db);  // Eq. 2
-        const float d_image = std::sqrt(dx * dx + dy2);                  // Eq. 3
+        const float d_image = std::sqrt(dx * dx + dy2);                 // Eq. 3
         // Eq. 4, implemented as |d_i - d_c|: the printed sqrt(d_i^2 + d_c^2) is not a distance (it is not 0
         // for equal depths and grows with the absolute depth, so it would pull every pixel towards the nearest
         // surface instead of separating surfaces at different depths).

@@ -3,7 +3,6 @@
 // with an added depth term so that superpixel borders follow geometric (depth) edges even where colour does not
 // change. Runs on a downscaled copy of the frame for speed; the label map is returned at full resolution.
 #include <opencv2/core.hpp>
-
 #include <vector>
 
 namespace amos::dynamic {
@@ -35,12 +34,12 @@ struct DepthSlicOptions {
 
 // One superpixel S_i = [x, y, L, A, B, d, C] (paper III-B): means over its pixels.
 struct Superpixel {
-  float x = 0, y = 0;     // centroid in full-resolution pixel coordinates
-  float L = 0, A = 0, B = 0;  // mean CIELAB colour (L in [0, 100])
-  float depth = 0;        // mean of the valid depths [m]; 0 when none of its pixels has depth
+  float x = 0, y = 0;              // centroid in full-resolution pixel coordinates
+  float L = 0, A = 0, B = 0;       // mean CIELAB colour (L in [0, 100])
+  float depth = 0;                 // mean of the valid depths [m]; 0 when none of its pixels has depth
   float valid_depth_fraction = 0;  // share of its pixels with valid depth
-  int pixel_count = 0;    // at working resolution
-  int cluster = -1;       // geometric cluster label C_i, set by k-means (geometric_clustering.h)
+  int pixel_count = 0;             // at working resolution
+  int cluster = -1;                // geometric cluster label C_i, set by k-means (geometric_clustering.h)
 };
 
 struct SuperpixelSegmentation {

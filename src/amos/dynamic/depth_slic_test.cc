@@ -1,8 +1,8 @@
 #include "amos/dynamic/depth_slic.h"
 
 #include <gtest/gtest.h>
-#include <opencv2/imgproc.hpp>
 
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "amos/core/error.h"
@@ -133,7 +133,7 @@ TEST(SuperpixelMetrics, RecallAndLeakageOnHandMadeLabels) {
   cv::Mat reference(20, 20, CV_32S, cv::Scalar(0));
   reference(cv::Rect(10, 0, 10, 20)).setTo(1);  // vertical border between x = 9 and x = 10
   cv::Mat shifted(20, 20, CV_32S, cv::Scalar(0));
-  shifted(cv::Rect(12, 0, 8, 20)).setTo(1);       // border 2 px to the right
+  shifted(cv::Rect(12, 0, 8, 20)).setTo(1);  // border 2 px to the right
   const cv::Mat edges = labelBoundaries(reference);
   EXPECT_EQ(cv::countNonZero(edges), 20);
   EXPECT_DOUBLE_EQ(boundaryRecall(reference, edges, 0), 1.0);
@@ -143,7 +143,7 @@ TEST(SuperpixelMetrics, RecallAndLeakageOnHandMadeLabels) {
   EXPECT_DOUBLE_EQ(leakage(shifted, reference), 40.0 / 400.0);  // columns 10, 11 leak into superpixel 0
   cv::Mat depth(4, 4, CV_32F, cv::Scalar(1.f));
   depth.at<float>(1, 2) = 2.f;
-  depth.at<float>(3, 3) = 0.f;  // invalid: never an edge
+  depth.at<float>(3, 3) = 0.f;                             // invalid: never an edge
   EXPECT_EQ(cv::countNonZero(depthEdges(depth, 0.5)), 3);  // (1,1) right, (0,2) below, (1,2) itself
 }
 

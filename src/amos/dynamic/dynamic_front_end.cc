@@ -1,9 +1,8 @@
 #include "amos/dynamic/dynamic_front_end.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
@@ -48,8 +47,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
   const DynamicMode mode = options_.mode;
   const bool use_prior = (mode == DynamicMode::kPrior || mode == DynamicMode::kFull) && !in.prior_mask.empty();
-  const bool use_geometry =
-      (mode == DynamicMode::kGeometry || mode == DynamicMode::kFull) && !in.last_gray.empty();
+  const bool use_geometry = (mode == DynamicMode::kGeometry || mode == DynamicMode::kFull) && !in.last_gray.empty();
 
   // Prior regions: connected components of the (already dilated) segmentation mask.
   cv::Mat prior_components;
@@ -83,8 +81,8 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   diag.superpixels = static_cast<int>(segmentation.superpixels.size());
   diag.clusters = num_clusters;
   // Border blocks take no part in the decisions (III-C).
-  const std::vector<bool> border = borderSuperpixels(segmentation.labels, diag.superpixels,
-                                                     options_.boundary.border_margin_px);
+  const std::vector<bool> border =
+      borderSuperpixels(segmentation.labels, diag.superpixels, options_.boundary.border_margin_px);
   const cv::Mat decision_map = decisionClusterMap(out.cluster_map, segmentation.labels, border);
   lap("clusters");
 

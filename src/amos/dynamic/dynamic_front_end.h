@@ -9,7 +9,6 @@
 // one DynamicFrontEnd can be shared, tested and benchmarked frame pair by frame pair. process() is const and
 // thread-compatible (no mutable members).
 #include <opencv2/core.hpp>
-
 #include <optional>
 #include <string>
 #include <utility>
@@ -22,9 +21,9 @@
 namespace amos::dynamic {
 
 struct DynamicFrameInput {
-  cv::Mat gray;    // current frame, CV_8UC1
-  cv::Mat bgr;     // current frame, CV_8UC3 (superpixel colour)
-  cv::Mat depth;   // current frame, CV_32F metres, 0 = invalid (superpixel depth)
+  cv::Mat gray;        // current frame, CV_8UC1
+  cv::Mat bgr;         // current frame, CV_8UC3 (superpixel colour)
+  cv::Mat depth;       // current frame, CV_32F metres, 0 = invalid (superpixel depth)
   cv::Mat last_gray;   // last frame, CV_8UC1; empty on the first frame (then only the prior mask is used)
   cv::Mat last_depth;  // last frame, CV_32F metres (Eq. 6)
   core::SE3 T_cw_last = core::SE3::Identity();     // last frame's estimated pose
@@ -41,15 +40,15 @@ struct DynamicDiagnostics {
   int clusters = 0;
   int candidate_clusters = 0;
   int dynamic_clusters = 0;
-  int tracks = 0;              // last->current corner tracks
-  int tracks_with_depth = 0;   // of which lifted to 3D (Eq. 6) and reprojected
-  int dynamic_points = 0;      // tracks beyond the epipolar threshold
+  int tracks = 0;             // last->current corner tracks
+  int tracks_with_depth = 0;  // of which lifted to 3D (Eq. 6) and reprojected
+  int dynamic_points = 0;     // tracks beyond the epipolar threshold
   bool fundamental_ok = false;
-  int f_fit_points = 0;        // tracks the fit used (those outside candidate and prior regions, or all)
-  int f_ransac_inliers = 0;    // first (RANSAC) fit
-  int f_refit_points = 0;      // points kept for the second fit
-  int f_final_inliers = 0;     // inliers of the final F
-  int prior_regions = 0;       // connected components of the prior mask
+  int f_fit_points = 0;           // tracks the fit used (those outside candidate and prior regions, or all)
+  int f_ransac_inliers = 0;       // first (RANSAC) fit
+  int f_refit_points = 0;         // points kept for the second fit
+  int f_final_inliers = 0;        // inliers of the final F
+  int prior_regions = 0;          // connected components of the prior mask
   int dynamic_prior_regions = 0;  // of which kept in the mask
 };
 
@@ -58,12 +57,12 @@ struct DynamicFrameOutput {
   DynamicDiagnostics diagnostics;
   std::vector<std::pair<std::string, double>> timings_ms;  // stage name -> wall time, in execution order
   // Geometric detail for visualisation and tests (empty when the geometric stage did not run):
-  cv::Mat cluster_map;                      // CV_32S geometric cluster of every pixel
-  std::vector<ClusterScore> cluster_scores; // Eq. 5 per cluster
-  std::vector<bool> dynamic_cluster;        // per cluster
-  std::vector<PointTrack> tracks;           // the tracks used
+  cv::Mat cluster_map;                                       // CV_32S geometric cluster of every pixel
+  std::vector<ClusterScore> cluster_scores;                  // Eq. 5 per cluster
+  std::vector<bool> dynamic_cluster;                         // per cluster
+  std::vector<PointTrack> tracks;                            // the tracks used
   std::vector<std::optional<double>> reprojection_error_px;  // per track (Eq. 5's ||e||), empty without depth
-  std::vector<double> epipolar_distance_px; // per track (infinity when there was no F)
+  std::vector<double> epipolar_distance_px;                  // per track (infinity when there was no F)
 };
 
 class DynamicFrontEnd {

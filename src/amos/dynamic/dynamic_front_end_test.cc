@@ -1,11 +1,11 @@
 #include "amos/dynamic/dynamic_front_end.h"
 
 #include <gtest/gtest.h>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <fstream>
 #include <limits>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "amos/core/error.h"
@@ -37,9 +37,10 @@ float bilinear(const cv::Mat& t, double x, double y) {
 }
 
 // A ray-cast room: a wall at Z = 3 m, a floor at Y = 0.7 m, a static crate face at Z = 2 m (X in [0.3, 0.8],
-// Y in [-0.5, 0.2]), a static pillar at Z = 1 m (X in [0.25, 0.4]) and a moving box face at Z = 1.5 m (X in [-0.4, 0], Y in [-0.2, 0.3], plus box_offset), all
-// textured, seen by a camera at T_cw. The static part spans three planes: with a single static plane any
-// fundamental matrix through its homography would also fit the box, and the epipolar test could not work.
+// Y in [-0.5, 0.2]), a static pillar at Z = 1 m (X in [0.25, 0.4]) and a moving box face at Z = 1.5 m (X in [-0.4, 0],
+// Y in [-0.2, 0.3], plus box_offset), all textured, seen by a camera at T_cw. The static part spans three planes: with
+// a single static plane any fundamental matrix through its homography would also fit the box, and the epipolar test
+// could not work.
 struct Rendered {
   cv::Mat gray, bgr, depth, box_mask;
 };
@@ -274,8 +275,8 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
   options.mode = DynamicMode::kGeometry;
   const std::vector<PointTrack> tracks = trackCorners(in.last_gray, in.gray, options.tracking);
   const auto points_w = backProjectTracks(tracks, in.last_depth, in.T_cw_last, cam, options.reprojection);
-  const InitialPoseResult pose = estimateInitialPose({}, lastFrameCorrespondences(tracks, points_w, cam),
-                                                     in.T_cw_last, std::nullopt, cam, options.initial_pose);
+  const InitialPoseResult pose = estimateInitialPose({}, lastFrameCorrespondences(tracks, points_w, cam), in.T_cw_last,
+                                                     std::nullopt, cam, options.initial_pose);
   ASSERT_TRUE(pose.ok);
   EXPECT_EQ(pose.model, PoseModel::kLastFrame);
   EXPECT_LT(core::translationNorm(pose.T_cw), 0.1);  // 33 ms of hand-held motion

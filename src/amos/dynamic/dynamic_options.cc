@@ -16,10 +16,14 @@ DynamicMode parseDynamicMode(const std::string& text) {
 
 std::string toString(DynamicMode mode) {
   switch (mode) {
-    case DynamicMode::kNone: return "none";
-    case DynamicMode::kPrior: return "prior";
-    case DynamicMode::kGeometry: return "geometry";
-    case DynamicMode::kFull: return "full";
+    case DynamicMode::kNone:
+      return "none";
+    case DynamicMode::kPrior:
+      return "prior";
+    case DynamicMode::kGeometry:
+      return "geometry";
+    case DynamicMode::kFull:
+      return "full";
   }
   return "unknown";
 }

@@ -29,13 +29,13 @@ struct DynamicOptions {
   // region stays in the mask only if it holds >= Dynamic.Epipolar.minDynamicPoints epipolar violators, which
   // keeps the features of a sitting person but would also keep those of a person moving along epipolar lines.
   bool judge_prior_regions = false;
-  DepthSlicOptions superpixel;      // Dynamic.Superpixel.*
-  ClusteringOptions cluster;        // Dynamic.Cluster.*
-  CornerTrackingOptions tracking;   // Dynamic.Corners.*, Dynamic.LK.*
-  ReprojectionOptions reprojection; // Dynamic.Reprojection.*
-  EpipolarOptions epipolar;         // Dynamic.Epipolar.*
-  BoundaryOptions boundary;         // Dynamic.Boundary.*
-  InitialPoseOptions initial_pose;  // Dynamic.InitialPose.* (used by tracking, III-D)
+  DepthSlicOptions superpixel;       // Dynamic.Superpixel.*
+  ClusteringOptions cluster;         // Dynamic.Cluster.*
+  CornerTrackingOptions tracking;    // Dynamic.Corners.*, Dynamic.LK.*
+  ReprojectionOptions reprojection;  // Dynamic.Reprojection.*
+  EpipolarOptions epipolar;          // Dynamic.Epipolar.*
+  BoundaryOptions boundary;          // Dynamic.Boundary.*
+  InitialPoseOptions initial_pose;   // Dynamic.InitialPose.* (used by tracking, III-D)
   void check() const;
 };
 

@@ -1,10 +1,10 @@
 #include "amos/dynamic/epipolar_check.h"
 
 #include <fmt/format.h>
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 
 #include <cmath>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
 
 #include "amos/core/error.h"
 

@@ -2,9 +2,8 @@
 // Stage 2 of the geometric module (paper III-C, Eq. 7-8, after DS-SLAM): a fundamental matrix from the
 // last->current correspondences, fitted by RANSAC and refitted without the points far from their epipolar
 // lines; a correspondence whose current pixel lies farther than a threshold from its epipolar line moved.
-#include <opencv2/core.hpp>
-
 #include <Eigen/Core>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "amos/core/pose.h"
@@ -37,9 +36,9 @@ struct EpipolarOptions {
 struct FundamentalFit {
   bool ok = false;
   Eigen::Matrix3d F = Eigen::Matrix3d::Zero();  // maps last-frame pixels to current-frame epipolar lines
-  int ransac_inliers = 0;   // points within ransac_threshold_px of the first (RANSAC) fit
-  int refit_points = 0;     // points kept for the second fit (within dynamic_threshold_px of the first)
-  int final_inliers = 0;    // points within ransac_threshold_px of the final F
+  int ransac_inliers = 0;                       // points within ransac_threshold_px of the first (RANSAC) fit
+  int refit_points = 0;   // points kept for the second fit (within dynamic_threshold_px of the first)
+  int final_inliers = 0;  // points within ransac_threshold_px of the final F
 };
 
 // Fits F on undistorted pixel correspondences (at least 15 for the fit to count as ok). Deterministic for a seed.

@@ -1,8 +1,8 @@
 #include "amos/dynamic/epipolar_check.h"
 
 #include <gtest/gtest.h>
-#include <opencv2/calib3d.hpp>
 
+#include <opencv2/calib3d.hpp>
 #include <random>
 
 #include "amos/core/error.h"

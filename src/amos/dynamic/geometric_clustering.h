@@ -3,7 +3,6 @@
 // cluster is a compact piece of the scene (neighbouring superpixels at similar depth) whose superpixels are
 // assumed to share one motion. Deterministic: k-means++ seeding from a fixed seed, then Lloyd iterations.
 #include <opencv2/core.hpp>
-
 #include <vector>
 
 #include "amos/dynamic/depth_slic.h"

@@ -18,8 +18,8 @@ struct Blob {
 // Five tight groups; groups 0 and 1 overlap in the image and differ only in depth, so only the depth dimension
 // can separate them.
 std::vector<ClusterPoint> makeBlobs(std::vector<int>& truth) {
-  const std::vector<Blob> blobs = {{200, 200, 1.0f}, {205, 195, 3.0f}, {500, 100, 2.0f}, {100, 400, 2.5f},
-                                   {520, 400, 1.5f}};
+  const std::vector<Blob> blobs = {
+      {200, 200, 1.0f}, {205, 195, 3.0f}, {500, 100, 2.0f}, {100, 400, 2.5f}, {520, 400, 1.5f}};
   std::mt19937 rng(3);
   std::normal_distribution<float> pixel(0.f, 15.f), metre(0.f, 0.05f);
   std::vector<ClusterPoint> points;

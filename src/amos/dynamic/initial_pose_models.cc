@@ -21,9 +21,12 @@ void PoseCorrespondences::append(const PoseCorrespondences& other) {
 
 std::string toString(PoseModel model) {
   switch (model) {
-    case PoseModel::kReferenceKeyframe: return "reference_keyframe";
-    case PoseModel::kLastFrame: return "last_frame";
-    case PoseModel::kConstantVelocity: return "constant_velocity";
+    case PoseModel::kReferenceKeyframe:
+      return "reference_keyframe";
+    case PoseModel::kLastFrame:
+      return "last_frame";
+    case PoseModel::kConstantVelocity:
+      return "constant_velocity";
   }
   return "unknown";
 }
@@ -31,8 +34,7 @@ std::string toString(PoseModel model) {
 PoseCorrespondences keyframeCorrespondences(const FramePairPyramids& keyframe_to_current,
                                             const std::vector<cv::Point2f>& keyframe_pixels,
                                             const std::vector<Eigen::Vector3d>& keyframe_points_w,
-                                            const core::PinholeCamera& camera,
-                                            const CornerTrackingOptions& tracking) {
+                                            const core::PinholeCamera& camera, const CornerTrackingOptions& tracking) {
   core::require(keyframe_pixels.size() == keyframe_points_w.size(),
                 "keyframeCorrespondences: pixels and world points differ in number");
   const std::vector<PointTrack> tracks = trackPoints(keyframe_to_current, keyframe_pixels, tracking);
@@ -71,8 +73,8 @@ core::SE3 velocityFrom(const core::SE3& T_cw_last, const core::SE3& T_cw_before_
 
 core::SE3 constantVelocityPose(const core::SE3& T_cw_last, const core::SE3& velocity) { return velocity * T_cw_last; }
 
-int countInliers(const core::SE3& T_cw, const PoseCorrespondences& correspondences,
-                 const core::PinholeCamera& camera, double threshold_px) {
+int countInliers(const core::SE3& T_cw, const PoseCorrespondences& correspondences, const core::PinholeCamera& camera,
+                 double threshold_px) {
   const double t2 = threshold_px * threshold_px;
   int count = 0;
   for (std::size_t i = 0; i < correspondences.size(); ++i) {

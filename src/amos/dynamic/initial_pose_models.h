@@ -8,9 +8,8 @@
 //      then EPnP + RANSAC. Robust when the reference keyframe is old or the motion fast.
 //   3. Constant velocity: the last inter-frame motion applied once more. Useful when PnP drifts.
 // Everything here is a pure function of its inputs; the caller keeps the keyframe, last frame and velocity.
-#include <opencv2/core.hpp>
-
 #include <Eigen/Core>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,14 +44,14 @@ std::string toString(PoseModel model);
 
 struct PoseCandidate {
   PoseModel model = PoseModel::kConstantVelocity;
-  bool valid = false;         // false when the model could not produce a pose (too few correspondences, PnP failed)
+  bool valid = false;  // false when the model could not produce a pose (too few correspondences, PnP failed)
   core::SE3 T_cw = core::SE3::Identity();
-  int own_inliers = 0;        // PnP inliers over the model's own correspondences (0 for constant velocity)
-  int common_inliers = 0;     // inliers over the common set (what the selection compares)
+  int own_inliers = 0;     // PnP inliers over the model's own correspondences (0 for constant velocity)
+  int common_inliers = 0;  // inliers over the common set (what the selection compares)
 };
 
 struct InitialPoseResult {
-  bool ok = false;                       // at least one valid candidate
+  bool ok = false;  // at least one valid candidate
   core::SE3 T_cw = core::SE3::Identity();
   PoseModel model = PoseModel::kConstantVelocity;
   std::vector<PoseCandidate> candidates;  // in model order, for diagnostics
@@ -64,8 +63,7 @@ struct InitialPoseResult {
 PoseCorrespondences keyframeCorrespondences(const FramePairPyramids& keyframe_to_current,
                                             const std::vector<cv::Point2f>& keyframe_pixels,
                                             const std::vector<Eigen::Vector3d>& keyframe_points_w,
-                                            const core::PinholeCamera& camera,
-                                            const CornerTrackingOptions& tracking);
+                                            const core::PinholeCamera& camera, const CornerTrackingOptions& tracking);
 
 // Model 2 correspondences: last->current tracks with their world points from backProjectTracks (Eq. 6).
 PoseCorrespondences lastFrameCorrespondences(const std::vector<PointTrack>& tracks,
@@ -78,8 +76,8 @@ core::SE3 velocityFrom(const core::SE3& T_cw_last, const core::SE3& T_cw_before_
 core::SE3 constantVelocityPose(const core::SE3& T_cw_last, const core::SE3& velocity);
 
 // Correspondences whose reprojection error under T_cw is below threshold_px (points behind the camera never).
-int countInliers(const core::SE3& T_cw, const PoseCorrespondences& correspondences,
-                 const core::PinholeCamera& camera, double threshold_px);
+int countInliers(const core::SE3& T_cw, const PoseCorrespondences& correspondences, const core::PinholeCamera& camera,
+                 double threshold_px);
 
 // EPnP RANSAC on one model's correspondences.
 PoseCandidate poseFromCorrespondences(PoseModel model, const PoseCorrespondences& correspondences,

@@ -1,8 +1,8 @@
 #include "amos/dynamic/initial_pose_models.h"
 
 #include <gtest/gtest.h>
-#include <opencv2/imgproc.hpp>
 
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 namespace amos::dynamic {
@@ -49,8 +49,8 @@ TEST(InitialPoseModels, SelectionPicksTheUncorruptedModel) {
   const core::PinholeCamera cam = testCamera();
   const core::SE3 truth = pose(0.1, 0.0, 0.05, 0.02, -0.03, 0.01);
   const PoseCorrespondences common = observe(truth, cam, 200, 1);
-  const std::vector<core::SE3> corrupted = {pose(0, 0, 0, 0, 0.035, 0) * truth,   // 2 deg off
-                                            pose(0.1, 0, 0, 0, 0, 0) * truth};     // 10 cm off
+  const std::vector<core::SE3> corrupted = {pose(0, 0, 0, 0, 0.035, 0) * truth,  // 2 deg off
+                                            pose(0.1, 0, 0, 0, 0, 0) * truth};   // 10 cm off
   for (int correct = 0; correct < 3; ++correct) {
     std::vector<PoseCandidate> candidates(3);
     int next_bad = 0;
@@ -90,7 +90,7 @@ TEST(InitialPoseModels, EstimateRunsPnpPerModelAndKeepsTheBest) {
   EXPECT_LT(poseError(r.T_cw, truth), 0.01);
   EXPECT_EQ(r.common_size, 230);
   EXPECT_EQ(r.candidates.size(), 3u);
-  EXPECT_TRUE(r.candidates[0].valid);  // PnP succeeds on its own (wrong) data...
+  EXPECT_TRUE(r.candidates[0].valid);                                         // PnP succeeds on its own (wrong) data...
   EXPECT_LT(r.candidates[0].common_inliers, r.candidates[1].common_inliers);  // ...but loses on the common set
 
   r = estimateInitialPose(good, bad, T_cw_last, wrong_velocity, cam, InitialPoseOptions{});

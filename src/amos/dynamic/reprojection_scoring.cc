@@ -39,8 +39,7 @@ constexpr int kEdgeRadius = 2;
 }  // namespace
 
 std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<PointTrack>& tracks,
-                                                              const cv::Mat& last_depth,
-                                                              const core::SE3& T_cw_last,
+                                                              const cv::Mat& last_depth, const core::SE3& T_cw_last,
                                                               const core::PinholeCamera& camera,
                                                               const ReprojectionOptions& options) {
   options.check();
@@ -54,8 +53,7 @@ std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     // Depth is registered to the raw image: read it at the raw pixel.
     const int u = static_cast<int>(std::lround(raw[i].x)), v = static_cast<int>(std::lround(raw[i].y));
-    if (u < kEdgeRadius || v < kEdgeRadius || u >= last_depth.cols - kEdgeRadius ||
-        v >= last_depth.rows - kEdgeRadius)
+    if (u < kEdgeRadius || v < kEdgeRadius || u >= last_depth.cols - kEdgeRadius || v >= last_depth.rows - kEdgeRadius)
       continue;
     const float z = last_depth.at<float>(v, u);
     if (!(z > 0.f) || z > options.max_depth_m) continue;

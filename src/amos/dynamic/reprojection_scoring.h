@@ -3,9 +3,8 @@
 // frame becomes a temporary map point P = T_wl * backproject(u_last, Z) (Eq. 6); it is reprojected into the
 // current frame with the current frame's initial pose; each geometric cluster scores the Cauchy-robust mean
 // of its points' squared reprojection errors (Eq. 5). Clusters scoring above a threshold are candidates.
-#include <opencv2/core.hpp>
-
 #include <Eigen/Core>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
 
@@ -52,8 +51,7 @@ double cauchyEquivalentError(double mean_rho, double scale);
 // edge (see ReprojectionOptions).
 // Pixels are raw (distorted) image coordinates, undistorted with the camera before back-projection.
 std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<PointTrack>& tracks,
-                                                              const cv::Mat& last_depth,
-                                                              const core::SE3& T_cw_last,
+                                                              const cv::Mat& last_depth, const core::SE3& T_cw_last,
                                                               const core::PinholeCamera& camera,
                                                               const ReprojectionOptions& options);
 
@@ -61,14 +59,13 @@ std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<
 // the point has none or lies behind the camera.
 std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTrack>& tracks,
                                                       const std::vector<std::optional<Eigen::Vector3d>>& points_w,
-                                                      const core::SE3& T_cw_current,
-                                                      const core::PinholeCamera& camera);
+                                                      const core::SE3& T_cw_current, const core::PinholeCamera& camera);
 
 struct ClusterScore {
-  int points = 0;           // errors that entered the mean
-  double mean_rho = 0;      // Eq. 5 (0 when points < min_points_per_cluster)
-  double equivalent_px = 0; // cauchyEquivalentError(mean_rho)
-  bool candidate = false;   // potential motion region
+  int points = 0;            // errors that entered the mean
+  double mean_rho = 0;       // Eq. 5 (0 when points < min_points_per_cluster)
+  double equivalent_px = 0;  // cauchyEquivalentError(mean_rho)
+  bool candidate = false;    // potential motion region
 };
 
 // Eq. 5 per cluster. cluster_of_point[i] in [0, num_clusters) or -1 (point left out, e.g. in a border block).

@@ -19,8 +19,7 @@ TEST(CauchyRho, IsQuadraticForSmallErrorsAndLogarithmicForLargeOnes) {
   EXPECT_DOUBLE_EQ(cauchyRho(0.0, 2.0), 0.0);
   EXPECT_NEAR(cauchyRho(0.01, 1.0), 0.01, 1e-4);  // rho(s) ~ s for s << c^2
   EXPECT_NEAR(cauchyRho(1e4, 1.0), std::log(1e4 + 1), 1e-9);
-  for (double e : {0.0, 0.5, 3.0, 40.0})
-    EXPECT_NEAR(cauchyEquivalentError(cauchyRho(e * e, 1.5), 1.5), e, 1e-9);
+  for (double e : {0.0, 0.5, 3.0, 40.0}) EXPECT_NEAR(cauchyEquivalentError(cauchyRho(e * e, 1.5), 1.5), e, 1e-9);
 }
 
 TEST(ScoreClusters, CauchyMeanIgnoresAnOutlier) {

@@ -1,8 +1,7 @@
 #include "amos/dynamic/superpixel_metrics.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <map>
+#include <opencv2/imgproc.hpp>
 #include <vector>
 
 #include "amos/core/error.h"
@@ -58,9 +57,9 @@ double boundaryRecall(const cv::Mat& labels, const cv::Mat& reference_edges, int
 }
 
 double leakage(const cv::Mat& labels, const cv::Mat& reference_labels) {
-  core::require(labels.type() == CV_32S && reference_labels.type() == CV_32S &&
-                    labels.size() == reference_labels.size(),
-                "leakage: both label maps must be CV_32S of the same size");
+  core::require(
+      labels.type() == CV_32S && reference_labels.type() == CV_32S && labels.size() == reference_labels.size(),
+      "leakage: both label maps must be CV_32S of the same size");
   std::map<int, std::map<int, long>> overlap;  // superpixel -> reference segment -> pixel count
   for (int y = 0; y < labels.rows; ++y)
     for (int x = 0; x < labels.cols; ++x) ++overlap[labels.at<int>(y, x)][reference_labels.at<int>(y, x)];
