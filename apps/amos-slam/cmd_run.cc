@@ -19,7 +19,7 @@ namespace amos::app {
 namespace {
 
 struct RunArgs {
-  std::string sequence, config, output, mode = "none", models;
+  std::string sequence, config, output, mode = "full", models;
   bool deterministic = false;
   std::size_t max_frames = 0;
 };
@@ -49,12 +49,6 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
 }
 
 void runSlam(const RunArgs& args, int& exit_code) {
-  if (args.mode != "none") {
-    std::cerr << "amos-slam run: --mode " << args.mode
-              << " is not available yet in this build (the dynamic front end is not wired); use --mode none\n";
-    exit_code = 2;
-    return;
-  }
   const config::Settings settings = config::loadSettings(args.config);
   const bool tty = isatty(fileno(stderr)) != 0;
   report::SequenceRunOptions options;
@@ -63,6 +57,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   options.mode = args.mode;
   options.deterministic = args.deterministic;
   options.max_frames = args.max_frames;
+  options.models_dir = args.models;
   options.on_frame = [tty](const report::SequenceProgress& p) {
     const auto& t = p.output->track;
     const std::string line =
@@ -92,7 +87,7 @@ void addRunCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--config", args->config, "Settings file (configs/*.yaml)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--output", args->output, "Output folder (created if needed)")->required();
-  cmd->add_option("--mode", args->mode, "Dynamic front end: none | prior | geometry | full")
+  cmd->add_option("--mode", args->mode, "Dynamic front end: none (plain SLAM) | prior (person masks) | geometry (superpixel clusters + epipolar) | full (both, default)")
       ->check(CLI::IsMember({"none", "prior", "geometry", "full"}));
   cmd->add_option("--models", args->models, "Folder with the segmentation models");
   cmd->add_flag("--deterministic", args->deterministic,

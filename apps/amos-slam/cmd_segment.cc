@@ -109,7 +109,7 @@ int runSegment(SegmentArgs args) {
                                        [](const std::string& c) { return c != "person"; });
   dynamic::ModelSources sources;
   sources.cli_dir = args.models;
-  if (!args.settings.empty()) sources.settings_dir = config::loadSettings(args.settings).models_dir;
+  if (!args.settings.empty()) sources.settings_dir = config::loadSettings(args.settings).segmentation.models_dir;
   sources.environment = dynamic::processEnvironment();
 
   // Models are loaded and checked before any frame is read.

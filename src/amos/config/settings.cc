@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "amos/config/dynamic_section.h"
 #include "amos/config/yaml_reader.h"
 #include "amos/core/error.h"
 
@@ -48,7 +49,6 @@ void readProjectKeys(YamlReader& in, Settings& s) {
   else if (gt == "bonn") s.groundtruth_format = GroundTruthFormat::kBonn;
   else throw core::Error(fmt::format("{}: Dataset.groundtruth must be 'tum' or 'bonn', got '{}'",
                                      in.where("Dataset.groundtruth"), gt));
-  in.read("Segmentation.models_dir", s.models_dir);
 }
 
 // Option structs name the key they reject; add the file and line of that key to the message.
@@ -70,6 +70,8 @@ Settings parse(YamlReader in) {
   readCamera(in, s);
   readOrb(in, s.orb);
   readProjectKeys(in, s);
+  readDynamicSection(in, s.dynamic);
+  readSegmentationSection(in, s.segmentation);
   checkWithLocation(s, in);
   for (const auto& key : in.unreadKeys()) spdlog::warn("{}: unknown key '{}' ignored", in.where(key), key);
   return s;
@@ -84,6 +86,8 @@ void Settings::check() const {
   core::require(th_depth > 0, fmt::format("ThDepth must be positive, got {}", th_depth));
   core::require(depth_factor > 0, fmt::format("DepthMapFactor must be positive, got {}", depth_factor));
   orb.check();
+  dynamic.check();
+  segmentation.check();
 }
 
 io::ReaderOptions Settings::readerOptions() const {

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "amos/core/camera.h"
+#include "amos/dynamic/dynamic_options.h"
+#include "amos/dynamic/segmenter_options.h"
 #include "amos/feature/orb_extractor.h"
 #include "amos/io/dataset.h"
 
@@ -26,7 +28,9 @@ struct Settings {
   feature::OrbOptions orb;        // ORBextractor.*
 
   GroundTruthFormat groundtruth_format = GroundTruthFormat::kTum;  // Dataset.groundtruth: tum | bonn
-  std::string models_dir;                                          // Segmentation.models_dir
+
+  dynamic::DynamicOptions dynamic;         // Dynamic.* (the paper's two-stage front end)
+  dynamic::SegmenterOptions segmentation;  // Segmentation.* (prior dynamic objects)
 
   // Reader options that follow from these settings (image size, depth factor).
   io::ReaderOptions readerOptions() const;

@@ -31,11 +31,20 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
                   {"local_ba_runs", s.mapping.ba_runs},
                   {"local_ba_aborted", s.mapping.ba_aborted}};
   nlohmann::json stages = nlohmann::json::object();
-  for (const auto& [name, sum] : times.summary()) {
-    stages[name] = {{"count", sum.count}, {"median_ms", sum.median_ms}, {"p95_ms", sum.p95_ms},
-                    {"mean_ms", sum.mean_ms}, {"max_ms", sum.max_ms}};
-  }
+  auto addStages = [&stages](const core::StageTimes& source) {
+    for (const auto& [name, sum] : source.summary()) {
+      stages[name] = {{"count", sum.count}, {"median_ms", sum.median_ms}, {"p95_ms", sum.p95_ms},
+                      {"mean_ms", sum.mean_ms}, {"max_ms", sum.max_ms}};
+    }
+  };
+  addStages(times);
+  if (info.front_end_times) addStages(*info.front_end_times);
   j["stages"] = stages;
+  if (!info.removed_fractions.empty()) {
+    j["removed_keypoint_fraction"] = {{"median", core::percentile(info.removed_fractions, 0.5)},
+                                      {"p95", core::percentile(info.removed_fractions, 0.95)},
+                                      {"per_frame", info.removed_fractions}};
+  }
   j["wall_time_s"] = info.wall_time_s;
   j["fps"] = info.wall_time_s > 0 ? static_cast<double>(s.frames) / info.wall_time_s : 0.0;
   if (info.evaluation) j["evaluation"] = eval::toJson(*info.evaluation);

@@ -21,6 +21,10 @@ struct RunInfo {
   bool deterministic = false;
   double wall_time_s = 0;
   std::optional<eval::EvaluationResult> evaluation;
+  // The dynamic front end's per-stage times (merged into "stages") and, per frame, the fraction of extracted
+  // keypoints its mask removed. Null / empty in mode none.
+  const core::StageTimes* front_end_times = nullptr;
+  std::vector<double> removed_fractions;
 };
 
 nlohmann::json statsJson(const system::SlamStats& stats, const core::StageTimes& times, const RunInfo& info);

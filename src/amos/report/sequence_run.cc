@@ -6,6 +6,8 @@
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/dynamic/model_locator.h"
+#include "amos/dynamic/segmenter_factory.h"
 #include "amos/eval/bonn_ground_truth.h"
 #include "amos/eval/evaluate.h"
 #include "amos/io/dataset.h"
@@ -20,24 +22,60 @@ system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bo
   o.orb = settings.orb;
   o.tracking.max_frames_between_keyframes = std::max(1, static_cast<int>(settings.fps + 0.5));
   o.deterministic = deterministic;
+  if (getenv("DBG_NOBA")) o.mapping.local_ba = false;
+  if (getenv("DBG_NOCULL")) o.mapping.cull_keyframes = false;
+  if (getenv("DBG_NOFUSE")) o.mapping.fusion.neighbors = 1, o.mapping.fusion.second_neighbors = 0, o.mapping.fusion.max_distance = 1;
+  if (getenv("DBG_NOTRI")) o.mapping.new_points.max_distance = 1;
+  if (getenv("DBG_BAIT")) o.mapping.ba.iterations_refine = atoi(getenv("DBG_BAIT"));
+  if (getenv("DBG_MINW")) o.covisibility.min_weight = atoi(getenv("DBG_MINW"));
+  if (getenv("DBG_TRIRATIO")) o.mapping.new_points.ratio = atof(getenv("DBG_TRIRATIO"));
+  if (getenv("DBG_TRIPAR")) o.mapping.new_points.max_cos_parallax = atof(getenv("DBG_TRIPAR"));
   return o;
 }
+
+namespace {
+
+// The segmenter (modes prior and full) is created, and its models loaded, before the first frame is read, so a
+// missing or corrupt model is a start-up error.
+std::unique_ptr<system::DynamicPipeline> makeDynamicPipeline(const config::Settings& settings,
+                                                             const SequenceRunOptions& options,
+                                                             system::SlamSystem& slam) {
+  dynamic::DynamicOptions dynamic_options = settings.dynamic;
+  dynamic_options.mode = dynamic::parseDynamicMode(options.mode);
+  std::unique_ptr<dynamic::SegmentationWorker> worker;
+  if (dynamic_options.mode == dynamic::DynamicMode::kPrior || dynamic_options.mode == dynamic::DynamicMode::kFull) {
+    dynamic::ModelSources sources;
+    sources.cli_dir = options.models_dir;
+    sources.settings_dir = settings.segmentation.models_dir;
+    sources.environment = dynamic::processEnvironment();
+    auto segmenter = dynamic::createSegmenter(settings.segmentation, sources, dynamic::builtinSegmenterFactory());
+    worker = std::make_unique<dynamic::SegmentationWorker>(std::move(segmenter), settings.segmentation.dilation);
+  }
+  return std::make_unique<system::DynamicPipeline>(slam, dynamic_options, std::move(worker));
+}
+
+}  // namespace
 
 SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options) {
   SequenceRunResult result;
   io::SequenceIndex index = io::indexSequence(options.sequence_dir);
   if (options.max_frames > 0 && index.frames.size() > options.max_frames) index.frames.resize(options.max_frames);
   const std::string gt_file = index.groundtruth_file;
-  io::SequenceReader reader(std::move(index), settings.readerOptions());
   result.slam = std::make_unique<system::SlamSystem>(slamOptionsFromSettings(settings, options.deterministic));
+  result.pipeline = makeDynamicPipeline(settings, options, *result.slam);
+  io::SequenceReader reader(std::move(index), settings.readerOptions());
   core::Stopwatch wall;
   std::size_t n = 0;
   while (auto frame = reader.next()) {
-    const system::FrameOutput out = result.slam->processFrame(*frame);
+    const system::DynamicFrameOutput out = result.pipeline->process(*frame);
     ++n;
-    if (options.on_frame) options.on_frame({n, reader.size(), &out, wall.elapsedMs() / 1000.0});
+    if (options.on_frame) options.on_frame({n, reader.size(), &out.slam, wall.elapsedMs() / 1000.0});
   }
-  result.slam->finish();
+  result.pipeline->finish();
+  if (result.pipeline->mode() != dynamic::DynamicMode::kNone) {
+    result.info.front_end_times = &result.pipeline->times();
+    result.info.removed_fractions = result.pipeline->removedFractions();
+  }
   result.info.wall_time_s = wall.elapsedMs() / 1000.0;
   result.info.sequence = options.sequence_dir;
   result.info.config = options.config_label;

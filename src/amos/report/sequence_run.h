@@ -11,6 +11,7 @@
 #include "amos/config/settings.h"
 #include "amos/io/trajectory.h"
 #include "amos/report/run_report.h"
+#include "amos/system/dynamic_pipeline.h"
 #include "amos/system/slam_system.h"
 
 namespace amos::report {
@@ -27,7 +28,8 @@ struct SequenceProgress {
 struct SequenceRunOptions {
   std::string sequence_dir;
   std::string config_label;    // recorded in stats.json
-  std::string mode = "none";   // recorded in stats.json
+  std::string mode = "none";   // dynamic front end: none | prior | geometry | full (the CLI defaults to full)
+  std::string models_dir;      // --models: segmentation model folder (see dynamic/model_locator.h)
   bool deterministic = false;
   std::size_t max_frames = 0;  // 0 = all
   std::function<void(const SequenceProgress&)> on_frame;  // called after every frame (progress display)
@@ -35,6 +37,7 @@ struct SequenceRunOptions {
 
 struct SequenceRunResult {
   std::unique_ptr<system::SlamSystem> slam;  // finished (mapping stopped)
+  std::unique_ptr<system::DynamicPipeline> pipeline;  // the front end around `slam` (declared after it: dies first)
   RunInfo info;                              // wall time, evaluation when there is ground truth
   std::vector<io::StampedPose> trajectory;
 };

@@ -1,0 +1,165 @@
+#include "amos/system/dynamic_pipeline.h"
+
+#include <opencv2/calib3d.hpp>
+
+#include <utility>
+
+#include "amos/core/error.h"
+#include "amos/dynamic/initial_pose_models.h"
+#include "amos/dynamic/reprojection_scoring.h"
+
+namespace amos::system {
+
+namespace {
+
+// Keyframe images kept for the reference-keyframe model: the reference keyframe is nearly always among the most
+// recent ones (it is the keyframe sharing most points with the current frame).
+constexpr std::size_t kKeyFrameImages = 16;
+
+// Undistorted keyframe keypoints back to raw pixels, where LK on the raw keyframe image needs them.
+std::vector<cv::Point2f> distortPixels(const std::vector<cv::Point2f>& undistorted, const core::PinholeCamera& camera) {
+  if (!camera.intrinsics().hasDistortion() || undistorted.empty()) return undistorted;
+  std::vector<cv::Point3f> rays;
+  rays.reserve(undistorted.size());
+  for (const auto& p : undistorted) {
+    rays.emplace_back(static_cast<float>((p.x - camera.cx()) / camera.fx()),
+                      static_cast<float>((p.y - camera.cy()) / camera.fy()), 1.0f);
+  }
+  std::vector<cv::Point2f> raw;
+  cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.distortion(), raw);
+  return raw;
+}
+
+}  // namespace
+
+DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions& options,
+                                 std::unique_ptr<dynamic::SegmentationWorker> segmentation)
+    : slam_(slam),
+      options_(options),
+      front_end_(slam.sensor()->camera(), options),
+      segmentation_(std::move(segmentation)) {
+  options_.check();
+  core::require(!usesSegmentation() || segmentation_ != nullptr,
+                "mode " + dynamic::toString(options_.mode) + " needs the person segmenter, but none was created");
+}
+
+DynamicPipeline::~DynamicPipeline() {
+  if (segmentation_) segmentation_->close();
+}
+
+bool DynamicPipeline::usesSegmentation() const {
+  return options_.mode == dynamic::DynamicMode::kPrior || options_.mode == dynamic::DynamicMode::kFull;
+}
+
+bool DynamicPipeline::usesGeometry() const {
+  return options_.mode == dynamic::DynamicMode::kGeometry || options_.mode == dynamic::DynamicMode::kFull;
+}
+
+void DynamicPipeline::rememberKeyFrameImage(const cv::Mat& gray) {
+  keyframe_images_.emplace_back(slam_.tracker().referenceKeyFrameView().id, gray);
+  if (keyframe_images_.size() > kKeyFrameImages) keyframe_images_.pop_front();
+}
+
+std::optional<core::SE3> DynamicPipeline::initialPose(const cv::Mat& gray,
+                                                      const std::vector<dynamic::PointTrack>& tracks,
+                                                      std::optional<dynamic::PoseModel>& model) {
+  const core::PinholeCamera& camera = slam_.sensor()->camera();
+  // Model 1: the reference keyframe's keypoints that carry map points, tracked by LK into this frame.
+  dynamic::PoseCorrespondences from_keyframe;
+  const tracking::ReferenceKeyFrameView view = slam_.tracker().referenceKeyFrameView();
+  for (const auto& [id, image] : keyframe_images_) {
+    if (id != view.id) continue;
+    std::vector<cv::Point2f> pixels;
+    std::vector<Eigen::Vector3d> points_w;
+    for (std::size_t i = 0; i < view.keypoints.size(); ++i) {
+      if (!view.has_point[i]) continue;
+      pixels.push_back(view.keypoints[i].pt);
+      points_w.push_back(view.points_w[i]);
+    }
+    const auto pyramids = dynamic::buildPyramids(image, gray, options_.tracking);
+    from_keyframe = dynamic::keyframeCorrespondences(pyramids, distortPixels(pixels, camera), points_w, camera,
+                                                     options_.tracking);
+    break;
+  }
+  // Model 2: last-frame corners lifted with the last depth and pose (Eq. 6).
+  const auto lifted = dynamic::backProjectTracks(tracks, last_->depth, last_->T_cw, camera, options_.reprojection);
+  const dynamic::PoseCorrespondences from_last = dynamic::lastFrameCorrespondences(tracks, lifted, camera);
+  // Model 3: constant velocity.
+  const dynamic::InitialPoseResult result = dynamic::estimateInitialPose(
+      from_keyframe, from_last, last_->T_cw, slam_.tracker().velocity(), camera, options_.initial_pose);
+  if (!result.ok) return std::nullopt;
+  model = result.model;
+  return result.T_cw;
+}
+
+DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame) {
+  DynamicFrameOutput out;
+  // 1. Segmentation starts in its own thread ...
+  std::future<dynamic::SegmentationResult> pending;
+  if (usesSegmentation()) pending = segmentation_->submit(frame.index, frame.bgr, frame.depth);
+  // 2. ... while this thread extracts features.
+  const ExtractedFeatures features = slam_.extract(frame);
+
+  FrameExtras extras;
+  if (options_.mode != dynamic::DynamicMode::kNone) {
+    dynamic::DynamicFrameInput input;
+    input.gray = features.gray;
+    input.bgr = frame.bgr;
+    input.depth = frame.depth;
+    if (pending.valid()) {
+      core::Stopwatch wait;
+      dynamic::SegmentationResult segmented = pending.get();
+      times_.add("dynamic.segmentation_wait", wait.elapsedMs());
+      times_.add("dynamic.segmentation", segmented.segment_ms);
+      input.prior_mask = segmented.dilated_mask;
+      out.prior_mask = segmented.mask;
+    }
+    std::vector<dynamic::PointTrack> tracks;
+    if (last_) {
+      input.last_gray = last_->gray;
+      input.last_depth = last_->depth;
+      input.T_cw_last = last_->T_cw;
+      input.T_cw_initial = last_->T_cw;
+      if (usesGeometry()) {
+        core::Stopwatch watch;
+        tracks = dynamic::trackCorners(last_->gray, features.gray, options_.tracking);
+        times_.add("dynamic.corner_tracking", watch.elapsedMs());
+        watch.restart();
+        std::optional<dynamic::PoseModel> model;
+        extras.initial_T_cw = initialPose(features.gray, tracks, model);
+        out.initial_pose_model = model;
+        times_.add("dynamic.initial_pose", watch.elapsedMs());
+        if (extras.initial_T_cw) input.T_cw_initial = *extras.initial_T_cw;
+        input.tracks = &tracks;
+      }
+    }
+    core::Stopwatch watch;
+    const dynamic::DynamicFrameOutput judged = front_end_.process(input);
+    times_.add("dynamic.front_end", watch.elapsedMs());
+    for (const auto& [stage, ms] : judged.timings_ms) times_.add("dynamic." + stage, ms);
+    extras.dynamic_mask = judged.mask;
+    out.dynamic_mask = judged.mask;
+  }
+
+  // 5. Tracking without the dynamic keypoints.
+  out.slam = slam_.track(frame, features, extras);
+  const int extracted = out.slam.keypoints + out.slam.removed_dynamic;
+  if (extracted > 0) out.removed_fraction = static_cast<double>(out.slam.removed_dynamic) / extracted;
+  removed_fractions_.push_back(out.removed_fraction);
+
+  const tracking::TrackResult& track = out.slam.track;
+  if (track.state == tracking::TrackingState::kOk) {
+    last_ = LastFrame{features.gray, frame.depth, track.T_cw};
+    if (usesGeometry() && (track.new_keyframe || track.initialized_map)) rememberKeyFrameImage(features.gray);
+  } else {
+    last_.reset();  // a lost frame's pose would poison the reprojection test of the next one
+  }
+  return out;
+}
+
+void DynamicPipeline::finish() {
+  if (segmentation_) segmentation_->close();
+  slam_.finish();
+}
+
+}  // namespace amos::system

@@ -1,0 +1,77 @@
+#pragma once
+// The full per-frame pipeline of the paper (Fig. 1): the anti-dynamics front end wrapped around SlamSystem.
+//   1. submit the frame to the segmentation worker (prior objects, Sec. III-A), which runs in its own thread ...
+//   2. ... while this thread extracts ORB features (SlamSystem::extract);
+//   3. initial pose from three models (Sec. III-D): reference-keyframe LK + EPnP, last-frame corners + EPnP,
+//      constant velocity; the one with most inliers wins;
+//   4. dynamic mask from the two stages (DynamicFrontEnd: superpixel clusters scored by reprojection error,
+//      epipolar judgement of prior and geometric candidate regions, Sec. III-B/C);
+//   5. tracking with the masked keypoints removed and the initial pose offered to the tracker.
+// Mode none skips 1, 3 and 4 (plain ORB-SLAM-style tracking); prior skips 3 and the geometric stage; geometry
+// skips 1. Threading: process() is called from one thread; the segmentation worker is the only other thread
+// besides local mapping, and frames reach it through a bounded queue (results come back through futures).
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "amos/core/stage_timer.h"
+#include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/segmentation_worker.h"
+#include "amos/system/slam_system.h"
+
+namespace amos::system {
+
+struct DynamicFrameOutput {
+  FrameOutput slam;
+  cv::Mat dynamic_mask;  // CV_8U, 255 = dynamic (empty in mode none)
+  cv::Mat prior_mask;    // undilated segmentation union (empty without segmentation)
+  std::optional<dynamic::PoseModel> initial_pose_model;  // which model of III-D won, when one ran
+  double removed_fraction = 0;  // keypoints removed by the mask / keypoints extracted
+};
+
+class DynamicPipeline {
+ public:
+  // `segmentation` is required for modes prior and full and ignored (may be null) otherwise.
+  DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions& options,
+                  std::unique_ptr<dynamic::SegmentationWorker> segmentation);
+  ~DynamicPipeline();
+
+  DynamicFrameOutput process(const io::RgbdFrame& frame);
+  // Closes the segmentation worker and finishes the SLAM system.
+  void finish();
+
+  dynamic::DynamicMode mode() const { return options_.mode; }
+  // Per-stage times of the front end (segmentation wait, initial pose, superpixels, ...), in milliseconds.
+  const core::StageTimes& times() const { return times_; }
+  // Fraction of the extracted keypoints that the dynamic mask removed, one value per processed frame.
+  const std::vector<double>& removedFractions() const { return removed_fractions_; }
+
+ private:
+  bool usesSegmentation() const;
+  bool usesGeometry() const;
+  std::optional<core::SE3> initialPose(const cv::Mat& gray, const std::vector<dynamic::PointTrack>& tracks,
+                                       std::optional<dynamic::PoseModel>& model);
+  void rememberKeyFrameImage(const cv::Mat& gray);
+
+  struct LastFrame {
+    cv::Mat gray, depth;
+    core::SE3 T_cw = core::SE3::Identity();
+  };
+
+  SlamSystem& slam_;
+  dynamic::DynamicOptions options_;
+  dynamic::DynamicFrontEnd front_end_;
+  std::unique_ptr<dynamic::SegmentationWorker> segmentation_;
+  std::optional<LastFrame> last_;
+  // Grey images of recent keyframes by id, for the reference-keyframe LK model (bounded: old ones are dropped).
+  std::deque<std::pair<std::uint64_t, cv::Mat>> keyframe_images_;
+  core::StageTimes times_;
+  std::vector<double> removed_fractions_;
+};
+
+}  // namespace amos::system
