@@ -29,6 +29,7 @@ namespace {
 constexpr int kSampleSize = 5;
 // Gauss-Newton rounds of the final refinement and re-evaluations of the inlier set after it.
 constexpr int kRefineIterations = 10;
+constexpr int kLocalRefineIterations = 3;
 constexpr int kInlierRounds = 10;
 
 // Squared reprojection error of one correspondence, +inf when the point is not in front of the camera.
@@ -75,7 +76,7 @@ std::array<int, kSampleSize> sampleIndices(std::mt19937& rng, int n) {
 // (core/pose.h convention): d(p_c)/d[rho, phi] = [I, -[p_c]x].
 core::SE3 refinePose(core::SE3 T_cw, const std::vector<Eigen::Vector3d>& points_w,
                      const std::vector<Eigen::Vector2d>& pixels, const core::PinholeCamera& camera,
-                     const std::vector<int>& subset) {
+                     const std::vector<int>& subset, int max_iterations = kRefineIterations) {
   const double fx = camera.fx(), fy = camera.fy();
   auto cost = [&](const core::SE3& T) {
     double c = 0;
@@ -84,7 +85,7 @@ core::SE3 refinePose(core::SE3 T_cw, const std::vector<Eigen::Vector3d>& points_
   };
   double current = cost(T_cw);
   double lambda = 1e-4;
-  for (int it = 0; it < kRefineIterations; ++it) {
+  for (int it = 0; it < max_iterations; ++it) {
     Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
     core::Vector6d g = core::Vector6d::Zero();
     for (int i : subset) {
@@ -144,6 +145,7 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
     normalized[i] = {(pixels[i].x() - camera.cx()) / camera.fx(), (pixels[i].y() - camera.cy()) / camera.fy()};
   std::vector<Eigen::Vector3d> sample_w(kSampleSize);
   std::vector<Eigen::Vector2d> sample_xy(kSampleSize);
+  std::vector<int> support;
 
   // RANSAC over EPnP hypotheses; the iteration budget shrinks as the best inlier ratio grows (confidence).
   core::SE3 best_T = core::SE3::Identity();
@@ -157,10 +159,23 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
     }
     const std::optional<core::SE3> T = solveEpnp(sample_w, sample_xy);
     if (!T) continue;
-    const int count = countInliers(*T, points_w, pixels, camera, threshold2);
+    int count = countInliers(*T, points_w, pixels, camera, threshold2);
     if (count > best_count) {
+      core::SE3 T_best = *T;
+      // Local optimisation (LO-RANSAC, Chum et al. 2003): a hypothesis from five noisy points underestimates its
+      // support; refitting it to its inliers recovers the true inlier ratio, so the budget below shrinks as it
+      // should and the final refinement starts closer.
+      if (count >= kSampleSize + 1) {
+        collectInliers(T_best, points_w, pixels, camera, threshold2, support);
+        const core::SE3 T_lo = refinePose(T_best, points_w, pixels, camera, support, kLocalRefineIterations);
+        const int count_lo = countInliers(T_lo, points_w, pixels, camera, threshold2);
+        if (count_lo > count) {
+          count = count_lo;
+          T_best = T_lo;
+        }
+      }
       best_count = count;
-      best_T = *T;
+      best_T = T_best;
       const double w = static_cast<double>(count) / n;
       const double p_all_inliers = std::pow(w, kSampleSize);
       if (p_all_inliers >= 1.0 - 1e-12) {
