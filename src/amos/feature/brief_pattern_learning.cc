@@ -96,8 +96,9 @@ BitTable measureTests(const std::vector<BriefPair>& tests, const std::vector<cv:
   const int chunks = (static_cast<int>(tests.size()) + kDescriptorBits - 1) / kDescriptorBits;
   std::vector<SteeredBrief> briefs;
   for (int c = 0; c < chunks; ++c) {
-    std::vector<BriefPair> chunk(tests.begin() + c * kDescriptorBits,
-                                 tests.begin() + std::min<int>(static_cast<int>(tests.size()), (c + 1) * kDescriptorBits));
+    std::vector<BriefPair> chunk(
+        tests.begin() + c * kDescriptorBits,
+        tests.begin() + std::min<int>(static_cast<int>(tests.size()), (c + 1) * kDescriptorBits));
     chunk.resize(kDescriptorBits, BriefPair{0, 0, 1, 0});  // padding tests, ignored below
     briefs.emplace_back(std::move(chunk));
   }
@@ -141,8 +142,7 @@ std::vector<BriefPair> candidateTests(int count, unsigned seed) {
     uniformPoint(p.x1, p.y1);
     uniformPoint(p.x2, p.y2);
     if (p.x1 == p.x2 && p.y1 == p.y2) continue;
-    if (!seen.insert(std::min(std::make_tuple(p.x1, p.y1, p.x2, p.y2), std::make_tuple(p.x2, p.y2, p.x1, p.y1)))
-             .second)
+    if (!seen.insert(std::min(std::make_tuple(p.x1, p.y1, p.x2, p.y2), std::make_tuple(p.x2, p.y2, p.x1, p.y1))).second)
       continue;
     tests.push_back(p);
   }
@@ -202,9 +202,8 @@ std::vector<BriefPair> learnBriefPattern(const std::vector<cv::Mat>& gray_images
   throw core::Error("learnBriefPattern: not enough informative candidate tests");
 }
 
-BriefPatternStats evaluateBriefPattern(const std::vector<BriefPair>& pattern,
-                                       const std::vector<cv::Mat>& gray_images, const OrbOptions& orb,
-                                       int max_samples) {
+BriefPatternStats evaluateBriefPattern(const std::vector<BriefPair>& pattern, const std::vector<cv::Mat>& gray_images,
+                                       const OrbOptions& orb, int max_samples) {
   const BitTable table = measureTests(pattern, gray_images, orb, max_samples);
   BriefPatternStats stats;
   stats.samples = table.samples();

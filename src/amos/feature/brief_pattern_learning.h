@@ -15,16 +15,16 @@ namespace amos::feature {
 
 struct BriefLearningOptions {
   int num_pairs = kDescriptorBits;
-  int candidate_pairs = 6000;   // pool drawn from the radius-15 disc (half Gaussian, half uniform)
+  int candidate_pairs = 6000;  // pool drawn from the radius-15 disc (half Gaussian, half uniform)
   unsigned seed = 7;
-  int max_samples = 40000;      // oriented keypoints used for the statistics (spread over the images)
+  int max_samples = 40000;  // oriented keypoints used for the statistics (spread over the images)
   double initial_max_correlation = 0.2;
   double correlation_step = 0.025;  // the bound is relaxed by this until num_pairs tests are found
 };
 
 // Statistics of a pattern on oriented keypoints (for learning and for tests).
 struct BriefPatternStats {
-  double mean_abs_bias = 0;      // mean over tests of |P(bit = 1) - 0.5|
+  double mean_abs_bias = 0;         // mean over tests of |P(bit = 1) - 0.5|
   double mean_abs_correlation = 0;  // mean over test pairs of |correlation|
   int samples = 0;
 };
@@ -34,8 +34,7 @@ struct BriefPatternStats {
 std::vector<BriefPair> learnBriefPattern(const std::vector<cv::Mat>& gray_images, const OrbOptions& orb,
                                          const BriefLearningOptions& options = {});
 
-BriefPatternStats evaluateBriefPattern(const std::vector<BriefPair>& pattern,
-                                       const std::vector<cv::Mat>& gray_images, const OrbOptions& orb,
-                                       int max_samples = 20000);
+BriefPatternStats evaluateBriefPattern(const std::vector<BriefPair>& pattern, const std::vector<cv::Mat>& gray_images,
+                                       const OrbOptions& orb, int max_samples = 20000);
 
 }  // namespace amos::feature

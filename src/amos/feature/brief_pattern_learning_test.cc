@@ -61,7 +61,8 @@ TEST(LearnedBriefPattern, BeatsTheGaussianPatternOnHeldOutFrames) {
   orb.extract(held_out[3], kb, db);
   int close = 0, pairs = 0;
   for (int i = 0; i < da.rows; i += 3)
-    for (int j = 0; j < db.rows; j += 5, ++pairs) close += cv::norm(da.row(i), db.row(j), cv::NORM_HAMMING) < 50 ? 1 : 0;
+    for (int j = 0; j < db.rows; j += 5, ++pairs)
+      close += cv::norm(da.row(i), db.row(j), cv::NORM_HAMMING) < 50 ? 1 : 0;
   EXPECT_LT(close, 0.01 * pairs) << close << " of " << pairs;
 }
 

@@ -13,8 +13,8 @@ constexpr int kFastRadius = 3;
 // corners can be found up to the rectangle's edge. Appends corners in level coordinates.
 void fastInRect(const cv::Mat& padded, int border, const cv::Rect& cell, int threshold, const cv::Mat& mask,
                 std::vector<cv::KeyPoint>& out) {
-  const cv::Rect region(border + cell.x - kFastRadius, border + cell.y - kFastRadius,
-                        cell.width + 2 * kFastRadius, cell.height + 2 * kFastRadius);
+  const cv::Rect region(border + cell.x - kFastRadius, border + cell.y - kFastRadius, cell.width + 2 * kFastRadius,
+                        cell.height + 2 * kFastRadius);
   std::vector<cv::KeyPoint> found;
   cv::FAST(padded(region), found, threshold, true);
   for (cv::KeyPoint& kp : found) {

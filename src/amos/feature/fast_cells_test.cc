@@ -23,7 +23,8 @@ cv::Mat twoContrastImage() {
   cv::Mat img(240, 320, CV_8UC1);
   for (int y = 0; y < img.rows; ++y)
     for (int x = 0; x < img.cols; ++x)
-      img.at<std::uint8_t>(y, x) = cv::saturate_cast<std::uint8_t>(128 + (x < 160 ? 200 : 30) * texture.at<float>(y, x));
+      img.at<std::uint8_t>(y, x) =
+          cv::saturate_cast<std::uint8_t>(128 + (x < 160 ? 200 : 30) * texture.at<float>(y, x));
   return img;
 }
 

@@ -17,8 +17,9 @@ class PaddedPyramid {
   int border() const { return border_; }
   cv::Size size(int level) const { return sizes_[level]; }
   // The level image without its border (a view into the padded buffer).
-  cv::Mat level(int level) const { return padded_[level](cv::Rect(border_, border_, sizes_[level].width,
-                                                                  sizes_[level].height)); }
+  cv::Mat level(int level) const {
+    return padded_[level](cv::Rect(border_, border_, sizes_[level].width, sizes_[level].height));
+  }
   // The whole buffer: level pixel (x, y) is at (x + border, y + border).
   const cv::Mat& padded(int level) const { return padded_[level]; }
 

@@ -9,8 +9,8 @@
 
 namespace amos::feature {
 
-KeypointGrid::KeypointGrid(const cv::Rect2d& bounds, const std::vector<cv::KeyPoint>& undistorted_keypoints,
-                           int cols, int rows)
+KeypointGrid::KeypointGrid(const cv::Rect2d& bounds, const std::vector<cv::KeyPoint>& undistorted_keypoints, int cols,
+                           int rows)
     : bounds_(bounds), cols_(cols), rows_(rows) {
   core::require(cols > 0 && rows > 0, fmt::format("KeypointGrid needs a positive grid size, got {}x{}", cols, rows));
   core::require(bounds.width > 0 && bounds.height > 0 && std::isfinite(bounds.x) && std::isfinite(bounds.y),
@@ -35,7 +35,8 @@ KeypointGrid::KeypointGrid(const cv::Rect2d& bounds, const std::vector<cv::KeyPo
   for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
   std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
   indices_.resize(n);
-  for (size_t i = 0; i < n; ++i) indices_[static_cast<size_t>(fill[static_cast<size_t>(cell_of[i])]++)] = static_cast<int>(i);
+  for (size_t i = 0; i < n; ++i)
+    indices_[static_cast<size_t>(fill[static_cast<size_t>(cell_of[i])]++)] = static_cast<int>(i);
 }
 
 int KeypointGrid::cellCol(double u) const {
@@ -50,8 +51,7 @@ int KeypointGrid::cellRow(double v) const {
   return r >= rows_ ? rows_ - 1 : static_cast<int>(r);
 }
 
-std::vector<int> KeypointGrid::featuresInArea(double u, double v, double radius, int min_level,
-                                              int max_level) const {
+std::vector<int> KeypointGrid::featuresInArea(double u, double v, double radius, int min_level, int max_level) const {
   std::vector<int> out;
   featuresInArea(u, v, radius, min_level, max_level, out);
   return out;

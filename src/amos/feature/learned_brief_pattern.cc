@@ -11,6 +11,7 @@ namespace amos::feature {
 // bias |P(1) - 0.5| drops from 0.23 to 0.15, the mean |correlation| between bits from 0.145 to 0.086, and the
 // share of non-matching descriptor pairs closer than 50 bits from 7% to 0.2% (OpenCV's rBRIEF: 0.2%).
 const std::vector<BriefPair>& learnedBriefPattern() {
+  // clang-format off
   static const std::vector<BriefPair> pattern = {
     {-5, -11, -2, 2}, {6, 5, 7, -7}, {-11, 6, -9, -5}, {1, -6, 1, -10},
     {12, 7, 14, -4}, {-11, -6, -8, -2}, {-14, -2, -12, 4}, {0, 8, 0, -10},
@@ -77,6 +78,7 @@ const std::vector<BriefPair>& learnedBriefPattern() {
     {-7, -8, 5, 6}, {-14, 2, 5, -2}, {-5, -9, 13, 7}, {8, -1, -5, 11},
     {-13, -4, 8, 12}, {-10, 2, 5, 6}, {-5, -3, 6, 3}, {-10, -8, 12, -7},
   };
+  // clang-format on
   return pattern;
 }
 

@@ -109,7 +109,8 @@ void OrbExtractor::extract(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypo
     cv::KeyPoint kp = level_keypoints[k];
     const int l = kp.octave;
     brief_.compute(smoothed[static_cast<size_t>(l)], static_cast<int>(kp.pt.x) + kLevelBorder,
-                   static_cast<int>(kp.pt.y) + kLevelBorder, kp.angle, descriptors.ptr<std::uint8_t>(static_cast<int>(k)));
+                   static_cast<int>(kp.pt.y) + kLevelBorder, kp.angle,
+                   descriptors.ptr<std::uint8_t>(static_cast<int>(k)));
     // Level pixel centres map to level 0 as cv::resize samples them, x0 = (x + 0.5) r - 0.5, where r is the
     // level's actual size ratio (rounded level sizes make it differ from scale_factor^l by up to ~0.1%).
     const cv::Size size = pyramid.size(l);

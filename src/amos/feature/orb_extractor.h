@@ -11,9 +11,9 @@
 namespace amos::feature {
 
 struct OrbOptions {
-  int num_features = 1000;   // ORBextractor.nFeatures
-  double scale_factor = 1.2; // ORBextractor.scaleFactor
-  int num_levels = 8;        // ORBextractor.nLevels
+  int num_features = 1000;      // ORBextractor.nFeatures
+  double scale_factor = 1.2;    // ORBextractor.scaleFactor
+  int num_levels = 8;           // ORBextractor.nLevels
   int ini_fast_threshold = 20;  // ORBextractor.iniThFAST
   int min_fast_threshold = 7;   // ORBextractor.minThFAST
   // Throws core::Error naming the ORBextractor.* key whose value is invalid.
@@ -28,7 +28,9 @@ class OrbExtractor {
 
   // gray: CV_8UC1. Keypoints are in level-0 pixel coordinates (distorted, as detected), with octave, angle (deg)
   // and size set; descriptors is N x 32 CV_8U, row i belongs to keypoint i. Deterministic for a given image.
-  // Optional mask (CV_8UC1, 0 = do not detect there) restricts detection.
+  // Optional mask (CV_8UC1, 0 = do not detect there) restricts detection. extract() keeps no state between calls,
+  // so one extractor can serve several threads. Throws core::Error on an empty/non-8UC1 image or a mask of
+  // another size or type.
   void extract(const cv::Mat& gray, std::vector<cv::KeyPoint>& keypoints, cv::Mat& descriptors,
                const cv::Mat& mask = cv::Mat()) const;
 

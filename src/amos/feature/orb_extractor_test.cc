@@ -42,7 +42,8 @@ cv::Mat syntheticTexture(int width = 640, int height = 480, unsigned seed = 1) {
 
 int hamming(const cv::Mat& a, int i, const cv::Mat& b, int j) {
   int d = 0;
-  for (int k = 0; k < 32; ++k) d += static_cast<int>(std::bitset<8>(a.at<std::uint8_t>(i, k) ^ b.at<std::uint8_t>(j, k)).count());
+  for (int k = 0; k < 32; ++k)
+    d += static_cast<int>(std::bitset<8>(a.at<std::uint8_t>(i, k) ^ b.at<std::uint8_t>(j, k)).count());
   return d;
 }
 

@@ -65,8 +65,7 @@ class Quadtree {
   // The order inside a node does not matter: node membership is geometric and ties are broken by index.
   template <typename Pred>
   int partition(int begin, int end, Pred pred) {
-    return static_cast<int>(std::partition(order_.begin() + begin, order_.begin() + end, pred) -
-                            order_.begin());
+    return static_cast<int>(std::partition(order_.begin() + begin, order_.begin() + end, pred) - order_.begin());
   }
 
   cv::Rect2f region_;
@@ -76,8 +75,7 @@ class Quadtree {
 
 }  // namespace
 
-std::vector<int> distributeQuadtree(const std::vector<cv::KeyPoint>& keypoints, const cv::Rect2f& region,
-                                    int target) {
+std::vector<int> distributeQuadtree(const std::vector<cv::KeyPoint>& keypoints, const cv::Rect2f& region, int target) {
   std::vector<int> kept;
   if (keypoints.empty() || target <= 0) return kept;
   Quadtree tree(keypoints, region);

@@ -10,7 +10,6 @@ namespace amos::feature {
 
 // keypoints: candidates inside `region` (points outside are clamped into it). Returns indices into `keypoints`
 // of at most `target` kept keypoints, strongest first (ties: lower index first). Deterministic.
-std::vector<int> distributeQuadtree(const std::vector<cv::KeyPoint>& keypoints, const cv::Rect2f& region,
-                                    int target);
+std::vector<int> distributeQuadtree(const std::vector<cv::KeyPoint>& keypoints, const cv::Rect2f& region, int target);
 
 }  // namespace amos::feature

@@ -14,7 +14,8 @@ std::vector<cv::KeyPoint> randomKeypoints(int n, float w, float h, unsigned seed
   std::set<std::pair<int, int>> used;
   std::vector<cv::KeyPoint> kps;
   while (static_cast<int>(kps.size()) < n) {
-    const int x = static_cast<int>(rng() % static_cast<unsigned>(w)), y = static_cast<int>(rng() % static_cast<unsigned>(h));
+    const int x = static_cast<int>(rng() % static_cast<unsigned>(w)),
+              y = static_cast<int>(rng() % static_cast<unsigned>(h));
     if (!used.insert({x, y}).second) continue;
     kps.emplace_back(static_cast<float>(x), static_cast<float>(y), 7.0f, -1.0f, static_cast<float>(rng() % 100));
   }

@@ -120,9 +120,8 @@ class Epnp {
       const int a = kPairs[p][0], b = kPairs[p][1];
       std::array<Eigen::Vector3d, 4> dv;
       for (int k = 0; k < 4; ++k) dv[k] = null_[k].segment<3>(3 * a) - null_[k].segment<3>(3 * b);
-      L.row(p) << dv[0].dot(dv[0]), 2 * dv[0].dot(dv[1]), dv[1].dot(dv[1]), 2 * dv[0].dot(dv[2]),
-          2 * dv[1].dot(dv[2]), dv[2].dot(dv[2]), 2 * dv[0].dot(dv[3]), 2 * dv[1].dot(dv[3]), 2 * dv[2].dot(dv[3]),
-          dv[3].dot(dv[3]);
+      L.row(p) << dv[0].dot(dv[0]), 2 * dv[0].dot(dv[1]), dv[1].dot(dv[1]), 2 * dv[0].dot(dv[2]), 2 * dv[1].dot(dv[2]),
+          dv[2].dot(dv[2]), 2 * dv[0].dot(dv[3]), 2 * dv[1].dot(dv[3]), 2 * dv[2].dot(dv[3]), dv[3].dot(dv[3]);
       rho[p] = (cw_[a] - cw_[b]).squaredNorm();
     }
 
@@ -189,8 +188,7 @@ class Epnp {
   }
 
   // Minimises sum_p (L_p . monomials(beta) - rho_p)^2 over the four betas.
-  static Eigen::Vector4d gaussNewton(const Matrix6x10d& L, const Eigen::Matrix<double, 6, 1>& rho,
-                                     Eigen::Vector4d b) {
+  static Eigen::Vector4d gaussNewton(const Matrix6x10d& L, const Eigen::Matrix<double, 6, 1>& rho, Eigen::Vector4d b) {
     for (int it = 0; it < kGaussNewtonIterations; ++it) {
       Eigen::Matrix<double, 6, 4> J;
       Eigen::Matrix<double, 6, 1> r;
@@ -250,8 +248,7 @@ std::optional<core::SE3> solvePlanar(const std::vector<Eigen::Vector3d>& pw, con
   }
   cv::Mat rvec, tvec;
   try {
-    if (!cv::solvePnP(object, image, pixelK(), cv::noArray(), rvec, tvec, false,
-                      cv::SOLVEPNP_SQPNP))
+    if (!cv::solvePnP(object, image, pixelK(), cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_SQPNP))
       return std::nullopt;
   } catch (const cv::Exception&) {
     return std::nullopt;  // e.g. collinear points

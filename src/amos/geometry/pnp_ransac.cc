@@ -42,8 +42,8 @@ double squaredError(const core::SE3& T_cw, const Eigen::Vector3d& p_w, const Eig
 
 // Inliers of a pose; returns their count and fills `inliers` (sorted indices).
 int collectInliers(const core::SE3& T_cw, const std::vector<Eigen::Vector3d>& points_w,
-                   const std::vector<Eigen::Vector2d>& pixels, const core::PinholeCamera& camera,
-                   double threshold2, std::vector<int>& inliers) {
+                   const std::vector<Eigen::Vector2d>& pixels, const core::PinholeCamera& camera, double threshold2,
+                   std::vector<int>& inliers) {
   inliers.clear();
   for (size_t i = 0; i < points_w.size(); ++i)
     if (squaredError(T_cw, points_w[i], pixels[i], camera) < threshold2) inliers.push_back(static_cast<int>(i));

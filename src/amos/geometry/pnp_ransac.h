@@ -15,7 +15,7 @@ struct PnpRansacOptions {
   double reprojection_threshold_px = 2.0;  // inlier if reprojection error below this (undistorted pixels)
   double confidence = 0.99;
   int max_iterations = 300;
-  int min_inliers = 15;    // below this the result is a failure
+  int min_inliers = 15;  // below this the result is a failure
   unsigned seed = 42;
   void check() const;
 };

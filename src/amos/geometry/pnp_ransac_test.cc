@@ -86,7 +86,8 @@ TEST(PnpRansac, RecoversPoseFacingAWall) {
   }
   // Outliers: move their 3D points elsewhere on the wall.
   for (size_t i = 0; i < s.points_w.size(); ++i)
-    if (s.is_outlier[i]) s.points_w[i] = T_wc * camera.backProject(640.0 - s.pixels[i].x(), 480.0 - s.pixels[i].y(), 2.5);
+    if (s.is_outlier[i])
+      s.points_w[i] = T_wc * camera.backProject(640.0 - s.pixels[i].x(), 480.0 - s.pixels[i].y(), 2.5);
   const PnpResult r = solvePnpRansac(s.points_w, s.pixels, camera, PnpRansacOptions{});
   ASSERT_TRUE(r.success);
   const core::SE3 error = r.T_cw * s.T_cw.inverse();

@@ -23,7 +23,6 @@ struct BruteForceMatch {
 
 // For every row of `query`, the nearest row of `train`; kept when distance <= max_distance and
 // best < ratio * second best (Lowe's test). Each train row is used at most once (the closer query wins).
-std::vector<BruteForceMatch> matchBruteForce(const cv::Mat& query, const cv::Mat& train, int max_distance,
-                                             float ratio);
+std::vector<BruteForceMatch> matchBruteForce(const cv::Mat& query, const cv::Mat& train, int max_distance, float ratio);
 
 }  // namespace amos::match

@@ -81,11 +81,11 @@ TEST(MatchBruteForce, RatioTestRejectsAmbiguousMatches) {
   flipBits(train, 0, 8, 1);
   flipBits(train, 1, 10, 2);
   EXPECT_TRUE(matchBruteForce(query, train, 100, 0.8f).empty());  // 8 >= 0.8 * 10
-  const auto m = matchBruteForce(query, train, 100, 0.9f);           // 8 < 9
+  const auto m = matchBruteForce(query, train, 100, 0.9f);        // 8 < 9
   ASSERT_EQ(m.size(), 1u);
   EXPECT_EQ(m[0].train, 0);
   EXPECT_EQ(m[0].distance, 8);
-  EXPECT_TRUE(matchBruteForce(query, train, 7, 0.9f).empty());  // distance above max_distance
+  EXPECT_TRUE(matchBruteForce(query, train, 7, 0.9f).empty());   // distance above max_distance
   EXPECT_EQ(matchBruteForce(query, train, 8, 0.9f).size(), 1u);  // max_distance is inclusive
 }
 
