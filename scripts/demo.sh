@@ -9,5 +9,8 @@ bash scripts/build.sh -DAMOS_BUILD_TESTS=OFF -DAMOS_BUILD_BENCH=OFF
 PRESET="${1:-walking_xyz}"
 OUT="${AMOS_DEMO_DIR:-out/demo}"
 mkdir -p "$OUT"
-./build/bin/amos-slam synth --preset "$PRESET" --seed 1 --frames 300 --output "$OUT/$PRESET"
+# Real person photographs make the synthetic walkers look like people to the detector; used when available.
+CUTOUTS=()
+if [ -d ../shared/data/person_masks ]; then CUTOUTS=(--person-cutouts ../shared/data/person_masks); fi
+./build/bin/amos-slam synth --preset "$PRESET" --seed 1 --frames 300 --output "$OUT/$PRESET" "${CUTOUTS[@]}"
 ./build/bin/amos-slam run --sequence "$OUT/$PRESET" --config configs/tum3.yaml --output "$OUT/run_$PRESET"
