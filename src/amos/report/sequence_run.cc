@@ -22,14 +22,6 @@ system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bo
   o.orb = settings.orb;
   o.tracking.max_frames_between_keyframes = std::max(1, static_cast<int>(settings.fps + 0.5));
   o.deterministic = deterministic;
-  if (getenv("DBG_NOBA")) o.mapping.local_ba = false;
-  if (getenv("DBG_NOCULL")) o.mapping.cull_keyframes = false;
-  if (getenv("DBG_NOFUSE")) o.mapping.fusion.neighbors = 1, o.mapping.fusion.second_neighbors = 0, o.mapping.fusion.max_distance = 1;
-  if (getenv("DBG_NOTRI")) o.mapping.new_points.max_distance = 1;
-  if (getenv("DBG_BAIT")) o.mapping.ba.iterations_refine = atoi(getenv("DBG_BAIT"));
-  if (getenv("DBG_MINW")) o.covisibility.min_weight = atoi(getenv("DBG_MINW"));
-  if (getenv("DBG_TRIRATIO")) o.mapping.new_points.ratio = atof(getenv("DBG_TRIRATIO"));
-  if (getenv("DBG_TRIPAR")) o.mapping.new_points.max_cos_parallax = atof(getenv("DBG_TRIPAR"));
   return o;
 }
 

@@ -150,7 +150,12 @@ TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& ext
   result.inliers = inliers;
   {
     std::shared_lock lock(map_->mutex());
-    if (ok) {
+    if (ok && result.new_keyframe) {
+      // The frame is its own keyframe: it follows every later correction of that keyframe (in lock-step mode
+      // local mapping has already adjusted it by now).
+      frame.reference_kf = reference_kf_->id();
+      last_T_cr_ = core::SE3::Identity();
+    } else if (ok) {
       frame.reference_kf = reference_kf_->id();
       last_T_cr_ = map::orthonormalized(frame.T_cw * map_->keyFramePose(frame.reference_kf).inverse());
     } else {
