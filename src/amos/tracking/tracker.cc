@@ -12,6 +12,19 @@
 
 namespace amos::tracking {
 
+namespace {
+// (depth, keypoint index) of the keypoints with valid depth, closest first: both the temporary points of the
+// motion model and a new keyframe's depth points are taken in this order.
+std::vector<std::pair<float, int>> keypointsByDepth(const map::FrameFeatures& f) {
+  std::vector<std::pair<float, int>> by_depth;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if (f.depth[i] > 0) by_depth.emplace_back(f.depth[i], static_cast<int>(i));
+  }
+  std::sort(by_depth.begin(), by_depth.end());
+  return by_depth;
+}
+}  // namespace
+
 void TrackerOptions::check() const {
   core::require(init_min_depth_points >= 10, "Tracking.initMinDepthPoints must be >= 10");
   core::require(motion_search_radius > 0, "Tracking.motionSearchRadius must be > 0");
@@ -226,11 +239,7 @@ void Tracker::updateLastFrame() {
   // RGB-D: temporary points from the last frame's depth give the motion-model search more to match
   // (closest first; all close ones, at least vo_points_min).
   const map::FrameFeatures& f = *last.features;
-  std::vector<std::pair<float, int>> by_depth;
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    if (f.depth[i] > 0) by_depth.emplace_back(f.depth[i], static_cast<int>(i));
-  }
-  std::sort(by_depth.begin(), by_depth.end());
+  const auto by_depth = keypointsByDepth(f);
   int n = 0;
   for (const auto& [z, i] : by_depth) {
     const auto& p = last.map_points[i];
@@ -481,12 +490,7 @@ void Tracker::createNewKeyFrame(map::Frame& frame) {
       map_->addObservation(p, kf, i);
     }
     // New points from depth, closest first: all close ones, and at least new_points_min.
-    const map::FrameFeatures& f = *frame.features;
-    std::vector<std::pair<float, int>> by_depth;
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      if (f.depth[i] > 0) by_depth.emplace_back(f.depth[i], static_cast<int>(i));
-    }
-    std::sort(by_depth.begin(), by_depth.end());
+    const auto by_depth = keypointsByDepth(*frame.features);
     int n = 0;
     for (const auto& [z, i] : by_depth) {
       if (!frame.map_points[i]) {
