@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "amos/config/dynamic_section.h"
+#include "amos/config/slam_section.h"
 #include "amos/config/yaml_reader.h"
 #include "amos/core/error.h"
 
@@ -70,6 +71,8 @@ Settings parse(YamlReader in) {
   readCamera(in, s);
   readOrb(in, s.orb);
   readProjectKeys(in, s);
+  readTrackingSection(in, s.fps, s.tracking);
+  readMappingSection(in, s.mapping, s.covisibility);
   readDynamicSection(in, s.dynamic);
   readSegmentationSection(in, s.segmentation);
   checkWithLocation(s, in);
@@ -86,6 +89,9 @@ void Settings::check() const {
   core::require(th_depth > 0, fmt::format("ThDepth must be positive, got {}", th_depth));
   core::require(depth_factor > 0, fmt::format("DepthMapFactor must be positive, got {}", depth_factor));
   orb.check();
+  tracking.check();
+  mapping.check();
+  core::require(covisibility.min_weight >= 1, "Mapping.covisibilityMinWeight must be >= 1");
   dynamic.check();
   segmentation.check();
 }

@@ -10,6 +10,9 @@
 #include "amos/dynamic/segmenter_options.h"
 #include "amos/feature/orb_extractor.h"
 #include "amos/io/dataset.h"
+#include "amos/map/map.h"
+#include "amos/mapping/local_mapper.h"
+#include "amos/tracking/tracker.h"
 
 namespace amos::config {
 
@@ -28,6 +31,11 @@ struct Settings {
   feature::OrbOptions orb;        // ORBextractor.*
 
   GroundTruthFormat groundtruth_format = GroundTruthFormat::kTum;  // Dataset.groundtruth: tum | bonn
+
+  // Tracking.*, Matching.*, Relocalization.* (Tracking.maxFrames defaults to Camera.fps, as in ORB-SLAM2).
+  tracking::TrackerOptions tracking;
+  mapping::LocalMappingOptions mapping;    // Mapping.*, LocalBA.*
+  map::CovisibilityOptions covisibility;   // Mapping.covisibilityMinWeight
 
   dynamic::DynamicOptions dynamic;         // Dynamic.* (the paper's two-stage front end)
   dynamic::SegmenterOptions segmentation;  // Segmentation.* (prior dynamic objects)

@@ -77,6 +77,39 @@ TEST(Settings, BadEnumValueIsNamed) {
   EXPECT_NE(e.find("Dataset.groundtruth"), std::string::npos) << e;
 }
 
+TEST(Settings, SlamSectionsReachTheirOptionStructs) {
+  const Settings s = parseSettings(std::string(kMinimal) +
+                                       "Camera.fps: 15.0\n"
+                                       "Tracking.localMinInliers: 40\n"
+                                       "Tracking.externalPose: replace\n"
+                                       "Matching.thLow: 45\n"
+                                       "Relocalization.minInliers: 60\n"
+                                       "Mapping.covisibilityMinWeight: 20\n"
+                                       "Mapping.fuseRadius: 4.5\n"
+                                       "LocalBA.enabled: 0\n"
+                                       "LocalBA.iterationsRefine: 3\n",
+                                   "test.yaml");
+  EXPECT_EQ(s.tracking.max_frames_between_keyframes, 15);  // follows Camera.fps
+  EXPECT_EQ(s.tracking.local_min_inliers, 40);
+  EXPECT_EQ(s.tracking.external_pose, tracking::ExternalPosePolicy::kReplace);
+  EXPECT_EQ(s.tracking.matching.th_low, 45);
+  EXPECT_EQ(s.tracking.relocalization.min_inliers, 60);
+  EXPECT_EQ(s.covisibility.min_weight, 20);
+  EXPECT_DOUBLE_EQ(s.mapping.fusion.radius, 4.5);
+  EXPECT_FALSE(s.mapping.local_ba);
+  EXPECT_EQ(s.mapping.ba.iterations_refine, 3);
+  EXPECT_EQ(parseSettings(std::string(kMinimal) + "Tracking.maxFrames: 12\n", "t.yaml")
+                .tracking.max_frames_between_keyframes, 12);
+}
+
+TEST(Settings, InvalidSlamValueNamesFileLineAndKey) {
+  const std::string e = errorOf(std::string(kMinimal) + "Tracking.localMinInliers: 2\n");
+  EXPECT_NE(e.find("test.yaml:6"), std::string::npos) << e;
+  EXPECT_NE(e.find("Tracking.localMinInliers"), std::string::npos) << e;
+  EXPECT_NE(errorOf(std::string(kMinimal) + "Tracking.externalPose: sometimes\n").find("test.yaml:6"),
+            std::string::npos);
+}
+
 TEST(YamlReader, ReportsUnknownKeys) {
   YamlReader in = YamlReader::fromText(std::string(kMinimal) + "Camera.fz: 3\n", "t.yaml");
   double fx = 0;

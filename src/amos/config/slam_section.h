@@ -1,0 +1,15 @@
+#pragma once
+// Reads the SLAM core's own keys: `Tracking.*`, `Matching.*`, `Relocalization.*`, `Mapping.*` and `LocalBA.*`.
+// Every key is optional; its default is the value in the option struct (ORB-SLAM2's where it has one).
+#include "amos/config/yaml_reader.h"
+#include "amos/map/map.h"
+#include "amos/mapping/local_mapper.h"
+#include "amos/tracking/tracker.h"
+
+namespace amos::config {
+
+// `fps` (Camera.fps) is the default of Tracking.maxFrames, as in ORB-SLAM2.
+void readTrackingSection(YamlReader& in, double fps, tracking::TrackerOptions& o);
+void readMappingSection(YamlReader& in, mapping::LocalMappingOptions& o, map::CovisibilityOptions& covisibility);
+
+}  // namespace amos::config
