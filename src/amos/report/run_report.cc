@@ -47,7 +47,9 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
   }
   j["wall_time_s"] = info.wall_time_s;
   j["fps"] = info.wall_time_s > 0 ? static_cast<double>(s.frames) / info.wall_time_s : 0.0;
+  if (info.mask_outputs_s > 0) j["mask_outputs_s"] = info.mask_outputs_s;
   if (info.evaluation) j["evaluation"] = eval::toJson(*info.evaluation);
+  if (info.mask_accuracy) j["mask_accuracy"] = eval::toJson(*info.mask_accuracy);
   return j;
 }
 

@@ -4,7 +4,8 @@
 //   keyframes.txt   the map's keyframes, TUM format
 //   map.ply         the map points (ASCII PLY, x y z)
 //   stats.json      frame counts, map size, median / p95 ms per stage and per frame, wall time, frames per second,
-//                   and ATE / RPE when the sequence has ground truth
+//                   ATE / RPE when the sequence has ground truth, and the dynamic mask's pixel precision / recall /
+//                   IoU when it has ground-truth mover masks
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "amos/eval/evaluate.h"
+#include "amos/eval/mask_metrics.h"
 #include "amos/system/slam_system.h"
 
 namespace amos::report {
@@ -25,6 +27,11 @@ struct RunInfo {
   // keypoints its mask removed. Null / empty in mode none.
   const core::StageTimes* front_end_times = nullptr;
   std::vector<double> removed_fractions;
+  // The final dynamic mask against the union of the ground-truth movers, over the frames where the front end
+  // produced a mask; absent without ground-truth masks or in mode none.
+  std::optional<eval::MaskAccuracy> mask_accuracy;
+  // Time spent on --save-masks outputs and mask scoring (not part of wall_time_s).
+  double mask_outputs_s = 0;
 };
 
 nlohmann::json statsJson(const system::SlamStats& stats, const core::StageTimes& times, const RunInfo& info);

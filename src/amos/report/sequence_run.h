@@ -1,7 +1,8 @@
 #pragma once
 // Runs the SLAM system over a whole TUM/Bonn-layout sequence: the loop shared by `amos-slam run`, the end-to-end
 // tests and the benchmarks. Settings come from the config module; ground truth, when the sequence has it, is
-// evaluated with the eval module (Bonn marker poses converted to camera poses).
+// evaluated with the eval module (Bonn marker poses converted to camera poses); ground-truth mover masks, when the
+// sequence has them (synthetic sequences: masks.txt, masks/, instances.json), score the front end's dynamic mask.
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -32,6 +33,10 @@ struct SequenceRunOptions {
   std::string models_dir;      // --models: segmentation model folder (see dynamic/model_locator.h)
   bool deterministic = false;
   std::size_t max_frames = 0;  // 0 = all
+  // --save-masks: write every frame's final dynamic mask to <masks_output_dir>/masks/ and overlays of
+  // overlay_count evenly spaced frames to <masks_output_dir>/overlays/ (see mask_outputs.h). "" = do not.
+  std::string masks_output_dir;
+  std::size_t overlay_count = 8;
   std::function<void(const SequenceProgress&)> on_frame;  // called after every frame (progress display)
 };
 

@@ -6,13 +6,18 @@
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
 #include "amos/config/settings.h"
+#include "amos/synth/sequence.h"
 
 namespace amos::report {
 namespace {
 
 const std::string kFr2 = std::string(AMOS_SHARED_DIR) + "/data/tum_fr2_desk_first50";
 const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
+const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
 
 std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -63,6 +68,55 @@ TEST(SequenceRun, DeterministicModeIsBitIdentical) {
   }
   EXPECT_GT(bytes[0].size(), 1000u);
   EXPECT_EQ(bytes[0], bytes[1]);
+}
+
+// --save-masks on a short synthetic sequence with ground-truth movers (two people walking in view from the first
+// frame): one 8-bit mask per frame named by the RGB time stamp, the overlays, and the mask scored against the
+// movers in stats.json.
+TEST(SequenceRun, SavesMasksAndScoresThemAgainstSyntheticGroundTruth) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::path(AMOS_BINARY_DIR) / "test_outputs" / "save_masks";
+  fs::remove_all(root);
+  synth::SequenceOptions synth_options;
+  synth_options.preset = "walking_static";
+  synth_options.seed = 1;
+  synth_options.frames = 12;
+  synth::renderSequence(synth_options, (root / "sequence").string());
+
+  SequenceRunOptions options;
+  options.sequence_dir = (root / "sequence").string();
+  options.mode = "geometry";
+  options.deterministic = true;
+  options.masks_output_dir = (root / "run").string();
+  options.overlay_count = 4;
+  const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
+  writeRunOutputs((root / "run").string(), *r.slam, r.info);
+
+  std::size_t masks = 0, overlays = 0;
+  for (const auto& e : fs::directory_iterator(root / "sequence" / "rgb")) {
+    const fs::path mask = root / "run" / "masks" / e.path().filename();
+    ASSERT_TRUE(fs::exists(mask)) << mask;
+    const cv::Mat m = cv::imread(mask.string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(m.type(), CV_8UC1);
+    ASSERT_EQ(m.size(), cv::Size(640, 480));
+    EXPECT_EQ(cv::countNonZero(m != 0 & m != 255), 0);
+    ++masks;
+  }
+  EXPECT_EQ(masks, 12u);
+  for (const auto& e : fs::directory_iterator(root / "run" / "overlays")) {
+    EXPECT_TRUE(fs::exists(root / "sequence" / "rgb" / e.path().filename())) << e.path();
+    ++overlays;
+  }
+  EXPECT_EQ(overlays, 4u);
+
+  ASSERT_TRUE(r.info.mask_accuracy.has_value());
+  EXPECT_EQ(r.info.mask_accuracy->frames, 12);
+  EXPECT_EQ(r.info.mask_accuracy->frames_with_truth, 12);
+  std::ifstream in(root / "run" / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  ASSERT_TRUE(stats.contains("mask_accuracy"));
+  EXPECT_EQ(stats["mask_accuracy"]["frames"], 12);
+  EXPECT_TRUE(stats["mask_accuracy"].contains("recall"));
 }
 
 }  // namespace
