@@ -4,6 +4,8 @@
 //   ./bin/bench_dynamic --benchmark_min_time=0.5
 #include <benchmark/benchmark.h>
 
+#include <sys/resource.h>
+
 #include <fstream>
 #include <map>
 #include <opencv2/core/utility.hpp>
@@ -15,8 +17,15 @@
 #include <string>
 #include <vector>
 
+#include "amos/config/settings.h"
 #include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/model_locator.h"
+#include "amos/dynamic/segmenter_factory.h"
 #include "amos/dynamic/superpixel_metrics.h"
+#include "amos/eval/bonn_ground_truth.h"
+#include "amos/eval/evaluate.h"
+#include "amos/io/dataset.h"
+#include "amos/report/sequence_run.h"
 
 namespace {
 
@@ -234,5 +243,71 @@ void BM_FrontEndGeometry(benchmark::State& state) {
   state.counters["mask_share"] = static_cast<double>(cv::countNonZero(out.mask)) / out.mask.total();
 }
 BENCHMARK(BM_FrontEndGeometry)->Unit(benchmark::kMillisecond);
+
+// The whole of `amos-slam run --mode full` on bonn_crowd_dev (configs/bonn.yaml), the loop of report::runSequence,
+// with and without look-ahead (process(frame k, next = frame k+1): frame k+1 is segmented while frame k is
+// tracked). One iteration = one pass over the 270 frames. Counters: fps (wall), cpu_ms per frame (all threads of the
+// process, from getrusage), ATE RMSE in metres, lost frames, and the median wait for the masks. Run it from the
+// repository root (it reads configs/bonn.yaml):
+//   ./build/bin/bench_dynamic --benchmark_filter=BonnFull --benchmark_repetitions=3
+double processCpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+void BM_BonnFullSequence(benchmark::State& state) {
+  const bool look_ahead = state.range(0) != 0;
+  const std::string sequence = std::string(AMOS_SHARED_DIR) + "/data/bonn_crowd_dev";
+  const config::Settings settings = config::loadSettings("configs/bonn.yaml");
+  double fps = 0, cpu_ms = 0, ate = 0, lost = 0, wait_ms = 0;
+  for (auto _ : state) {
+    system::SlamSystem slam(report::slamOptionsFromSettings(settings, /*deterministic=*/false));
+    dynamic::DynamicOptions options = settings.dynamic;
+    options.mode = DynamicMode::kFull;
+    dynamic::ModelSources sources;
+    sources.environment = dynamic::processEnvironment();
+    sources.default_dirs = std::vector<std::string>{"./models", std::string(AMOS_SHARED_DIR) + "/models"};
+    auto worker = std::make_unique<dynamic::SegmentationWorker>(
+        dynamic::createSegmenter(settings.segmentation, sources, dynamic::builtinSegmenterFactory()),
+        settings.segmentation.dilation);
+    system::DynamicPipeline pipeline(slam, options, std::move(worker));
+    io::SequenceIndex index = io::indexSequence(sequence);
+    const std::string gt_file = index.groundtruth_file;
+    io::SequenceReader reader(std::move(index), settings.readerOptions());
+    const double cpu_start = processCpuSeconds();
+    core::Stopwatch wall;
+    std::size_t frames = 0;
+    std::optional<io::RgbdFrame> frame = reader.next();
+    while (frame) {
+      std::optional<io::RgbdFrame> next = reader.next();
+      pipeline.process(*frame, look_ahead && next ? &*next : nullptr);
+      frame = std::move(next);
+      ++frames;
+    }
+    pipeline.finish();
+    const double wall_s = wall.elapsedMs() / 1000.0;
+    fps = static_cast<double>(frames) / wall_s;
+    cpu_ms = 1000.0 * (processCpuSeconds() - cpu_start) / static_cast<double>(frames);
+    lost = static_cast<double>(slam.stats().lost);
+    const auto summary = pipeline.times().summary();
+    if (const auto it = summary.find("dynamic.segmentation_wait"); it != summary.end()) wait_ms = it->second.median_ms;
+    const auto gt = eval::bonnMarkerToCamera(io::readTumTrajectory(gt_file));
+    ate = eval::evaluate(gt, slam.trajectory()).ate_rmse_m;
+  }
+  state.counters["fps"] = fps;
+  state.counters["cpu_ms"] = cpu_ms;
+  state.counters["ate_m"] = ate;
+  state.counters["lost"] = lost;
+  state.counters["segmentation_wait_ms"] = wait_ms;
+}
+BENCHMARK(BM_BonnFullSequence)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("look_ahead")
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
 
 }  // namespace

@@ -10,6 +10,8 @@
 // Run e.g.: bench_segment --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <ctime>
 #include <future>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -19,6 +21,7 @@
 #include <vector>
 
 #include "amos/core/stage_timer.h"
+#include "amos/dynamic/segment_masks.h"
 #include "amos/dynamic/segmentation_worker.h"
 #include "amos/dynamic/segmenter_factory.h"
 #include "amos/feature/orb_extractor.h"
@@ -52,14 +55,38 @@ const std::vector<BenchFrame>& benchFrames() {
   return frames;
 }
 
-std::unique_ptr<dynamic::Segmenter> makeSegmenter(int input_size, int threads) {
-  dynamic::SegmenterOptions options;
-  options.input_size = input_size;
-  options.threads = threads;
+std::unique_ptr<dynamic::Segmenter> makeSegmenter(dynamic::SegmenterOptions options) {
   dynamic::ModelSources sources;
   sources.environment = dynamic::processEnvironment();
   sources.default_dirs = {"./models", "../shared/models", std::string(AMOS_SHARED_DIR) + "/models"};
   return dynamic::createSegmenter(options, sources, dynamic::builtinSegmenterFactory());
+}
+
+std::unique_ptr<dynamic::Segmenter> makeSegmenter(int input_size, int threads) {
+  dynamic::SegmenterOptions options;
+  options.input_size = input_size;
+  options.threads = threads;
+  return makeSegmenter(options);
+}
+
+// The export's own shapes: square 320 detector input (letterboxed frame), person crops at 256x256.
+dynamic::SegmenterOptions exportShapes() {
+  dynamic::SegmenterOptions options;
+  options.input_shape = "square";
+  options.mask_input_size = 256;
+  return options;
+}
+
+// Undilated masks of the bench frames with the export's shapes: the reference the cheaper shapes are compared to.
+const std::vector<cv::Mat>& referenceMasks() {
+  static const std::vector<cv::Mat> masks = [] {
+    cv::setNumThreads(1);
+    auto segmenter = makeSegmenter(exportShapes());
+    std::vector<cv::Mat> out;
+    for (const auto& frame : benchFrames()) out.push_back(dynamic::segmentFrame(*segmenter, {}, 0, frame.bgr).mask);
+    return out;
+  }();
+  return masks;
 }
 
 feature::OrbExtractor makeOrb() { return feature::OrbExtractor(feature::OrbOptions{}); }
@@ -87,6 +114,37 @@ void BM_Segment(benchmark::State& state) {
   }
   setTimingCounters(state, frame_ms);
   state.counters["people_per_frame"] = static_cast<double>(instances) / static_cast<double>(i);
+}
+
+// Cost and agreement of cheaper network shapes, one OpenCV thread: args {detector input shape (0 = square 320,
+// 1 = frame-shaped 320x256), mask network input side}. Counters: cpu_ms per frame (this thread), mean / min IoU of
+// the undilated person masks against the export's shapes ({0, 256}) over the 30 frames.
+void BM_SegmentShapes(benchmark::State& state) {
+  const auto& frames = benchFrames();
+  const auto& reference = referenceMasks();
+  cv::setNumThreads(1);
+  dynamic::SegmenterOptions options = exportShapes();
+  options.input_shape = state.range(0) == 0 ? "square" : "frame";
+  options.mask_input_size = static_cast<int>(state.range(1));
+  auto segmenter = makeSegmenter(options);
+  std::vector<double> frame_ms, iou(frames.size(), 1.0);
+  std::size_t i = 0;
+  const std::clock_t cpu_start = std::clock();
+  for (auto _ : state) {
+    core::Stopwatch watch;
+    const std::size_t k = i % frames.size();
+    const auto result = dynamic::segmentFrame(*segmenter, {}, i, frames[k].bgr);
+    frame_ms.push_back(watch.elapsedMs());
+    iou[k] = dynamic::maskIoU(result.mask, reference[k]);
+    ++i;
+  }
+  const double cpu_ms = 1000.0 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  setTimingCounters(state, frame_ms);
+  state.counters["cpu_ms"] = cpu_ms / static_cast<double>(i);
+  double sum = 0, worst = 1;
+  for (double v : iou) sum += v, worst = std::min(worst, v);
+  state.counters["mean_iou"] = sum / static_cast<double>(iou.size());
+  state.counters["min_iou"] = worst;
 }
 
 // ORB extraction alone: arg {OpenCV threads}.
@@ -163,6 +221,12 @@ void sizesAndThreads(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_Segment)->Apply(sizesAndThreads);
+BENCHMARK(BM_SegmentShapes)
+    ->ArgsProduct({{0, 1}, {256, 192, 160, 128}})
+    ->ArgNames({"frame_shape", "mask_input"})
+    ->Iterations(kFrames)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OrbExtractor)->Arg(1)->Arg(2)->ArgName("threads")->Iterations(kFrames)->UseRealTime()->Unit(
     benchmark::kMillisecond);
 BENCHMARK(BM_SegmentThenOrb)->Apply(sizesAndThreads);

@@ -25,15 +25,21 @@ cv::Mat asMatrix(const cv::Mat& blob) {
 }  // namespace
 
 std::vector<NanoDetHead> nanodetHeadsFromOutputs(const std::vector<cv::Mat>& outputs, int input_size, int reg_max) {
+  return nanodetHeadsFromOutputs(outputs, cv::Size(input_size, input_size), reg_max);
+}
+
+std::vector<NanoDetHead> nanodetHeadsFromOutputs(const std::vector<cv::Mat>& outputs, cv::Size input_size,
+                                                 int reg_max) {
   const int box_channels = 4 * (reg_max + 1);
+  const std::string input_name = fmt::format("{}x{}", input_size.width, input_size.height);
   std::vector<NanoDetHead> heads;
-  for (int stride : kStrides) heads.push_back({stride, cv::Mat(), cv::Mat()});
+  for (int stride : kStrides) heads.push_back({stride, input_size.width / stride, cv::Mat(), cv::Mat()});
   for (const cv::Mat& out : outputs) {
     core::require(out.dims >= 2, "NanoDet output with fewer than 2 dimensions");
     cv::Mat m = asMatrix(out);
     bool placed = false;
     for (auto& head : heads) {
-      const int cells = (input_size / head.stride) * (input_size / head.stride);
+      const int cells = (input_size.width / head.stride) * (input_size.height / head.stride);
       if (m.rows != cells) continue;
       cv::Mat& slot = m.cols == box_channels ? head.distributions : head.scores;
       core::require(slot.empty(), fmt::format("two NanoDet outputs of shape [{}, {}]", m.rows, m.cols));
@@ -41,13 +47,13 @@ std::vector<NanoDetHead> nanodetHeadsFromOutputs(const std::vector<cv::Mat>& out
       placed = true;
     }
     core::require(placed, fmt::format("NanoDet output of shape [{}, {}] fits no stride of a {} input", m.rows, m.cols,
-                                      input_size));
+                                      input_name));
   }
   for (const auto& head : heads)
     core::require(!head.scores.empty() && !head.distributions.empty(),
                   fmt::format("NanoDet outputs lack the score or box map of stride {} (input {}): wrong model for "
                               "this input size?",
-                              head.stride, input_size));
+                              head.stride, input_name));
   return heads;
 }
 
@@ -71,8 +77,10 @@ std::vector<Detection> decodeNanoDet(const std::vector<NanoDetHead>& heads, cons
     core::require(head.scores.rows == head.distributions.rows && head.distributions.cols == 4 * bins,
                   "NanoDet head with inconsistent score and box maps");
     const int num_classes = head.scores.cols;
-    const int cols = static_cast<int>(std::lround(std::sqrt(static_cast<double>(head.scores.rows))));
-    core::require(cols * cols == head.scores.rows, "NanoDet head is not a square grid");
+    const int cols = head.cols > 0 ? head.cols
+                                   : static_cast<int>(std::lround(std::sqrt(static_cast<double>(head.scores.rows))));
+    core::require(cols > 0 && head.scores.rows % cols == 0 && (head.cols > 0 || cols * cols == head.scores.rows),
+                  "NanoDet head rows do not form a grid");
     for (int r = 0; r < head.scores.rows; ++r) {
       const float* scores = head.scores.ptr<float>(r);
       int best_class = -1;
@@ -119,23 +127,40 @@ std::vector<Detection> nmsPerClass(std::vector<Detection> detections, float iou_
   return kept;
 }
 
+cv::Size detectorInputSize(cv::Size image_size, int side, bool square) {
+  core::require(image_size.width > 0 && image_size.height > 0 && side > 0, "detector input for an empty image");
+  if (square) return {side, side};
+  constexpr int kCoarsestStride = 32;
+  const double scale = static_cast<double>(side) / std::max(image_size.width, image_size.height);
+  auto fit = [&](int length) {
+    const int scaled = static_cast<int>(std::ceil(length * scale - 1e-9));
+    return std::min(side, (scaled + kCoarsestStride - 1) / kCoarsestStride * kCoarsestStride);
+  };
+  return {fit(image_size.width), fit(image_size.height)};
+}
+
 Letterbox makeLetterbox(cv::Size image_size, int input_size) {
-  core::require(image_size.width > 0 && image_size.height > 0 && input_size > 0, "letterbox of an empty image");
+  return makeLetterbox(image_size, cv::Size(input_size, input_size));
+}
+
+Letterbox makeLetterbox(cv::Size image_size, cv::Size input_size) {
+  core::require(image_size.width > 0 && image_size.height > 0 && input_size.width > 0 && input_size.height > 0,
+                "letterbox of an empty image");
   Letterbox lb;
-  lb.input_size = input_size;
-  lb.scale = std::min(static_cast<float>(input_size) / image_size.width,
-                      static_cast<float>(input_size) / image_size.height);
+  lb.input = input_size;
+  lb.scale = std::min(static_cast<float>(input_size.width) / image_size.width,
+                      static_cast<float>(input_size.height) / image_size.height);
   const int w = static_cast<int>(std::lround(image_size.width * lb.scale));
   const int h = static_cast<int>(std::lround(image_size.height * lb.scale));
-  lb.pad_x = static_cast<float>((input_size - w) / 2);
-  lb.pad_y = static_cast<float>((input_size - h) / 2);
+  lb.pad_x = static_cast<float>((input_size.width - w) / 2);
+  lb.pad_y = static_cast<float>((input_size.height - h) / 2);
   return lb;
 }
 
 cv::Mat applyLetterbox(const cv::Mat& bgr, const Letterbox& lb) {
   const int w = static_cast<int>(std::lround(bgr.cols * lb.scale));
   const int h = static_cast<int>(std::lround(bgr.rows * lb.scale));
-  cv::Mat input(lb.input_size, lb.input_size, bgr.type(), cv::Scalar::all(0));
+  cv::Mat input(lb.input, bgr.type(), cv::Scalar::all(0));
   cv::resize(bgr, input(cv::Rect(static_cast<int>(lb.pad_x), static_cast<int>(lb.pad_y), w, h)), cv::Size(w, h), 0,
              0, cv::INTER_LINEAR);
   return input;

@@ -14,6 +14,7 @@ namespace amos::dynamic {
 // (i, j) = (r / cols, r % cols) of the (input/stride) x (input/stride) grid.
 struct NanoDetHead {
   int stride = 0;
+  int cols = 0;  // grid columns (input width / stride); 0 = square grid, taken from the number of rows
   cv::Mat scores;
   cv::Mat distributions;
 };
@@ -25,8 +26,11 @@ struct Detection {
 };
 
 // Sorts raw network outputs into heads by shape, not by name: each output has shape [1, N, C] (or [N, C]);
-// C == reg_bins*4 marks a box map, any other C a score map; N = (input_size / stride)^2 gives the stride.
-// Throws core::Error when the outputs do not form complete heads for the strides {8, 16, 32}.
+// C == reg_bins*4 marks a box map, any other C a score map; N = (width / stride) * (height / stride) of the network
+// input gives the stride. Throws core::Error when the outputs do not form complete heads for the strides {8, 16, 32}.
+std::vector<NanoDetHead> nanodetHeadsFromOutputs(const std::vector<cv::Mat>& outputs, cv::Size input_size,
+                                                 int reg_max = 7);
+// Square input of side input_size.
 std::vector<NanoDetHead> nanodetHeadsFromOutputs(const std::vector<cv::Mat>& outputs, int input_size,
                                                  int reg_max = 7);
 
@@ -45,13 +49,20 @@ std::vector<Detection> nmsPerClass(std::vector<Detection> detections, float iou_
 
 float boxIoU(const cv::Rect2f& a, const cv::Rect2f& b);
 
-// Aspect-preserving resize into a square network input, centred, padded with zeros.
+// Network input for an image: `square` gives side x side (the shape the NanoDet exports were made for);
+// otherwise the image's aspect ratio is kept: the longer side is `side`, the other one the image's scaled side
+// rounded up to a multiple of 32 (the coarsest stride), e.g. 640x480 at 320 -> 320x256. A 4:3 frame letterboxed
+// into a square wastes a quarter of the detector's work on padding; this shape wastes 6%.
+cv::Size detectorInputSize(cv::Size image_size, int side, bool square);
+
+// Aspect-preserving resize into the network input, centred, padded with zeros.
 struct Letterbox {
   float scale = 1.f;           // input pixels per image pixel
   float pad_x = 0, pad_y = 0;  // offset of the resized image inside the input
-  int input_size = 0;
+  cv::Size input;              // network input size
 };
-Letterbox makeLetterbox(cv::Size image_size, int input_size);
+Letterbox makeLetterbox(cv::Size image_size, cv::Size input_size);
+Letterbox makeLetterbox(cv::Size image_size, int input_size);  // square input
 cv::Mat applyLetterbox(const cv::Mat& bgr, const Letterbox& letterbox);
 // Maps a box from input pixels back to image pixels, clipped to the image.
 cv::Rect2f unletterboxBox(const cv::Rect2f& box, const Letterbox& letterbox, cv::Size image_size);

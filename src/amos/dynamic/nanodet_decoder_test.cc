@@ -104,6 +104,46 @@ TEST(NanoDetDecoder, NmsIsPerClass) {
   EXPECT_EQ(nmsPerClass(dets, 0.9f).size(), 4u);
 }
 
+TEST(NanoDetDecoder, DecodesANonSquareGrid) {
+  // A 320x256 input: stride 16 has a 20 x 16 grid (cols x rows). Cell (i=15, j=19), the bottom-right one.
+  const cv::Size input(320, 256);
+  std::vector<cv::Mat> outputs;
+  for (int stride : {8, 16, 32}) {
+    const int n = (input.width / stride) * (input.height / stride);
+    const int score_shape[] = {1, n, 80}, box_shape[] = {1, n, 4 * kBins};
+    outputs.emplace_back(3, score_shape, CV_32F, cv::Scalar(0));
+    outputs.emplace_back(3, box_shape, CV_32F, cv::Scalar(0));
+  }
+  const int row = 15 * 20 + 19;
+  outputs[2].ptr<float>(0, row)[0] = 0.8f;
+  float* dist = outputs[3].ptr<float>(0, row);
+  for (int s = 0; s < 4; ++s)
+    for (int k = 0; k < kBins; ++k) dist[s * kBins + k] = k == 1 ? 30.f : 0.f;
+  const auto heads = nanodetHeadsFromOutputs(outputs, input);
+  EXPECT_EQ(heads[1].cols, 20);
+  const auto dets = decodeNanoDet(heads, {0}, 0.35f);
+  ASSERT_EQ(dets.size(), 1u);
+  EXPECT_NEAR(dets[0].box.x, 19.5f * 16 - 0.5f - 16.f, 1e-3f);
+  EXPECT_NEAR(dets[0].box.y, 15.5f * 16 - 0.5f - 16.f, 1e-3f);
+  // The same outputs do not fit a square input.
+  EXPECT_THROW(nanodetHeadsFromOutputs(outputs, 320), core::Error);
+}
+
+TEST(NanoDetDecoder, DetectorInputKeepsTheFrameShape) {
+  EXPECT_EQ(detectorInputSize({640, 480}, 320, true), cv::Size(320, 320));
+  EXPECT_EQ(detectorInputSize({640, 480}, 320, false), cv::Size(320, 256));
+  EXPECT_EQ(detectorInputSize({640, 480}, 416, false), cv::Size(416, 320));
+  EXPECT_EQ(detectorInputSize({480, 640}, 320, false), cv::Size(256, 320));
+  EXPECT_EQ(detectorInputSize({1280, 720}, 320, false), cv::Size(320, 192));
+  EXPECT_EQ(detectorInputSize({500, 500}, 320, false), cv::Size(320, 320));
+  // 320x256 letterbox: the 320x240 frame image centred, 8 rows of padding above and below.
+  const Letterbox lb = makeLetterbox({640, 480}, cv::Size(320, 256));
+  EXPECT_FLOAT_EQ(lb.scale, 0.5f);
+  EXPECT_FLOAT_EQ(lb.pad_x, 0.f);
+  EXPECT_FLOAT_EQ(lb.pad_y, 8.f);
+  EXPECT_EQ(applyLetterbox(cv::Mat(480, 640, CV_8UC3, cv::Scalar::all(1)), lb).size(), cv::Size(320, 256));
+}
+
 TEST(NanoDetDecoder, BoxIoU) {
   EXPECT_FLOAT_EQ(boxIoU({0, 0, 10, 10}, {5, 0, 10, 10}), 50.f / 150.f);
   EXPECT_FLOAT_EQ(boxIoU({0, 0, 10, 10}, {20, 20, 5, 5}), 0.f);

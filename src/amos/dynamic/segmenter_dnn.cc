@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgproc.hpp>
@@ -12,6 +13,7 @@
 #include "amos/core/error.h"
 #include "amos/dynamic/model_locator.h"
 #include "amos/dynamic/nanodet_decoder.h"
+#include "amos/dynamic/nanodet_import_dnn.h"
 #include "amos/dynamic/segment_depth_mask.h"
 #include "amos/dynamic/segment_masks.h"
 #include "amos/dynamic/segmenter_classes.h"
@@ -23,6 +25,9 @@ namespace {
 constexpr int kSelfieSize = 256;
 constexpr int kPersonClass = 0;
 constexpr int kRegMax = 7;
+// Frame size the detector is prepared and tested for at start-up (TUM and Bonn); other sizes are prepared on their
+// first frame.
+const cv::Size kWarmUpFrame(640, 480);
 // NanoDet's input normalisation (BGR order): (x - mean) / std.
 const cv::Scalar kNanoDetMean(103.53, 116.28, 123.675);
 const cv::Scalar kNanoDetInvStd(1.0 / 57.375, 1.0 / 57.12, 1.0 / 58.395);
@@ -51,10 +56,9 @@ class NanoDetSelfieSegmenter : public Segmenter {
     const auto files = nanodetSelfieModelFiles(options_);
     detector_path_ = joinPath(options_.models_dir, files[0]);
     selfie_path_ = joinPath(options_.models_dir, files[1]);
-    detector_ = loadOnnx(detector_path_);
     selfie_ = loadOnnx(selfie_path_);
-    detector_outputs_ = detector_.getUnconnectedOutLayersNames();
     selfie_outputs_ = selfie_.getUnconnectedOutLayersNames();
+    detectorFor(kWarmUpFrame);
     warmUp();
   }
 
@@ -79,16 +83,45 @@ class NanoDetSelfieSegmenter : public Segmenter {
   }
 
  private:
+  // The detector for frames of `image_size` (its input shape depends on the frame's when input_shape is "frame"):
+  // imported on the first frame of a new size, kept for the following ones.
+  struct Detector {
+    cv::Size image_size, input_size;
+    cv::dnn::Net net;
+    std::vector<std::string> outputs;
+  };
+
+  Detector& detectorFor(cv::Size image_size) {
+    if (detector_ && detector_->image_size == image_size) return *detector_;
+    Detector d;
+    d.image_size = image_size;
+    d.input_size = detectorInputSize(image_size, options_.input_size, options_.input_shape == "square");
+    NanoDetImport import = loadNanoDet(detector_path_, options_.input_size, d.input_size);
+    d.net = std::move(import.net);
+    d.outputs = d.net.getUnconnectedOutLayersNames();
+    spdlog::debug("segmenter: NanoDet {} on {}x{} input for {}x{} frames ({} reshapes adapted, {} block transposes)",
+                  detector_path_, d.input_size.width, d.input_size.height, image_size.width, image_size.height,
+                  import.reshapes_adapted, import.block_transposes);
+    detector_ = std::move(d);
+    return *detector_;
+  }
+
   std::vector<Detection> detect(const cv::Mat& bgr) {
-    const Letterbox lb = makeLetterbox(bgr.size(), options_.input_size);
-    cv::Mat input;
-    applyLetterbox(bgr, lb).convertTo(input, CV_32FC3);
-    cv::subtract(input, kNanoDetMean, input);
-    cv::multiply(input, kNanoDetInvStd, input);
-    detector_.setInput(cv::dnn::blobFromImage(input));
+    Detector& detector = detectorFor(bgr.size());
+    const Letterbox lb = makeLetterbox(bgr.size(), detector.input_size);
+    // (x - mean) / std per channel: blobFromImage subtracts the mean while it converts to planar float, the
+    // division is one pass per plane of the blob.
+    cv::Mat blob = cv::dnn::blobFromImage(applyLetterbox(bgr, lb), 1.0, cv::Size(), kNanoDetMean, /*swapRB=*/false,
+                                          /*crop=*/false, CV_32F);
+    const int plane = lb.input.width * lb.input.height;
+    for (int c = 0; c < 3; ++c) {
+      cv::Mat channel(1, plane, CV_32F, blob.ptr<float>(0, c));
+      channel *= kNanoDetInvStd[c];
+    }
+    detector.net.setInput(blob);
     std::vector<cv::Mat> outputs;
-    detector_.forward(outputs, detector_outputs_);
-    const auto heads = nanodetHeadsFromOutputs(outputs, options_.input_size, kRegMax);
+    detector.net.forward(outputs, detector.outputs);
+    const auto heads = nanodetHeadsFromOutputs(outputs, lb.input, kRegMax);
     auto detections = nmsPerClass(decodeNanoDet(heads, class_ids_, options_.score_threshold, kRegMax), options_.nms_iou);
     if (detections.size() > static_cast<std::size_t>(options_.max_instances))
       detections.resize(static_cast<std::size_t>(options_.max_instances));
@@ -116,27 +149,29 @@ class NanoDetSelfieSegmenter : public Segmenter {
   }
 
   cv::Mat runSelfie(const cv::Mat& crop) {
-    selfie_.setInput(cv::dnn::blobFromImage(crop, 1.0 / 255.0, cv::Size(kSelfieSize, kSelfieSize), cv::Scalar(),
+    const int side = options_.mask_input_size;
+    selfie_.setInput(cv::dnn::blobFromImage(crop, 1.0 / 255.0, cv::Size(side, side), cv::Scalar(),
                                             /*swapRB=*/true, /*crop=*/false));
     std::vector<cv::Mat> outputs;
     selfie_.forward(outputs, selfie_outputs_);
-    core::require(outputs.size() == 1 && outputs[0].total() == static_cast<std::size_t>(kSelfieSize * kSelfieSize),
+    core::require(outputs.size() == 1 && outputs[0].total() == static_cast<std::size_t>(side * side),
                   fmt::format("segmentation model {} gives {} outputs of {} values, expected one 1x1x{}x{} map",
-                              selfie_path_, outputs.size(), outputs.empty() ? 0 : outputs[0].total(), kSelfieSize,
-                              kSelfieSize));
-    return cv::Mat(kSelfieSize, kSelfieSize, CV_32F, outputs[0].ptr<float>()).clone();
+                              selfie_path_, outputs.size(), outputs.empty() ? 0 : outputs[0].total(), side, side));
+    return cv::Mat(side, side, CV_32F, outputs[0].ptr<float>()).clone();
   }
 
   // One pass of each network on a blank image: checks the outputs have the expected shapes and pays the first
   // inference's set-up cost before the first real frame.
   void warmUp() {
     try {
-      detect(cv::Mat(480, 640, CV_8UC3, cv::Scalar::all(0)));
+      detect(cv::Mat(kWarmUpFrame, CV_8UC3, cv::Scalar::all(0)));
     } catch (const cv::Exception& e) {
       throw core::Error(fmt::format("segmentation model {} fails on a test input: {}", detector_path_, e.what()));
     } catch (const core::Error& e) {
-      throw core::Error(fmt::format("segmentation model {} is not a NanoDet-m {}x{} export: {}", detector_path_,
-                                    options_.input_size, options_.input_size, e.what()));
+      throw core::Error(fmt::format("segmentation model {} is not a NanoDet-m {}x{} export (or cannot run on the "
+                                    "{} input shape; try Segmentation.input_shape: square): {}",
+                                    detector_path_, options_.input_size, options_.input_size, options_.input_shape,
+                                    e.what()));
     }
     try {
       runSelfie(cv::Mat(kSelfieSize, kSelfieSize, CV_8UC3, cv::Scalar::all(0)));
@@ -148,8 +183,9 @@ class NanoDetSelfieSegmenter : public Segmenter {
   SegmenterOptions options_;
   std::vector<int> class_ids_;
   std::string detector_path_, selfie_path_;
-  cv::dnn::Net detector_, selfie_;
-  std::vector<std::string> detector_outputs_, selfie_outputs_;
+  std::optional<Detector> detector_;
+  cv::dnn::Net selfie_;
+  std::vector<std::string> selfie_outputs_;
 };
 
 }  // namespace

@@ -20,6 +20,10 @@ void SegmenterOptions::check() const {
   require(!backend.empty(), "Segmentation.backend must not be empty");
   require(input_size == 320 || input_size == 416,
           fmt::format("Segmentation.input_size must be 320 or 416 (the available NanoDet exports), got {}", input_size));
+  require(input_shape == "frame" || input_shape == "square",
+          fmt::format("Segmentation.input_shape must be frame or square, got '{}'", input_shape));
+  require(mask_input_size >= 64 && mask_input_size <= 256 && mask_input_size % 32 == 0,
+          fmt::format("Segmentation.mask_input_size must be a multiple of 32 in [64, 256], got {}", mask_input_size));
   require(score_threshold > 0.f && score_threshold < 1.f,
           fmt::format("Segmentation.score_threshold must be in (0, 1), got {}", score_threshold));
   require(nms_iou > 0.f && nms_iou <= 1.f, fmt::format("Segmentation.nms_iou must be in (0, 1], got {}", nms_iou));

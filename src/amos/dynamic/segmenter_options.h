@@ -22,6 +22,15 @@ struct SegmenterOptions {
   // $AMOS_MODELS, ./models, ../shared/models); by the time a backend is created this holds the resolved folder.
   std::string models_dir;
   int input_size = 320;             // Segmentation.input_size: detector input side, 320 or 416
+  // Segmentation.input_shape: "frame" = the detector input keeps the frame's aspect ratio (longer side input_size,
+  // shorter side rounded up to a multiple of 32: 320x256 for 640x480), "square" = input_size x input_size with the
+  // frame letterboxed (the shape of the exports). Same scale either way; "frame" skips the padding rows, a 20% cut
+  // in detector time for 4:3 frames.
+  std::string input_shape = "frame";
+  // Segmentation.mask_input_size: side of the square the mask network sees each person crop at (the export is
+  // 256; the network is fully convolutional, so any multiple of 32 in [64, 256] works, at a cost that grows with
+  // the area).
+  int mask_input_size = 256;
   float score_threshold = 0.35f;    // Segmentation.score_threshold: minimum detector confidence
   float nms_iou = 0.5f;             // Segmentation.nms_iou: per-class non-maximum suppression overlap
   // Segmentation.classes: COCO names to mask. People get a learned mask; other classes a box + depth mask.

@@ -34,6 +34,9 @@ TEST(SegmenterOptions, ErrorsNameTheKey) {
   const std::pair<std::string, std::function<void(SegmenterOptions&)>> cases[] = {
       {"Segmentation.backend", [](SegmenterOptions& o) { o.backend.clear(); }},
       {"Segmentation.input_size", [](SegmenterOptions& o) { o.input_size = 300; }},
+      {"Segmentation.input_shape", [](SegmenterOptions& o) { o.input_shape = "round"; }},
+      {"Segmentation.mask_input_size", [](SegmenterOptions& o) { o.mask_input_size = 100; }},
+      {"Segmentation.mask_input_size", [](SegmenterOptions& o) { o.mask_input_size = 288; }},
       {"Segmentation.score_threshold", [](SegmenterOptions& o) { o.score_threshold = 1.5f; }},
       {"Segmentation.nms_iou", [](SegmenterOptions& o) { o.nms_iou = 0.f; }},
       {"Segmentation.classes", [](SegmenterOptions& o) { o.classes = {"person", "unicorn"}; }},

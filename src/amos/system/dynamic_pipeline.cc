@@ -92,11 +92,32 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const cv::Mat& gray,
   return result.T_cw;
 }
 
-DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame) {
+void DynamicPipeline::requestSegmentation(const io::RgbdFrame& frame) {
+  for (const Submitted& s : submitted_)
+    if (s.index == frame.index && s.image == frame.bgr.data) return;
+  submitted_.push_back({frame.index, frame.bgr.data, segmentation_->submit(frame.index, frame.bgr, frame.depth)});
+}
+
+std::future<dynamic::SegmentationResult> DynamicPipeline::takeSegmentation(const io::RgbdFrame& frame) {
+  // Results of frames the caller announced but never processed are dropped (the worker still finishes them).
+  while (!submitted_.empty() && (submitted_.front().index != frame.index || submitted_.front().image != frame.bgr.data))
+    submitted_.pop_front();
+  core::require(!submitted_.empty(), "DynamicPipeline: no segmentation was requested for this frame");
+  std::future<dynamic::SegmentationResult> result = std::move(submitted_.front().result);
+  submitted_.pop_front();
+  return result;
+}
+
+DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io::RgbdFrame* next) {
   DynamicFrameOutput out;
-  // 1. Segmentation starts in its own thread ...
+  // 1. Segmentation of this frame runs in its own thread (it started during the previous call when that call was
+  //    given this frame as look-ahead), then the next frame's ...
   std::future<dynamic::SegmentationResult> pending;
-  if (usesSegmentation()) pending = segmentation_->submit(frame.index, frame.bgr, frame.depth);
+  if (usesSegmentation()) {
+    requestSegmentation(frame);
+    pending = takeSegmentation(frame);
+    if (next != nullptr) requestSegmentation(*next);
+  }
   // 2. ... while this thread extracts features.
   const ExtractedFeatures features = slam_.extract(frame);
 

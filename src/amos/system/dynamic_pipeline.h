@@ -10,10 +10,18 @@
 // Mode none skips 1, 3 and 4 (plain ORB-SLAM-style tracking); prior skips 3 and the geometric stage; geometry
 // skips 1. Threading: process() is called from one thread; the segmentation worker is the only other thread
 // besides local mapping, and frames reach it through a bounded queue (results come back through futures).
+//
+// Look-ahead: when the caller already holds the next frame it passes it to process(); the next frame is then
+// submitted to the segmentation worker before this frame is tracked, so the worker segments frame k+1 while this
+// thread runs the whole front end and tracking of frame k (instead of only ORB extraction), and frame k+1's
+// masks are usually ready when process(k+1) needs them. Every frame is still segmented on its own, in order, by
+// the same segmenter, so the masks (and, in deterministic mode, the trajectory) are the same with or without
+// look-ahead; only the waiting changes.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
 #include <deque>
+#include <future>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -41,7 +49,9 @@ class DynamicPipeline {
                   std::unique_ptr<dynamic::SegmentationWorker> segmentation);
   ~DynamicPipeline();
 
-  DynamicFrameOutput process(const io::RgbdFrame& frame);
+  // `next`: the frame that the following process() call will get, when the caller already has it (may be null).
+  // The pipeline keeps a reference to next's images until that call: do not write into them.
+  DynamicFrameOutput process(const io::RgbdFrame& frame, const io::RgbdFrame* next = nullptr);
   // Closes the segmentation worker and finishes the SLAM system.
   void finish();
 
@@ -53,6 +63,9 @@ class DynamicPipeline {
 
  private:
   bool usesSegmentation() const;
+  // Submits `frame` unless it is already on its way; drops what was submitted for frames that were skipped.
+  void requestSegmentation(const io::RgbdFrame& frame);
+  std::future<dynamic::SegmentationResult> takeSegmentation(const io::RgbdFrame& frame);
   bool usesGeometry() const;
   std::optional<core::SE3> initialPose(const cv::Mat& gray, const std::vector<dynamic::PointTrack>& tracks,
                                        std::optional<dynamic::PoseModel>& model);
@@ -67,6 +80,15 @@ class DynamicPipeline {
   dynamic::DynamicOptions options_;
   dynamic::DynamicFrontEnd front_end_;
   std::unique_ptr<dynamic::SegmentationWorker> segmentation_;
+  // Frames submitted to the worker whose results process() has not taken yet, in submission order (at most two:
+  // this frame and the look-ahead one). A frame is known by its index and its image buffer, so frames that all
+  // carry index 0 (built by hand) are not mistaken for one another.
+  struct Submitted {
+    std::size_t index = 0;
+    const void* image = nullptr;
+    std::future<dynamic::SegmentationResult> result;
+  };
+  std::deque<Submitted> submitted_;
   std::optional<LastFrame> last_;
   // Grey images of recent keyframes by id, for the reference-keyframe LK model (bounded: old ones are dropped).
   std::deque<std::pair<std::uint64_t, cv::Mat>> keyframe_images_;

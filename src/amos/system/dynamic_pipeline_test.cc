@@ -1,0 +1,161 @@
+// DynamicPipeline look-ahead: the next frame is segmented while the current one is tracked, and the results are
+// those of the plain pipeline.
+#include "amos/system/dynamic_pipeline.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <mutex>
+#include <opencv2/core/utility.hpp>
+#include <set>
+
+#include "amos/dynamic/model_locator.h"
+#include "amos/dynamic/segmenter_factory.h"
+#include "amos/io/dataset.h"
+
+namespace amos::system {
+namespace {
+
+const std::string kBonn = std::string(AMOS_SHARED_DIR) + "/data/bonn_crowd_dev";
+
+SlamOptions bonnOptions() {
+  SlamOptions o;
+  o.camera.fx = 542.822841, o.camera.fy = 542.576870, o.camera.cx = 315.593520, o.camera.cy = 237.756098;
+  o.camera.k1 = 0.039903, o.camera.k2 = -0.099343, o.camera.p1 = -0.000730, o.camera.p2 = -0.000144;
+  o.camera.width = 640, o.camera.height = 480;
+  o.sensor.bf = 40.0;
+  o.sensor.th_depth = 40.0;
+  o.deterministic = true;
+  return o;
+}
+
+std::vector<io::RgbdFrame> bonnFrames(std::size_t count, std::size_t first) {
+  io::SequenceIndex index = io::indexSequence(kBonn);
+  index.frames.erase(index.frames.begin(), index.frames.begin() + static_cast<std::ptrdiff_t>(first));
+  index.frames.resize(count);
+  io::SequenceReader reader(std::move(index), io::ReaderOptions{});
+  std::vector<io::RgbdFrame> frames;
+  while (auto f = reader.next()) frames.push_back(std::move(*f));
+  return frames;
+}
+
+std::unique_ptr<dynamic::SegmentationWorker> realSegmentation() {
+  dynamic::ModelSources sources;
+  sources.cli_dir = std::string(AMOS_SHARED_DIR) + "/models";
+  sources.default_dirs.clear();
+  auto segmenter = dynamic::createSegmenter(dynamic::SegmenterOptions{}, sources, dynamic::builtinSegmenterFactory());
+  return std::make_unique<dynamic::SegmentationWorker>(std::move(segmenter), dynamic::MaskDilationOptions{});
+}
+
+struct RunRecord {
+  std::vector<cv::Mat> prior_masks, dynamic_masks;
+  std::vector<core::SE3> poses;
+};
+
+// Mode full, deterministic, over `frames`; with look_ahead every call also gets the next frame.
+RunRecord runPipeline(const std::vector<io::RgbdFrame>& frames, bool look_ahead) {
+  SlamSystem slam(bonnOptions());
+  dynamic::DynamicOptions options;
+  options.mode = dynamic::DynamicMode::kFull;
+  DynamicPipeline pipeline(slam, options, realSegmentation());
+  RunRecord record;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const io::RgbdFrame* next = look_ahead && k + 1 < frames.size() ? &frames[k + 1] : nullptr;
+    const DynamicFrameOutput out = pipeline.process(frames[k], next);
+    record.prior_masks.push_back(out.prior_mask);
+    record.dynamic_masks.push_back(out.dynamic_mask);
+    record.poses.push_back(out.slam.track.T_cw);
+  }
+  pipeline.finish();
+  return record;
+}
+
+bool sameMask(const cv::Mat& a, const cv::Mat& b) {
+  return a.size() == b.size() && a.type() == b.type() && (a.empty() || cv::norm(a, b, cv::NORM_INF) == 0);
+}
+
+// Twelve frames of Bonn crowd with people in view: the same prior masks, dynamic masks and poses, bit for bit.
+TEST(DynamicPipeline, LookAheadGivesTheSameMasksAndPoses) {
+  ASSERT_TRUE(std::filesystem::exists(kBonn)) << kBonn;
+  const std::vector<io::RgbdFrame> frames = bonnFrames(12, 90);
+  ASSERT_EQ(frames.size(), 12u);
+  const RunRecord plain = runPipeline(frames, false);
+  const RunRecord ahead = runPipeline(frames, true);
+  int with_people = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    EXPECT_TRUE(sameMask(plain.prior_masks[k], ahead.prior_masks[k])) << "prior mask of frame " << k;
+    EXPECT_TRUE(sameMask(plain.dynamic_masks[k], ahead.dynamic_masks[k])) << "dynamic mask of frame " << k;
+    EXPECT_TRUE(plain.poses[k].isApprox(ahead.poses[k], 0.0)) << "pose of frame " << k;
+    with_people += cv::countNonZero(plain.prior_masks[k]) > 0;
+  }
+  EXPECT_GE(with_people, 10);  // the comparison is about real masks, not empty ones
+}
+
+// A segmenter that records which frames (by the code in pixel (0, 0)) it has started, so a test can wait until a
+// given frame reaches it. Its masks are empty.
+class RecordingSegmenter : public dynamic::Segmenter {
+ public:
+  struct Log {
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::set<int> started;
+  };
+  explicit RecordingSegmenter(std::shared_ptr<Log> log) : log_(std::move(log)) {}
+  std::vector<dynamic::SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat&) override {
+    {
+      std::lock_guard<std::mutex> lock(log_->mutex);
+      log_->started.insert(bgr.at<cv::Vec3b>(0, 0)[0]);
+    }
+    log_->changed.notify_all();
+    return {};
+  }
+  std::string name() const override { return "recording"; }
+
+ private:
+  std::shared_ptr<Log> log_;
+};
+
+io::RgbdFrame codedFrame(std::size_t index) {
+  io::RgbdFrame f;
+  f.index = index;
+  f.bgr = cv::Mat(480, 640, CV_8UC3, cv::Scalar::all(0));
+  f.bgr.at<cv::Vec3b>(0, 0)[0] = static_cast<uchar>(index);
+  f.depth = cv::Mat(480, 640, CV_32F, cv::Scalar(0));
+  return f;
+}
+
+// process(k, next = k+1) hands frame k+1 to the segmentation worker before it returns; without look-ahead frame
+// k+1 reaches the worker only in process(k+1). Frames skipped after being announced do not block later ones.
+TEST(DynamicPipeline, LookAheadSubmitsTheNextFrameEarly) {
+  auto log = std::make_shared<RecordingSegmenter::Log>();
+  SlamSystem slam(bonnOptions());
+  dynamic::DynamicOptions options;
+  options.mode = dynamic::DynamicMode::kPrior;
+  DynamicPipeline pipeline(slam, options,
+                           std::make_unique<dynamic::SegmentationWorker>(std::make_unique<RecordingSegmenter>(log),
+                                                                         dynamic::MaskDilationOptions{}));
+  const io::RgbdFrame f1 = codedFrame(1), f2 = codedFrame(2), f3 = codedFrame(3), f5 = codedFrame(5);
+  pipeline.process(f1, &f2);
+  {
+    std::unique_lock<std::mutex> lock(log->mutex);
+    EXPECT_TRUE(log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.count(2) > 0; }))
+        << "frame 2 was not submitted during process(frame 1)";
+  }
+  pipeline.process(f2);  // no look-ahead: frame 3 is not announced
+  {
+    std::lock_guard<std::mutex> lock(log->mutex);
+    EXPECT_EQ(log->started, (std::set<int>{1, 2}));
+  }
+  pipeline.process(f3, &f5);  // announces frame 5 ...
+  const DynamicFrameOutput out = pipeline.process(codedFrame(4));  // ... but frame 4 comes: segmented on its own
+  EXPECT_TRUE(out.prior_mask.empty() || cv::countNonZero(out.prior_mask) == 0);
+  pipeline.finish();
+  std::unique_lock<std::mutex> lock(log->mutex);
+  log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.size() == 5; });
+  EXPECT_EQ(log->started, (std::set<int>{1, 2, 3, 4, 5}));
+}
+
+}  // namespace
+}  // namespace amos::system
