@@ -6,6 +6,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <opencv2/core/utility.hpp>
@@ -162,6 +163,61 @@ void BM_CornerTracking(benchmark::State& state) {
   state.counters["tracks"] = static_cast<double>(tracks.size());
 }
 BENCHMARK(BM_CornerTracking)->Unit(benchmark::kMillisecond);
+
+// One frame pair's LK pyramids (both frames, with derivatives), the part of BM_CornerTracking that can be reused.
+void BM_BuildPyramids(benchmark::State& state) {
+  const BenchData& d = data();
+  const CornerTrackingOptions options;
+  for (auto _ : state) {
+    const FramePairPyramids p = buildPyramids(d.last.gray, d.current.gray, options);
+    benchmark::DoNotOptimize(p.last.data());
+  }
+}
+BENCHMARK(BM_BuildPyramids)->Unit(benchmark::kMillisecond);
+
+// Forward-backward LK of the last frame's corners on prebuilt pyramids. Args: LK window, maximum iterations,
+// epsilon in 1/1000 px. Counters: tracks kept, and against the default settings (15, 30, 0.01 px): the tracks both
+// keep, the median and the largest distance between their end points.
+void BM_TrackPointsOnPyramids(benchmark::State& state) {
+  const BenchData& d = data();
+  CornerTrackingOptions options;
+  options.lk_window = static_cast<int>(state.range(0));
+  options.lk_max_iterations = static_cast<int>(state.range(1));
+  options.lk_epsilon = static_cast<double>(state.range(2)) / 1000.0;
+  std::vector<cv::Point2f> points;
+  {
+    cv::Mat small;
+    cv::resize(d.last.gray, small, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+    cv::goodFeaturesToTrack(small, points, 500, 0.01, 5.0);
+    for (cv::Point2f& p : points) p = p * 2.f + cv::Point2f(0.5f, 0.5f);
+  }
+  const CornerTrackingOptions reference_options;
+  const std::vector<PointTrack> reference =
+      trackPoints(buildPyramids(d.last.gray, d.current.gray, reference_options), points, reference_options);
+  const FramePairPyramids p = buildPyramids(d.last.gray, d.current.gray, options);
+  std::vector<PointTrack> tracks;
+  for (auto _ : state) tracks = trackPoints(p, points, options);
+  std::map<int, cv::Point2f> end_of;
+  for (const PointTrack& t : reference) end_of[t.source_index] = t.current;
+  std::vector<double> differences;
+  for (const PointTrack& t : tracks)
+    if (const auto it = end_of.find(t.source_index); it != end_of.end()) differences.push_back(cv::norm(t.current - it->second));
+  std::sort(differences.begin(), differences.end());
+  state.counters["points"] = static_cast<double>(points.size());
+  state.counters["tracks"] = static_cast<double>(tracks.size());
+  state.counters["common"] = static_cast<double>(differences.size());
+  state.counters["median_diff_px"] = differences.empty() ? 0.0 : differences[differences.size() / 2];
+  state.counters["max_diff_px"] = differences.empty() ? 0.0 : differences.back();
+}
+BENCHMARK(BM_TrackPointsOnPyramids)
+    ->Args({15, 30, 10})
+    ->Args({15, 10, 30})
+    ->Args({13, 10, 30})
+    ->Args({11, 10, 30})
+    ->Args({11, 30, 10})
+    ->Args({9, 10, 30})
+    ->Unit(benchmark::kMillisecond);
+
 
 // Eq. 5-6: back-projection, reprojection under the initial pose, per-cluster Cauchy means.
 void BM_ReprojectionScoring(benchmark::State& state) {

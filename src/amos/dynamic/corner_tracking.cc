@@ -28,17 +28,20 @@ void CornerTrackingOptions::check() const {
                 fmt::format("Dynamic.LK.forwardBackwardThreshold must be positive, got {}", forward_backward_px));
 }
 
+ImagePyramid buildPyramid(const cv::Mat& gray, const CornerTrackingOptions& options) {
+  options.check();
+  core::require(!gray.empty() && gray.type() == CV_8UC1, "buildPyramid: the image must be a non-empty CV_8UC1");
+  ImagePyramid pyramid;
+  cv::buildOpticalFlowPyramid(gray, pyramid, cv::Size(options.lk_window, options.lk_window), options.lk_levels);
+  return pyramid;
+}
+
 FramePairPyramids buildPyramids(const cv::Mat& last_gray, const cv::Mat& current_gray,
                                 const CornerTrackingOptions& options) {
-  options.check();
   core::require(!last_gray.empty() && last_gray.type() == CV_8UC1 && current_gray.type() == CV_8UC1 &&
                     last_gray.size() == current_gray.size(),
                 "buildPyramids: both images must be CV_8UC1 of the same size");
-  FramePairPyramids p;
-  const cv::Size window(options.lk_window, options.lk_window);
-  cv::buildOpticalFlowPyramid(last_gray, p.last, window, options.lk_levels);
-  cv::buildOpticalFlowPyramid(current_gray, p.current, window, options.lk_levels);
-  return p;
+  return {buildPyramid(last_gray, options), buildPyramid(current_gray, options)};
 }
 
 std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std::vector<cv::Point2f>& points,
@@ -74,7 +77,13 @@ std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std
 
 std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const cv::Mat& current_gray,
                                      const CornerTrackingOptions& options, const cv::Mat& mask) {
-  const FramePairPyramids pyramids = buildPyramids(last_gray, current_gray, options);
+  return trackCorners(last_gray, buildPyramids(last_gray, current_gray, options), options, mask);
+}
+
+std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const FramePairPyramids& pyramids,
+                                     const CornerTrackingOptions& options, const cv::Mat& mask) {
+  core::require(!last_gray.empty() && !pyramids.last.empty() && pyramids.last.front().size() == last_gray.size(),
+                "trackCorners: the last frame's pyramid does not belong to its image");
   std::vector<cv::Point2f> corners;
   if (options.detection_scale < 1.0) {
     const double s = options.detection_scale;

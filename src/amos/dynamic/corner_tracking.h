@@ -42,10 +42,17 @@ struct PointTrack {
   int source_index = -1;  // index into the input point list (trackPoints) or the detected corners
 };
 
-// Pyramids of both frames, built once and shared by the forward and backward LK passes (and by several
-// tracking calls on the same frame pair).
+// LK pyramid of one image (levels with their derivatives, as cv::buildOpticalFlowPyramid makes them). A frame's
+// pyramid depends on nothing but the frame, so it is built once and serves every tracking call the frame takes
+// part in: as `current` for last->current corners and keyframe->current points, as `last` on the next frame, and
+// as the keyframe side while the frame is a reference keyframe.
+using ImagePyramid = std::vector<cv::Mat>;
+ImagePyramid buildPyramid(const cv::Mat& gray, const CornerTrackingOptions& options);
+
+// Pyramids of both frames, shared by the forward and backward LK passes (and by several tracking calls on the same
+// frame pair).
 struct FramePairPyramids {
-  std::vector<cv::Mat> last, current;
+  ImagePyramid last, current;
 };
 FramePairPyramids buildPyramids(const cv::Mat& last_gray, const cv::Mat& current_gray,
                                 const CornerTrackingOptions& options);
@@ -57,6 +64,9 @@ std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std
 
 // Detects corners in the last frame (optionally only where mask != 0) and tracks them.
 std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const cv::Mat& current_gray,
+                                     const CornerTrackingOptions& options, const cv::Mat& mask = cv::Mat());
+// The same on pyramids built beforehand (pyramids.last must be last_gray's).
+std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const FramePairPyramids& pyramids,
                                      const CornerTrackingOptions& options, const cv::Mat& mask = cv::Mat());
 
 }  // namespace amos::dynamic

@@ -55,19 +55,19 @@ bool DynamicPipeline::usesGeometry() const {
   return options_.mode == dynamic::DynamicMode::kGeometry || options_.mode == dynamic::DynamicMode::kFull;
 }
 
-void DynamicPipeline::rememberKeyFrameImage(const cv::Mat& gray) {
-  keyframe_images_.emplace_back(slam_.tracker().referenceKeyFrameView().id, gray);
-  if (keyframe_images_.size() > kKeyFrameImages) keyframe_images_.pop_front();
+void DynamicPipeline::rememberKeyFramePyramid(const dynamic::ImagePyramid& pyramid) {
+  keyframe_pyramids_.emplace_back(slam_.tracker().referenceKeyFrameView().id, pyramid);
+  if (keyframe_pyramids_.size() > kKeyFrameImages) keyframe_pyramids_.pop_front();
 }
 
-std::optional<core::SE3> DynamicPipeline::initialPose(const cv::Mat& gray,
+std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyramid& current,
                                                       const std::vector<dynamic::PointTrack>& tracks,
                                                       std::optional<dynamic::PoseModel>& model) {
   const core::PinholeCamera& camera = slam_.sensor()->camera();
   // Model 1: the reference keyframe's keypoints that carry map points, tracked by LK into this frame.
   dynamic::PoseCorrespondences from_keyframe;
   const tracking::ReferenceKeyFrameView view = slam_.tracker().referenceKeyFrameView();
-  for (const auto& [id, image] : keyframe_images_) {
+  for (const auto& [id, keyframe] : keyframe_pyramids_) {
     if (id != view.id) continue;
     std::vector<cv::Point2f> pixels;
     std::vector<Eigen::Vector3d> points_w;
@@ -76,9 +76,8 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const cv::Mat& gray,
       pixels.push_back(view.keypoints[i].pt);
       points_w.push_back(view.points_w[i]);
     }
-    const auto pyramids = dynamic::buildPyramids(image, gray, options_.tracking);
-    from_keyframe = dynamic::keyframeCorrespondences(pyramids, distortPixels(pixels, camera), points_w, camera,
-                                                     options_.tracking);
+    from_keyframe = dynamic::keyframeCorrespondences({keyframe, current}, distortPixels(pixels, camera), points_w,
+                                                     camera, options_.tracking);
     break;
   }
   // Model 2: last-frame corners lifted with the last depth and pose (Eq. 6).
@@ -122,6 +121,7 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
   const ExtractedFeatures features = slam_.extract(frame);
 
   FrameExtras extras;
+  dynamic::ImagePyramid current_pyramid;
   if (options_.mode != dynamic::DynamicMode::kNone) {
     dynamic::DynamicFrameInput input;
     input.gray = features.gray;
@@ -136,6 +136,13 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
       out.prior_mask = segmented.mask;
     }
     std::vector<dynamic::PointTrack> tracks;
+    if (last_ && usesGeometry()) {
+      // This frame's LK pyramid, built once: last->current corners and keyframe->current points now, and this
+      // frame as the last one (or as a keyframe) later.
+      core::Stopwatch watch;
+      current_pyramid = dynamic::buildPyramid(features.gray, options_.tracking);
+      times_.add("dynamic.pyramid", watch.elapsedMs());
+    }
     if (last_) {
       input.last_gray = last_->gray;
       input.last_depth = last_->depth;
@@ -143,11 +150,11 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
       input.T_cw_initial = last_->T_cw;
       if (usesGeometry()) {
         core::Stopwatch watch;
-        tracks = dynamic::trackCorners(last_->gray, features.gray, options_.tracking);
+        tracks = dynamic::trackCorners(last_->gray, {last_->pyramid, current_pyramid}, options_.tracking);
         times_.add("dynamic.corner_tracking", watch.elapsedMs());
         watch.restart();
         std::optional<dynamic::PoseModel> model;
-        extras.initial_T_cw = initialPose(features.gray, tracks, model);
+        extras.initial_T_cw = initialPose(current_pyramid, tracks, model);
         out.initial_pose_model = model;
         times_.add("dynamic.initial_pose", watch.elapsedMs());
         if (extras.initial_T_cw) input.T_cw_initial = *extras.initial_T_cw;
@@ -170,8 +177,9 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
 
   const tracking::TrackResult& track = out.slam.track;
   if (track.state == tracking::TrackingState::kOk) {
-    last_ = LastFrame{features.gray, frame.depth, track.T_cw};
-    if (usesGeometry() && (track.new_keyframe || track.initialized_map)) rememberKeyFrameImage(features.gray);
+    if (usesGeometry() && current_pyramid.empty()) current_pyramid = dynamic::buildPyramid(features.gray, options_.tracking);
+    last_ = LastFrame{features.gray, frame.depth, current_pyramid, track.T_cw};
+    if (usesGeometry() && (track.new_keyframe || track.initialized_map)) rememberKeyFramePyramid(current_pyramid);
   } else {
     last_.reset();  // a lost frame's pose would poison the reprojection test of the next one
   }

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "amos/core/stage_timer.h"
+#include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/dynamic_front_end.h"
 #include "amos/dynamic/segmentation_worker.h"
 #include "amos/system/slam_system.h"
@@ -67,12 +68,14 @@ class DynamicPipeline {
   void requestSegmentation(const io::RgbdFrame& frame);
   std::future<dynamic::SegmentationResult> takeSegmentation(const io::RgbdFrame& frame);
   bool usesGeometry() const;
-  std::optional<core::SE3> initialPose(const cv::Mat& gray, const std::vector<dynamic::PointTrack>& tracks,
+  std::optional<core::SE3> initialPose(const dynamic::ImagePyramid& current,
+                                       const std::vector<dynamic::PointTrack>& tracks,
                                        std::optional<dynamic::PoseModel>& model);
-  void rememberKeyFrameImage(const cv::Mat& gray);
+  void rememberKeyFramePyramid(const dynamic::ImagePyramid& pyramid);
 
   struct LastFrame {
     cv::Mat gray, depth;
+    dynamic::ImagePyramid pyramid;  // LK pyramid of gray (empty when the geometric stage is off)
     core::SE3 T_cw = core::SE3::Identity();
   };
 
@@ -90,8 +93,8 @@ class DynamicPipeline {
   };
   std::deque<Submitted> submitted_;
   std::optional<LastFrame> last_;
-  // Grey images of recent keyframes by id, for the reference-keyframe LK model (bounded: old ones are dropped).
-  std::deque<std::pair<std::uint64_t, cv::Mat>> keyframe_images_;
+  // LK pyramids of recent keyframes by id, for the reference-keyframe LK model (bounded: old ones are dropped).
+  std::deque<std::pair<std::uint64_t, dynamic::ImagePyramid>> keyframe_pyramids_;
   core::StageTimes times_;
   std::vector<double> removed_fractions_;
 };
