@@ -147,6 +147,34 @@ void BM_SegmentShapes(benchmark::State& state) {
   state.counters["min_iou"] = worst;
 }
 
+// Growing the person masks of the 30 frames by the default 31x31 ellipse: arg 0 = cv::dilate on the mask's
+// neighbourhood (bounding box grown by the radius), 1 = dilateMask (row-run decomposition on the same
+// neighbourhood, same result). One OpenCV thread.
+void BM_DilateMask(benchmark::State& state) {
+  const auto& masks = referenceMasks();
+  cv::setNumThreads(1);
+  const dynamic::MaskDilationOptions options;
+  const cv::Mat kernel = dynamic::dilationKernel(options);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const cv::Mat& mask = masks[i++ % masks.size()];
+    cv::Mat grown;
+    if (state.range(0) == 0) {
+      grown = cv::Mat::zeros(mask.size(), CV_8UC1);
+      const cv::Rect box = cv::boundingRect(mask);
+      const cv::Rect roi = cv::Rect(box.x - 15, box.y - 15, box.width + 30, box.height + 30) &
+                           cv::Rect(0, 0, mask.cols, mask.rows);
+      cv::Mat target = grown(roi);
+      if (!box.empty())
+        cv::dilate(mask(roi), target, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+    } else {
+      grown = dynamic::dilateMask(mask, options);
+    }
+    benchmark::DoNotOptimize(grown.data);
+  }
+}
+BENCHMARK(BM_DilateMask)->Arg(0)->Arg(1)->ArgName("row_runs")->Unit(benchmark::kMillisecond);
+
 // ORB extraction alone: arg {OpenCV threads}.
 void BM_OrbExtractor(benchmark::State& state) {
   const auto& frames = benchFrames();

@@ -80,6 +80,23 @@ TEST(SegmentMasks, LocalDilationEqualsFullFrameDilation) {
   }
 }
 
+// The row-run dilation equals cv::dilate for every structuring element and size, at the image border too.
+TEST(SegmentMasks, DilationEqualsOpenCvForEveryShapeAndSize) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> x(-10, 130), y(-10, 90), r(0, 12);
+  for (const std::string shape : {"ellipse", "rect", "cross"}) {
+    for (int size : {3, 5, 9, 15, 31, 33}) {
+      cv::Mat mask(80, 120, CV_8UC1, cv::Scalar(0));
+      for (int k = 0; k < 4; ++k) cv::circle(mask, {x(rng), y(rng)}, r(rng), cv::Scalar(255), cv::FILLED);
+      mask.at<uchar>(0, 0) = 255;  // corner pixel: the border must count as 0
+      const MaskDilationOptions options{size, shape};
+      cv::Mat expected;
+      cv::dilate(mask, expected, dilationKernel(options), cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+      EXPECT_EQ(cv::countNonZero(dilateMask(mask, options) != expected), 0) << shape << " " << size;
+    }
+  }
+}
+
 TEST(SegmentMasks, MaskIoU) {
   cv::Mat a(10, 10, CV_8UC1, cv::Scalar(0)), b(10, 10, CV_8UC1, cv::Scalar(0));
   EXPECT_DOUBLE_EQ(maskIoU(a, b), 1.0);
