@@ -73,6 +73,7 @@ Settings parse(YamlReader in) {
   readProjectKeys(in, s);
   readTrackingSection(in, s.fps, s.tracking);
   readMappingSection(in, s.mapping, s.covisibility);
+  readLoopSection(in, s.mapping, s.loop);
   readDynamicSection(in, s.dynamic);
   readSegmentationSection(in, s.segmentation);
   checkWithLocation(s, in);
@@ -91,6 +92,7 @@ void Settings::check() const {
   orb.check();
   tracking.check();
   mapping.check();
+  this->loop.check();
   core::require(covisibility.min_weight >= 1, "Mapping.covisibilityMinWeight must be >= 1");
   dynamic.check();
   segmentation.check();

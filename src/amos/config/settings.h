@@ -10,6 +10,7 @@
 #include "amos/dynamic/segmenter_options.h"
 #include "amos/feature/orb_extractor.h"
 #include "amos/io/dataset.h"
+#include "amos/loop/loop_closer.h"
 #include "amos/map/map.h"
 #include "amos/mapping/local_mapper.h"
 #include "amos/tracking/tracker.h"
@@ -36,6 +37,7 @@ struct Settings {
   tracking::TrackerOptions tracking;
   mapping::LocalMappingOptions mapping;    // Mapping.*, LocalBA.*
   map::CovisibilityOptions covisibility;   // Mapping.covisibilityMinWeight
+  loop::LoopClosingOptions loop;           // Loop.*
 
   dynamic::DynamicOptions dynamic;         // Dynamic.* (the paper's two-stage front end)
   dynamic::SegmenterOptions segmentation;  // Segmentation.* (prior dynamic objects)

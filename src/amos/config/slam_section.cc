@@ -89,4 +89,18 @@ void readMappingSection(YamlReader& in, mapping::LocalMappingOptions& o, map::Co
   in.read("LocalBA.threads", o.ba.num_threads);
 }
 
+void readLoopSection(YamlReader& in, const mapping::LocalMappingOptions& mapping, loop::LoopClosingOptions& o) {
+  o.fusion = mapping.fusion;
+  in.read("Loop.enabled", o.enabled);
+  in.read("Loop.essentialMinWeight", o.essential_min_weight);
+  in.read("Loop.poseGraphIterations", o.pose_graph.max_iterations);
+  in.read("Loop.minKeyFrames", o.detector.min_keyframes);
+  in.read("Loop.minKeyFrameGap", o.detector.min_keyframe_gap);
+  in.read("Loop.candidates", o.detector.candidates);
+  in.read("Loop.minMatches", o.detector.min_matches);
+  in.read("Loop.matchRatio", o.detector.match_ratio);
+  in.read("Loop.minInliers", o.detector.min_inliers);
+  in.read("Loop.reprojectionThreshold", o.detector.pnp.reprojection_threshold_px);
+}
+
 }  // namespace amos::config

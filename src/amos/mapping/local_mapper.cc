@@ -20,8 +20,12 @@ void LocalMappingOptions::check() const {
 }
 
 LocalMapper::LocalMapper(const LocalMappingOptions& options, std::shared_ptr<map::Map> map, bool lock_step,
-                         core::StageTimes* times)
-    : options_(options), map_(std::move(map)), lock_step_(lock_step), times_(times) {
+                         core::StageTimes* times, KeyFrameHook after_keyframe)
+    : options_(options),
+      map_(std::move(map)),
+      lock_step_(lock_step),
+      times_(times),
+      after_keyframe_(std::move(after_keyframe)) {
   options_.check();
   core::require(map_ != nullptr, "LocalMapper: map must not be null");
   thread_ = std::thread([this] { run(); });
@@ -99,6 +103,7 @@ void LocalMapper::process(Job job) {
   core::Stopwatch total, watch;
   const map::KeyFramePtr& kf = job.kf;
   LocalMappingStats delta;
+  std::size_t job_new_points = 0;
   {
     std::unique_lock lock(map_->mutex());
     if (kf->isBad()) return;
@@ -108,6 +113,7 @@ void LocalMapper::process(Job job) {
       map_->updateDescriptor(p);
     }
     map_->updateConnections(kf);
+    job_new_points = job.new_points.size();
     for (auto& p : job.new_points) recent_points_.push_back(std::move(p));
     const int before = static_cast<int>(map_->numMapPoints());
     cullRecentPoints(kf);
@@ -131,12 +137,18 @@ void LocalMapper::process(Job job) {
   if (queuedKeyFrames() == 0) {
     std::unique_lock lock(map_->mutex());
     delta.points_fused = fuseWithNeighbors(*map_, kf, options_.fusion);
+    spdlog::debug("keyframe {}: {} new points, {} triangulated, {} fused; points {} seen by 2+ keyframes {} neighbours {}",
+                  kf->id(), job_new_points, delta.points_triangulated, delta.points_fused, kf->trackedMapPoints(0),
+                  kf->trackedMapPoints(3), kf->orderedConnections().size());
   }
   if (times_) times_->add("mapping.fusion", watch.elapsedMs());
   if (queuedKeyFrames() == 0) {
     watch.restart();
     if (options_.local_ba && map_->numKeyFrames() > 2) {
       const LocalBaStats ba = runLocalBundleAdjustment(*map_, kf, options_.ba, &abort_ba_);
+      spdlog::debug("local BA for keyframe {}: {} local + {} fixed keyframes, {} points, {} observations, {} outliers{}",
+                    kf->id(), ba.local_keyframes, ba.fixed_keyframes, ba.points, ba.observations,
+                    ba.outliers_removed, ba.aborted ? " (aborted)" : "");
       ++delta.ba_runs;
       delta.ba_aborted += ba.aborted;
       if (times_) times_->add("mapping.local_ba", watch.elapsedMs());
@@ -149,6 +161,11 @@ void LocalMapper::process(Job job) {
       delta.keyframes_culled = static_cast<int>(before - map_->numKeyFrames());
     }
     if (times_) times_->add("mapping.cull_keyframes", watch.elapsedMs());
+  }
+  if (after_keyframe_) {
+    watch.restart();
+    after_keyframe_(kf);
+    if (times_) times_->add("mapping.after_keyframe", watch.elapsedMs());
   }
   if (times_) times_->add("mapping.keyframe_total", total.elapsedMs());
   std::lock_guard lock(mutex_);

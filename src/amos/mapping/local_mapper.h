@@ -11,6 +11,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -44,11 +45,15 @@ struct LocalMappingStats {
   int ba_runs = 0, ba_aborted = 0;
 };
 
+// Called in the mapping thread after each keyframe is processed, without any lock held (loop closing hooks in
+// here, so it runs with local mapping paused).
+using KeyFrameHook = std::function<void(const map::KeyFramePtr&)>;
+
 class LocalMapper final : public tracking::KeyFrameSink {
  public:
   // lock_step: insertKeyFrame() waits until the keyframe is processed (deterministic mode).
   LocalMapper(const LocalMappingOptions& options, std::shared_ptr<map::Map> map, bool lock_step,
-              core::StageTimes* times = nullptr);
+              core::StageTimes* times = nullptr, KeyFrameHook after_keyframe = {});
   ~LocalMapper() override;
   LocalMapper(const LocalMapper&) = delete;
   LocalMapper& operator=(const LocalMapper&) = delete;
@@ -78,6 +83,7 @@ class LocalMapper final : public tracking::KeyFrameSink {
   std::shared_ptr<map::Map> map_;
   const bool lock_step_;
   core::StageTimes* times_;
+  KeyFrameHook after_keyframe_;
 
   mutable std::mutex mutex_;
   std::condition_variable work_cv_, idle_cv_;

@@ -25,6 +25,7 @@ system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bo
   o.orb = settings.orb;
   o.tracking = settings.tracking;
   o.mapping = settings.mapping;
+  o.loop = settings.loop;
   o.covisibility = settings.covisibility;
   o.deterministic = deterministic;
   return o;

@@ -15,6 +15,7 @@ void SlamOptions::check() const {
   orb.check();
   tracking.check();
   mapping.check();
+  loop.check();
   core::require(covisibility.min_weight >= 1, "Mapping.covisibilityMinWeight must be >= 1");
 }
 
@@ -23,7 +24,10 @@ SlamSystem::SlamSystem(const SlamOptions& options)
       sensor_((options.check(), std::make_shared<map::Sensor>(options.camera, options.sensor, options.orb))),
       extractor_(options.orb),
       map_(std::make_shared<map::Map>(options.covisibility)) {
-  mapper_ = std::make_unique<mapping::LocalMapper>(options_.mapping, map_, options_.deterministic, &times_);
+  loop_closer_ = std::make_unique<loop::LoopCloser>(options_.loop, map_);
+  mapper_ = std::make_unique<mapping::LocalMapper>(
+      options_.mapping, map_, options_.deterministic, &times_,
+      [closer = loop_closer_.get()](const map::KeyFramePtr& kf) { closer->process(kf); });
   tracker_ = std::make_unique<tracking::Tracker>(options_.tracking, map_, mapper_.get(), &times_);
 }
 
@@ -130,6 +134,7 @@ SlamStats SlamSystem::stats() const {
     s.map_points = map_->numMapPoints();
   }
   s.mapping = mapper_->stats();
+  s.loops_closed = loop_closer_->closures().size();
   return s;
 }
 

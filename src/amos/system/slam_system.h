@@ -19,6 +19,7 @@
 #include "amos/feature/orb_extractor.h"
 #include "amos/io/dataset.h"
 #include "amos/io/trajectory.h"
+#include "amos/loop/loop_closer.h"
 #include "amos/map/map.h"
 #include "amos/map/sensor.h"
 #include "amos/mapping/local_mapper.h"
@@ -33,6 +34,7 @@ struct SlamOptions {
   map::CovisibilityOptions covisibility;  // Mapping.covisibilityMinWeight
   tracking::TrackerOptions tracking;   // Tracking.*, Matching.*, Relocalization.*
   mapping::LocalMappingOptions mapping;  // Mapping.*, LocalBA.*
+  loop::LoopClosingOptions loop;         // Loop.*
   // System.deterministic: local mapping in lock-step with tracking (each keyframe fully processed before the
   // next frame is tracked), so the same input gives a bit-identical trajectory.
   bool deterministic = false;
@@ -62,6 +64,7 @@ struct SlamStats {
   std::size_t frames = 0, tracked = 0, lost = 0, not_initialized = 0, relocalized = 0;
   std::size_t keyframes_created = 0, keyframes = 0, map_points = 0;
   mapping::LocalMappingStats mapping;
+  std::size_t loops_closed = 0;
 };
 
 class SlamSystem {
@@ -106,6 +109,7 @@ class SlamSystem {
   feature::OrbExtractor extractor_;
   std::shared_ptr<map::Map> map_;
   core::StageTimes times_;
+  std::unique_ptr<loop::LoopCloser> loop_closer_;  // used by the mapping thread: declared (and outlives) before it
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<tracking::Tracker> tracker_;
   std::vector<FrameRecord> records_;

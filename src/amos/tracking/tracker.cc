@@ -463,6 +463,8 @@ bool Tracker::needNewKeyFrame(const map::Frame& frame, int inliers) const {
   const bool c1b = frame.id >= last_keyframe_frame_ + static_cast<map::FrameId>(options_.min_frames_between_keyframes) && idle;
   const bool c1c = inliers < ref_matches * 0.25 || need_close;
   const bool c2 = (inliers < ref_matches * ref_ratio || need_close) && inliers > 15;
+  spdlog::debug("frame {}: keyframe test: inliers {} reference tracked {} (ratio {}) close tracked {} untracked {}{}",
+                frame.id, inliers, ref_matches, ref_ratio, tracked_close, untracked_close, idle ? "" : " mapping busy");
   if (!((c1a || c1b || c1c) && c2)) return false;
   if (idle) return true;
   if (sink_) {

@@ -1,0 +1,152 @@
+#include "amos/loop/loop_detector.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <unordered_set>
+
+#include "amos/core/error.h"
+#include "amos/tracking/relocalizer.h"
+
+namespace amos::loop {
+
+void LoopDetectorOptions::check() const {
+  core::require(min_keyframes >= 2, "Loop.minKeyFrames must be >= 2");
+  core::require(min_keyframe_gap >= 0, "Loop.minKeyFrameGap must be >= 0");
+  core::require(candidates >= 1, "Loop.candidates must be >= 1");
+  core::require(min_matches >= 6, "Loop.minMatches must be >= 6");
+  core::require(match_ratio > 0 && match_ratio <= 1, "Loop.matchRatio must be in (0, 1]");
+  core::require(min_inliers >= min_matches, "Loop.minInliers must be >= Loop.minMatches");
+  pnp.check();
+  pose.check();
+  matching.check();
+}
+
+namespace {
+
+}  // namespace
+
+map::Frame frameOf(const map::KeyFrame& kf) {
+  map::Frame f;
+  f.id = kf.frameId();
+  f.timestamp = kf.timestamp();
+  f.sensor = kf.sharedSensor();
+  f.features = kf.sharedFeatures();
+  f.thumbnail = kf.thumbnail();
+  f.setPose(kf.T_cw());
+  f.resetMatches();
+  return f;
+}
+
+namespace {
+
+int optimizeAndDropOutliers(map::Frame& frame, const geometry::PoseOptimizerOptions& options) {
+  const int inliers = tracking::optimizeFramePose(frame, options);
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    if (frame.outlier[i]) {
+      frame.map_points[i].reset();
+      frame.outlier[i] = false;
+    }
+  }
+  return inliers;
+}
+
+std::unordered_set<const map::MapPoint*> matchedSet(const map::Frame& frame) {
+  std::unordered_set<const map::MapPoint*> s;
+  for (const auto& p : frame.map_points) {
+    if (p) s.insert(p.get());
+  }
+  return s;
+}
+
+}  // namespace
+
+int localizeAgainst(map::Frame& frame, const std::vector<map::KeyFramePtr>& keyframes,
+                    const LoopDetectorOptions& options) {
+  for (const auto& kf : keyframes) {
+    tracking::searchKeyFrameByProjection(frame, *kf, matchedSet(frame), 10, options.matching.th_high,
+                                         options.matching);
+  }
+  return optimizeAndDropOutliers(frame, options.pose);
+}
+
+std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFramePtr& current,
+                                        map::KeyFrameId last_loop_kf, const LoopDetectorOptions& options) {
+  options.check();
+  if (!current || current->isBad()) return std::nullopt;
+  if (map.numKeyFrames() < static_cast<std::size_t>(options.min_keyframes)) return std::nullopt;
+  if (last_loop_kf != map::kNoKeyFrame && current->id() < last_loop_kf + options.min_keyframe_gap) return std::nullopt;
+
+  std::unordered_set<map::KeyFrameId> connected{current->id()};
+  double max_neighbour_distance = 0;
+  for (const auto& [w, id] : current->orderedConnections()) {
+    connected.insert(id);
+    if (const map::KeyFramePtr n = map.keyFrame(id)) {
+      max_neighbour_distance =
+          std::max(max_neighbour_distance, map::thumbnailDistance(current->thumbnail(), n->thumbnail()));
+    }
+  }
+  if (connected.size() < 2) return std::nullopt;  // no neighbour: nothing to compare similarity with
+
+  std::vector<std::pair<double, map::KeyFramePtr>> ranked;
+  for (const auto& kf : map.keyFrames()) {
+    if (kf->isBad() || connected.count(kf->id()) || kf->id() > current->id()) continue;
+    const double d = map::thumbnailDistance(current->thumbnail(), kf->thumbnail());
+    if (d <= max_neighbour_distance) ranked.emplace_back(d, kf);
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (ranked.size() > static_cast<std::size_t>(options.candidates)) ranked.resize(options.candidates);
+
+  const map::FrameFeatures& f = current->features();
+  for (const auto& [distance, candidate] : ranked) {
+    map::Frame frame = frameOf(*current);
+    int n = 0;
+    std::vector<map::MapPointPtr> matches =
+        tracking::matchFrameToKeyFrame(frame, *candidate, options.match_ratio, options.matching, &n);
+    if (n < options.min_matches) continue;
+    std::vector<Eigen::Vector3d> points;
+    std::vector<Eigen::Vector2d> pixels;
+    std::vector<int> index;
+    for (std::size_t i = 0; i < matches.size(); ++i) {
+      if (!matches[i]) continue;
+      points.push_back(matches[i]->position());
+      pixels.emplace_back(f.keys[i].pt.x, f.keys[i].pt.y);
+      index.push_back(static_cast<int>(i));
+    }
+    const geometry::PnpResult pnp = geometry::solvePnpRansac(points, pixels, current->sensor().camera(), options.pnp);
+    if (!pnp.success) continue;
+    frame.resetMatches();
+    frame.setPose(pnp.T_cw);
+    for (const int k : pnp.inliers) frame.map_points[index[k]] = matches[index[k]];
+    if (optimizeAndDropOutliers(frame, options.pose) < options.min_matches) continue;
+
+    // The loop neighbourhood: the candidate and its covisible keyframes, projected with the verified pose.
+    std::vector<map::KeyFramePtr> neighbourhood{candidate};
+    for (const auto& [w, id] : candidate->orderedConnections()) {
+      const map::KeyFramePtr kf = map.keyFrame(id);
+      if (kf && !kf->isBad() && !connected.count(id)) neighbourhood.push_back(kf);
+    }
+    const int inliers = localizeAgainst(frame, neighbourhood, options);
+    spdlog::debug("loop candidate {} for keyframe {}: {} matches, {} PnP inliers, {} inliers after projection",
+                  candidate->id(), current->id(), n, pnp.inliers.size(), inliers);
+    if (inliers < options.min_inliers) continue;
+
+    LoopCandidate loop;
+    loop.current = current;
+    loop.loop = candidate;
+    loop.T_cw_corrected = frame.T_cw;
+    loop.matches = frame.map_points;
+    loop.inliers = inliers;
+    loop.loop_keyframes = neighbourhood;
+    std::unordered_set<const map::MapPoint*> seen;
+    for (const auto& kf : neighbourhood) {
+      for (const auto& p : kf->mapPoints()) {
+        if (p && !p->isBad() && seen.insert(p.get()).second) loop.loop_points.push_back(p);
+      }
+    }
+    return loop;
+  }
+  return std::nullopt;
+}
+
+}  // namespace amos::loop

@@ -1,0 +1,58 @@
+#pragma once
+// Loop detection (ORB-SLAM2's DetectLoop + ComputeSim3, for RGB-D where scale is observed, so SE(3)):
+//   1. candidates: keyframes not connected to the current one in the covisibility graph, whose thumbnail is at
+//      least as similar to the current keyframe's as that of its least similar covisible neighbour (the same
+//      relative test ORB-SLAM2 applies to bag-of-words scores), best first;
+//   2. geometric verification: brute-force descriptor matches to the candidate's map points, PnP RANSAC,
+//      pose optimisation, then the points of the candidate's whole neighbourhood projected with that pose;
+//      the loop is accepted with at least `min_inliers` inliers after the final optimisation.
+// Pure reading of the map: call with Map::mutex() held (shared is enough).
+#include <vector>
+
+#include "amos/geometry/pnp_ransac.h"
+#include "amos/geometry/pose_optimizer.h"
+#include "amos/map/map.h"
+#include "amos/tracking/matching.h"
+
+namespace amos::loop {
+
+struct LoopDetectorOptions {
+  int min_keyframes = 10;     // Loop.minKeyFrames: no loop search in a map smaller than this (ORB-SLAM2: 10)
+  int min_keyframe_gap = 10;  // Loop.minKeyFrameGap: keyframes between two loop closures (ORB-SLAM2: 10)
+  int candidates = 5;         // Loop.candidates: candidates verified per keyframe, best thumbnails first
+  int min_matches = 20;       // Loop.minMatches: descriptor matches to attempt PnP (ORB-SLAM2 SearchByBoW: 20)
+  float match_ratio = 0.75f;  // Loop.matchRatio: Lowe ratio of those matches
+  // Loop.minInliers: inliers after projecting the loop neighbourhood and optimising. A false loop corrupts the
+  // whole map, so this is stricter than relocalisation (50) and ORB-SLAM2's 40 matches, which it backs up with
+  // a three-keyframe consistency test this detector does not have.
+  int min_inliers = 80;
+  geometry::PnpRansacOptions pnp;       // reprojection threshold, iterations, seed
+  geometry::PoseOptimizerOptions pose;  // robust pose refinement
+  tracking::MatchingOptions matching;
+  void check() const;
+};
+
+struct LoopCandidate {
+  map::KeyFramePtr current, loop;
+  core::SE3 T_cw_corrected = core::SE3::Identity();  // pose of `current` consistent with the loop side
+  // Per keypoint of `current`: the loop-side map point it matched (null when none), inliers only.
+  std::vector<map::MapPointPtr> matches;
+  std::vector<map::KeyFramePtr> loop_keyframes;  // the loop keyframe and its covisible neighbours
+  std::vector<map::MapPointPtr> loop_points;      // their map points
+  int inliers = 0;
+};
+
+// Refines `frame`'s pose (a keyframe seen as a frame, with a good initial pose) against the map points of
+// `keyframes`: projection search, then robust pose optimisation. Returns the inliers; matches are left in
+// frame.map_points. Used to verify a loop and to measure the loop side's pose of each keyframe near the loop.
+int localizeAgainst(map::Frame& frame, const std::vector<map::KeyFramePtr>& keyframes,
+                    const LoopDetectorOptions& options);
+// A keyframe as a frame to be localised (features, sensor, thumbnail, current pose; no matches).
+map::Frame frameOf(const map::KeyFrame& kf);
+
+// Returns the verified loop of `current`, or nothing. `last_loop_kf` is the id of the keyframe that closed the
+// previous loop (kNoKeyFrame when none).
+std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFramePtr& current,
+                                        map::KeyFrameId last_loop_kf, const LoopDetectorOptions& options);
+
+}  // namespace amos::loop
