@@ -302,7 +302,10 @@ BENCHMARK(BM_FrontEndGeometry)->Unit(benchmark::kMillisecond);
 
 // The whole of `amos-slam run --mode full` on bonn_crowd_dev (configs/bonn.yaml), the loop of report::runSequence,
 // with and without look-ahead (process(frame k, next = frame k+1): frame k+1 is segmented while frame k is
-// tracked). One iteration = one pass over the 270 frames. Counters: fps (wall), cpu_ms per frame (all threads of the
+// tracked), and with settings changed from the file's: args {look_ahead 0/1, Segmentation.mask_input_size,
+// Dynamic.LK.window, Dynamic.LK.maxIterations, LK epsilon in 1/1000 px, OpenCV threads (0 = OpenCV's default),
+// System.deterministic 0/1}. One iteration = one pass over
+// the 270 frames. Counters: fps (wall), cpu_ms per frame (all threads of the
 // process, from getrusage), ATE RMSE in metres, lost frames, and the median wait for the masks. Run it from the
 // repository root (it reads configs/bonn.yaml):
 //   ./build/bin/bench_dynamic --benchmark_filter=BonnFull --benchmark_repetitions=3
@@ -316,10 +319,18 @@ double processCpuSeconds() {
 void BM_BonnFullSequence(benchmark::State& state) {
   const bool look_ahead = state.range(0) != 0;
   const std::string sequence = std::string(AMOS_SHARED_DIR) + "/data/bonn_crowd_dev";
-  const config::Settings settings = config::loadSettings("configs/bonn.yaml");
-  double fps = 0, cpu_ms = 0, ate = 0, lost = 0, wait_ms = 0;
+  config::Settings settings = config::loadSettings("configs/bonn.yaml");
+  settings.segmentation.mask_input_size = static_cast<int>(state.range(1));
+  settings.dynamic.tracking.lk_window = static_cast<int>(state.range(2));
+  settings.dynamic.tracking.lk_max_iterations = static_cast<int>(state.range(3));
+  settings.dynamic.tracking.lk_epsilon = static_cast<double>(state.range(4)) / 1000.0;
+  const int cv_threads = static_cast<int>(state.range(5));
+  const bool deterministic = state.range(6) != 0;
+  const int default_threads = cv::getNumThreads();
+  settings.segmentation.threads = cv_threads;  // applied by the segmenter; 0 leaves OpenCV's default
+  double fps = 0, cpu_ms = 0, ate = 0, lost = 0, wait_ms = 0, keyframe_points_median = 0;
   for (auto _ : state) {
-    system::SlamSystem slam(report::slamOptionsFromSettings(settings, /*deterministic=*/false));
+    system::SlamSystem slam(report::slamOptionsFromSettings(settings, deterministic));
     dynamic::DynamicOptions options = settings.dynamic;
     options.mode = DynamicMode::kFull;
     dynamic::ModelSources sources;
@@ -336,12 +347,16 @@ void BM_BonnFullSequence(benchmark::State& state) {
     core::Stopwatch wall;
     std::size_t frames = 0;
     std::optional<io::RgbdFrame> frame = reader.next();
+    std::vector<double> keyframe_points;
     while (frame) {
       std::optional<io::RgbdFrame> next = reader.next();
       pipeline.process(*frame, look_ahead && next ? &*next : nullptr);
       frame = std::move(next);
       ++frames;
+      const auto view = slam.tracker().referenceKeyFrameView();
+      keyframe_points.push_back(static_cast<double>(std::count(view.has_point.begin(), view.has_point.end(), true)));
     }
+    keyframe_points_median = core::percentile(keyframe_points, 0.5);
     pipeline.finish();
     const double wall_s = wall.elapsedMs() / 1000.0;
     fps = static_cast<double>(frames) / wall_s;
@@ -357,11 +372,21 @@ void BM_BonnFullSequence(benchmark::State& state) {
   state.counters["ate_m"] = ate;
   state.counters["lost"] = lost;
   state.counters["segmentation_wait_ms"] = wait_ms;
+  state.counters["keyframe_points"] = keyframe_points_median;  // points the reference-keyframe model tracks by LK
+  cv::setNumThreads(default_threads);
 }
 BENCHMARK(BM_BonnFullSequence)
-    ->Arg(0)
-    ->Arg(1)
-    ->ArgName("look_ahead")
+    ->Args({0, 256, 15, 30, 10, 0, 0})
+    ->Args({1, 256, 15, 30, 10, 0, 0})
+    ->Args({1, 256, 15, 30, 10, 1, 0})
+    ->Args({1, 160, 15, 30, 10, 1, 0})
+    ->Args({1, 160, 15, 10, 30, 1, 0})
+    ->Args({1, 256, 15, 30, 10, 1, 1})
+    ->Args({1, 192, 15, 30, 10, 1, 1})
+    ->Args({1, 160, 15, 30, 10, 1, 1})
+    ->Args({1, 160, 15, 10, 30, 1, 1})
+    ->Args({1, 160, 11, 30, 10, 1, 1})
+    ->ArgNames({"look_ahead", "mask_input", "lk_window", "lk_iters", "lk_eps_milli", "cv_threads", "deterministic"})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kSecond);
