@@ -53,24 +53,35 @@ std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std
   const cv::Size window(options.lk_window, options.lk_window);
   const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, options.lk_max_iterations,
                               options.lk_epsilon);
-  std::vector<cv::Point2f> forward, backward;
-  std::vector<uchar> ok_forward, ok_backward;
+  std::vector<cv::Point2f> forward;
+  std::vector<uchar> ok_forward;
   std::vector<float> error;
   cv::calcOpticalFlowPyrLK(pyramids.last, pyramids.current, points, forward, ok_forward, error, window,
                            options.lk_levels, stop);
-  // The backward pass starts where the forward pass ended, without a hint towards the original point, so
-  // that only a track consistent in both directions returns to it.
-  cv::calcOpticalFlowPyrLK(pyramids.current, pyramids.last, forward, backward, ok_backward, error, window,
-                           options.lk_levels, stop);
+  // Only the points that converged inside the image go back (LK treats every point on its own, so leaving the
+  // others out changes nothing for these). The backward pass starts where the forward pass ended, without a hint
+  // towards the original point, so that only a track consistent in both directions returns to it.
   const cv::Size size = pyramids.current.front().size();
   const cv::Rect2f inside(0.f, 0.f, static_cast<float>(size.width - 1), static_cast<float>(size.height - 1));
-  const float fb2 = static_cast<float>(options.forward_backward_px * options.forward_backward_px);
+  std::vector<int> candidates;
+  std::vector<cv::Point2f> returning;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!ok_forward[i] || !ok_backward[i]) continue;
-    if (!inside.contains(forward[i])) continue;
-    const cv::Point2f d = backward[i] - points[i];
+    if (!ok_forward[i] || !inside.contains(forward[i])) continue;
+    candidates.push_back(static_cast<int>(i));
+    returning.push_back(forward[i]);
+  }
+  if (candidates.empty()) return tracks;
+  std::vector<cv::Point2f> backward;
+  std::vector<uchar> ok_backward;
+  cv::calcOpticalFlowPyrLK(pyramids.current, pyramids.last, returning, backward, ok_backward, error, window,
+                           options.lk_levels, stop);
+  const float fb2 = static_cast<float>(options.forward_backward_px * options.forward_backward_px);
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    if (!ok_backward[k]) continue;
+    const int i = candidates[k];
+    const cv::Point2f d = backward[k] - points[static_cast<std::size_t>(i)];
     if (d.dot(d) > fb2) continue;
-    tracks.push_back({points[i], forward[i], static_cast<int>(i)});
+    tracks.push_back({points[static_cast<std::size_t>(i)], forward[static_cast<std::size_t>(i)], i});
   }
   return tracks;
 }

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+#include <string>
 
 #include "amos/core/error.h"
 
@@ -68,6 +71,52 @@ TEST(CornerTracking, ForwardBackwardCheckDropsOccludedPoints) {
   EXPECT_EQ(inside_without_check, total_inside);
   EXPECT_LT(inside, total_inside / 3);
   EXPECT_GT(tracks.size(), points.size() * 3 / 4);
+}
+
+// trackPoints sends back only the points whose forward pass succeeded inside the image; LK tracks every point on
+// its own, so the result must be exactly that of running both passes on all points (checked on two real frames with
+// people walking, where many forward tracks fail or leave the image).
+TEST(CornerTracking, BackwardPassOnSurvivorsOnlyChangesNothing) {
+  const std::string dir = std::string(AMOS_SHARED_DIR) + "/data/bonn_crowd_dev/rgb/";
+  const cv::Mat last = cv::imread(dir + "1548339831.57265.png", cv::IMREAD_GRAYSCALE);
+  const cv::Mat current = cv::imread(dir + "1548339831.87434.png", cv::IMREAD_GRAYSCALE);  // 9 frames later
+  ASSERT_FALSE(last.empty() || current.empty());
+  const CornerTrackingOptions options;
+  const FramePairPyramids pyramids = buildPyramids(last, current, options);
+  std::vector<cv::Point2f> points;
+  cv::goodFeaturesToTrack(last, points, 800, 0.005, 5.0);
+  points.emplace_back(-3.f, 10.f);  // outside the image
+  // Both passes on every point, as plain OpenCV calls.
+  const cv::Size window(options.lk_window, options.lk_window);
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, options.lk_max_iterations,
+                              options.lk_epsilon);
+  std::vector<cv::Point2f> forward, backward;
+  std::vector<uchar> ok_forward, ok_backward;
+  std::vector<float> error;
+  cv::calcOpticalFlowPyrLK(pyramids.last, pyramids.current, points, forward, ok_forward, error, window,
+                           options.lk_levels, stop);
+  cv::calcOpticalFlowPyrLK(pyramids.current, pyramids.last, forward, backward, ok_backward, error, window,
+                           options.lk_levels, stop);
+  std::vector<PointTrack> expected;
+  int forward_failures = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const bool inside = forward[i].x >= 0 && forward[i].y >= 0 && forward[i].x < current.cols - 1 &&
+                        forward[i].y < current.rows - 1;
+    if (!ok_forward[i] || !inside) {
+      ++forward_failures;
+      continue;
+    }
+    const cv::Point2f d = backward[i] - points[i];
+    if (ok_backward[i] && d.dot(d) <= options.forward_backward_px * options.forward_backward_px)
+      expected.push_back({points[i], forward[i], static_cast<int>(i)});
+  }
+  EXPECT_GT(forward_failures, 0);
+  const std::vector<PointTrack> tracks = trackPoints(pyramids, points, options);
+  ASSERT_EQ(tracks.size(), expected.size());
+  for (std::size_t k = 0; k < tracks.size(); ++k) {
+    EXPECT_EQ(tracks[k].source_index, expected[k].source_index);
+    EXPECT_EQ(tracks[k].current, expected[k].current);
+  }
 }
 
 TEST(CornerTracking, RejectsBadOptionsAndImages) {
