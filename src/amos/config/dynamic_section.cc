@@ -35,6 +35,10 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
   in.read("Dynamic.Reprojection.minPoints", o.reprojection.min_points_per_cluster);
   in.read("Dynamic.Reprojection.maxDepth", o.reprojection.max_depth_m);
   in.read("Dynamic.Reprojection.depthEdgeRatio", o.reprojection.depth_edge_ratio);
+  in.read("Dynamic.Reprojection.refitPose", o.reprojection.refit_pose);
+  in.read("Dynamic.Reprojection.refitMinPoints", o.reprojection.refit_min_points);
+  in.read("Dynamic.Reprojection.confirmSigmas", o.reprojection.confirm_sigmas);
+  in.read("Dynamic.Reprojection.confirmThreshold", o.reprojection.confirm_threshold_px);
 
   in.read("Dynamic.Epipolar.ransacThreshold", o.epipolar.ransac_threshold_px);
   in.read("Dynamic.Epipolar.threshold", o.epipolar.dynamic_threshold_px);
@@ -45,6 +49,7 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
 
   in.read("Dynamic.Boundary.radius", o.boundary.search_radius_px);
   in.read("Dynamic.Boundary.borderMargin", o.boundary.border_margin_px);
+  in.read("Dynamic.Boundary.superpixelMask", o.boundary.superpixel_mask);
 
   in.read("Dynamic.InitialPose.inlierThreshold", o.initial_pose.inlier_threshold_px);
 }

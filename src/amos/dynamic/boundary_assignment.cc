@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <queue>
+#include <tuple>
 
 #include "amos/core/error.h"
 
@@ -75,6 +77,152 @@ int assignToNeighbourCluster(cv::Point2f p, const cv::Mat& decision_map, const s
     }
   }
   return best;
+}
+
+std::vector<std::vector<int>> superpixelNeighbours(const cv::Mat& labels, int count) {
+  core::require(labels.type() == CV_32S, "superpixelNeighbours: labels must be CV_32S");
+  std::vector<std::vector<int>> neighbours(std::max(0, count));
+  auto link = [&](int a, int b) {
+    if (a == b) return;
+    core::require(a >= 0 && b >= 0 && a < count && b < count, "superpixelNeighbours: label out of range");
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  };
+  for (int y = 0; y < labels.rows; ++y) {
+    const int* row = labels.ptr<int>(y);
+    const int* below = y + 1 < labels.rows ? labels.ptr<int>(y + 1) : nullptr;
+    for (int x = 0; x < labels.cols; ++x) {
+      // Only label changes add pairs, so the lists stay short before deduplication.
+      if (x + 1 < labels.cols && row[x] != row[x + 1]) link(row[x], row[x + 1]);
+      if (below && row[x] != below[x]) link(row[x], below[x]);
+    }
+  }
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return neighbours;
+}
+
+double superpixelDissimilarity(const Superpixel& a, const Superpixel& b, double colour_scale, double depth_scale_m) {
+  const double dl = a.L - b.L, da = a.A - b.A, db = a.B - b.B;
+  double d = std::sqrt(dl * dl + da * da + db * db) / colour_scale;
+  if (a.depth > 0 && b.depth > 0) d += std::fabs(a.depth - b.depth) / depth_scale_m;
+  return d;
+}
+
+std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
+                                     const std::vector<std::vector<int>>& neighbours, std::vector<RegionLabel> labels,
+                                     const std::vector<bool>& may_be_dynamic, double colour_scale,
+                                     double depth_scale_m) {
+  const std::size_t n = superpixels.size();
+  core::require(neighbours.size() == n && labels.size() == n && may_be_dynamic.size() == n,
+                "growRegions: superpixels, neighbours, seeds and flags differ in number");
+  core::require(colour_scale > 0 && depth_scale_m > 0, "growRegions: scales must be positive");
+  // (cost, superpixel to label, label offered): the cheapest offer is taken first.
+  using Offer = std::tuple<double, int, int>;
+  std::priority_queue<Offer, std::vector<Offer>, std::greater<Offer>> offers;
+  auto offerFrom = [&](int a) {
+    const RegionLabel l = labels[a];
+    for (int b : neighbours[a]) {
+      if (labels[b] != RegionLabel::kUnlabelled) continue;
+      if (l == RegionLabel::kDynamic && !may_be_dynamic[b]) continue;
+      offers.emplace(superpixelDissimilarity(superpixels[a], superpixels[b], colour_scale, depth_scale_m), b,
+                     static_cast<int>(l));
+    }
+  };
+  for (std::size_t a = 0; a < n; ++a)
+    if (labels[a] != RegionLabel::kUnlabelled) offerFrom(static_cast<int>(a));
+  while (!offers.empty()) {
+    const auto [cost, b, l] = offers.top();
+    offers.pop();
+    if (labels[b] != RegionLabel::kUnlabelled) continue;
+    labels[b] = static_cast<RegionLabel>(l);
+    offerFrom(b);
+  }
+  for (RegionLabel& l : labels)
+    if (l == RegionLabel::kUnlabelled) l = RegionLabel::kStatic;
+  return labels;
+}
+
+std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vector<Superpixel>& superpixels,
+                                         const std::vector<std::vector<int>>& neighbours,
+                                         const std::vector<bool>& border, const std::vector<bool>& dynamic_cluster,
+                                         const std::vector<TrackEvidence>& tracks, double static_px,
+                                         double epipolar_px) {
+  const int n = static_cast<int>(superpixels.size());
+  const int clusters = static_cast<int>(dynamic_cluster.size());
+  core::require(labels.type() == CV_32S, "seedSuperpixels: labels must be CV_32S");
+  core::require(static_cast<int>(neighbours.size()) == n && static_cast<int>(border.size()) == n,
+                "seedSuperpixels: superpixels, neighbours and border flags differ in number");
+  auto clusterOf = [&](int s) {
+    const int c = superpixels[s].cluster;
+    core::require(c >= 0 && c < clusters, "seedSuperpixels: superpixel without a valid cluster");
+    return c;
+  };
+  // Dynamic clusters bordering each cluster.
+  std::vector<std::vector<int>> dynamic_near(clusters);
+  for (int a = 0; a < n; ++a)
+    for (int b : neighbours[a]) {
+      const int ca = clusterOf(a), cb = clusterOf(b);
+      if (ca != cb && dynamic_cluster[cb]) dynamic_near[ca].push_back(cb);
+    }
+  for (auto& list : dynamic_near) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  auto superpixelAt = [&](cv::Point2f p) {
+    const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
+    if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) return -1;
+    return labels.at<int>(y, x);
+  };
+  // The motion of each dynamic cluster: the component-wise median of its tracks' residuals.
+  std::vector<std::vector<double>> rx(clusters), ry(clusters);
+  for (const TrackEvidence& t : tracks) {
+    const int s = superpixelAt(t.pixel);
+    if (s < 0 || border[s] || !t.residual) continue;
+    const int c = clusterOf(s);
+    if (!dynamic_cluster[c]) continue;
+    rx[c].push_back(t.residual->x());
+    ry[c].push_back(t.residual->y());
+  }
+  std::vector<std::optional<Eigen::Vector2d>> motion(clusters);
+  auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  for (int c = 0; c < clusters; ++c) {
+    if (rx[c].empty()) continue;
+    const Eigen::Vector2d m(median(rx[c]), median(ry[c]));
+    if (m.norm() >= static_px) motion[c] = m;
+  }
+  std::vector<int> dynamic_votes(n, 0), static_votes(n, 0);
+  for (const TrackEvidence& t : tracks) {
+    const int s = superpixelAt(t.pixel);
+    if (s < 0 || border[s]) continue;
+    const int c = clusterOf(s);
+    const std::vector<int> own{c};
+    const std::vector<int>& zone = dynamic_cluster[c] ? own : dynamic_near[c];
+    const bool still = t.residual && t.residual->norm() < static_px;
+    bool moving = false;
+    if (!zone.empty()) {
+      moving = (std::isfinite(t.epipolar_px) && t.epipolar_px > epipolar_px) || (t.residual && !still);
+      for (int z : zone)
+        if (t.residual && motion[z] && (*t.residual - *motion[z]).norm() < t.residual->norm()) moving = true;
+    }
+    if (moving)
+      ++dynamic_votes[s];
+    else if (still)
+      ++static_votes[s];
+  }
+  std::vector<RegionLabel> seeds(n, RegionLabel::kUnlabelled);
+  for (int s = 0; s < n; ++s) {
+    if (dynamic_votes[s] > static_votes[s])
+      seeds[s] = RegionLabel::kDynamic;
+    else if (static_votes[s] > dynamic_votes[s])
+      seeds[s] = RegionLabel::kStatic;
+  }
+  return seeds;
 }
 
 }  // namespace amos::dynamic

@@ -3,8 +3,19 @@
 // the borders of moving objects, where the cluster under the point may be the static background. Such a point
 // is given to the cluster around it (within ~30 px) whose mean reprojection error is the largest. Superpixel
 // blocks touching the image border take no part in the decision.
+// The same boundary problem at the scale of the mask: a cluster is a compact blob of ~140 px that need not follow
+// the mover's outline, so a dynamic cluster also covers background and a mover split between clusters is partly
+// missed, while depth-SLIC superpixels do follow it. The mask is therefore decided per superpixel: superpixels
+// whose tracks move with the dynamic cluster (or stay static) seed the two labels, and seeded region growing
+// over the superpixel adjacency graph (Adams & Bischof 1994, cost = Eq. 1 without the position term) labels the
+// superpixels without tracks after their most similar labelled neighbour.
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <cstdint>
+#include <optional>
 #include <vector>
+
+#include "amos/dynamic/depth_slic.h"
 
 namespace amos::dynamic {
 
@@ -17,6 +28,9 @@ struct BoundaryOptions {
   // image edge. 0 = touching the edge, as in the paper: those blocks are cut by the image frame, so their
   // corners track worst (LK windows leave the image, content enters and leaves the view).
   int border_margin_px = 0;
+  // Dynamic.Boundary.superpixelMask: true = the mask is decided per superpixel inside and around the dynamic
+  // clusters (seeded region growing, see above); false = the mask is the union of the dynamic clusters.
+  bool superpixel_mask = true;
   void check() const;
 };
 
@@ -32,5 +46,46 @@ cv::Mat decisionClusterMap(const cv::Mat& cluster_map, const cv::Mat& superpixel
 // the lower id). Returns -1 when the disc holds no cluster.
 int assignToNeighbourCluster(cv::Point2f p, const cv::Mat& decision_map, const std::vector<double>& cluster_error,
                              int radius_px);
+
+// Neighbours of every superpixel (labels CV_32S in [0, count), 4-connectivity), each list sorted.
+std::vector<std::vector<int>> superpixelNeighbours(const cv::Mat& superpixel_labels, int count);
+
+// How unlike two superpixels are: Eq. 1 without the position term, |Lab difference| / colour_scale +
+// |depth difference| / depth_scale_m (the depth term only when both have depth).
+double superpixelDissimilarity(const Superpixel& a, const Superpixel& b, double colour_scale, double depth_scale_m);
+
+enum class RegionLabel : std::int8_t { kUnlabelled = -1, kStatic = 0, kDynamic = 1 };
+
+// Seeded region growing: starting from the seeds, repeatedly the unlabelled superpixel adjacent to a labelled one
+// with the smallest dissimilarity to it takes that neighbour's label. A superpixel with may_be_dynamic false
+// never takes the dynamic label (it can still be reached by the static one); superpixels no label reaches are
+// static. Deterministic (ties broken by superpixel id).
+std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
+                                     const std::vector<std::vector<int>>& neighbours, std::vector<RegionLabel> seeds,
+                                     const std::vector<bool>& may_be_dynamic, double colour_scale,
+                                     double depth_scale_m);
+
+// What one last->current track says about the superpixel it ends in.
+struct TrackEvidence {
+  cv::Point2f pixel;                        // current-frame pixel (raw)
+  std::optional<Eigen::Vector2d> residual;  // reprojection residual [px] under the judged pose; none without depth
+  double epipolar_px = 0;                   // distance from its epipolar line [px] (infinity when there was no F)
+};
+
+// Seeds for growRegions from the tracks, given the dynamic clusters. A track counts only for the dynamic clusters
+// of its own superpixel's cluster or, outside them, of the clusters bordering it (where the mover's remainder
+// lies when a cluster border cuts it). There it votes dynamic when it moves with such a cluster (its residual
+// nearer the cluster's median residual than to zero, the cluster moving by at least static_px), moves by itself
+// (residual >= static_px) or breaks the epipolar constraint (> epipolar_px); everywhere it votes static when its
+// residual is below static_px. A superpixel takes the majority of its votes (ties and no votes: unlabelled);
+// border superpixels are not seeded. A dynamic cluster without a dynamic seed of its own (judged by violators on
+// its border, see assignToNeighbourCluster) is reached only by growth from its neighbours' seeds: whole-cluster
+// marking is what the per-superpixel mask is there to avoid. labels: superpixel map (CV_32S);
+// superpixels[i].cluster: each one's cluster.
+std::vector<RegionLabel> seedSuperpixels(const cv::Mat& superpixel_labels, const std::vector<Superpixel>& superpixels,
+                                         const std::vector<std::vector<int>>& neighbours,
+                                         const std::vector<bool>& border, const std::vector<bool>& dynamic_cluster,
+                                         const std::vector<TrackEvidence>& tracks, double static_px,
+                                         double epipolar_px);
 
 }  // namespace amos::dynamic

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace amos::dynamic {
 namespace {
 
@@ -57,6 +59,108 @@ TEST(BoundaryAssignment, BorderBlocksAreThoseTouchingTheImageEdge) {
   EXPECT_EQ(decision.at<int>(15, 15), 7);
   EXPECT_EQ(decision.at<int>(0, 15), -1);
   EXPECT_EQ(cv::countNonZero(decision == 7), 100);
+}
+
+// n x n blocks of 10 x 10 px, labelled row by row.
+cv::Mat blockLabels(int n) {
+  cv::Mat labels(10 * n, 10 * n, CV_32S);
+  for (int y = 0; y < labels.rows; ++y)
+    for (int x = 0; x < labels.cols; ++x) labels.at<int>(y, x) = (y / 10) * n + x / 10;
+  return labels;
+}
+
+Superpixel superpixel(float L, float depth, int cluster = 0) {
+  Superpixel s;
+  s.L = L;
+  s.depth = depth;
+  s.cluster = cluster;
+  return s;
+}
+
+TEST(SuperpixelRegions, NeighboursShareAnEdge) {
+  const auto neighbours = superpixelNeighbours(blockLabels(3), 9);
+  EXPECT_EQ(neighbours[4], (std::vector<int>{1, 3, 5, 7}));
+  EXPECT_EQ(neighbours[0], (std::vector<int>{1, 3}));  // diagonal blocks touch only at a corner
+  EXPECT_EQ(neighbours[8], (std::vector<int>{5, 7}));
+}
+
+TEST(SuperpixelRegions, DissimilarityIsEq1WithoutPosition) {
+  Superpixel a = superpixel(50, 2.0), b = superpixel(60, 2.2);
+  b.A = 0, b.B = 0;
+  EXPECT_NEAR(superpixelDissimilarity(a, b, 10.0, 0.1), 1.0 + 2.0, 1e-6);
+  b.depth = 0;  // unknown depth: colour only
+  EXPECT_NEAR(superpixelDissimilarity(a, b, 10.0, 0.1), 1.0, 1e-6);
+  EXPECT_DOUBLE_EQ(superpixelDissimilarity(a, a, 10.0, 0.1), 0.0);
+}
+
+TEST(SuperpixelRegions, GrowingFollowsTheCheapestEdges) {
+  // A chain 0-1-2-3-4 with L = 0, 1, 2, 50, 51 (and an isolated 5): seeded dynamic at 0 and static at 4, the
+  // dynamic label takes 1 and 2, the static one 3; the big colour step between 2 and 3 is the border.
+  std::vector<Superpixel> sp = {superpixel(0, 0), superpixel(1, 0), superpixel(2, 0),
+                                superpixel(50, 0), superpixel(51, 0), superpixel(1, 0)};
+  const std::vector<std::vector<int>> neighbours = {{1}, {0, 2}, {1, 3}, {2, 4}, {3}, {}};
+  std::vector<RegionLabel> seeds(6, RegionLabel::kUnlabelled);
+  seeds[0] = RegionLabel::kDynamic;
+  seeds[4] = RegionLabel::kStatic;
+  const std::vector<bool> anywhere(6, true);
+  const auto labels = growRegions(sp, neighbours, seeds, anywhere, 1.0, 1.0);
+  const std::vector<RegionLabel> expected = {RegionLabel::kDynamic, RegionLabel::kDynamic, RegionLabel::kDynamic,
+                                             RegionLabel::kStatic,  RegionLabel::kStatic,  RegionLabel::kStatic};
+  EXPECT_EQ(labels, expected);  // the unreachable 5 ends static
+  // Where the dynamic label may not go, the static one takes over.
+  std::vector<bool> restricted = anywhere;
+  restricted[2] = false;
+  const auto blocked = growRegions(sp, neighbours, seeds, restricted, 1.0, 1.0);
+  EXPECT_EQ(blocked[1], RegionLabel::kDynamic);
+  EXPECT_EQ(blocked[2], RegionLabel::kStatic);
+}
+
+TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
+  // 5 x 5 blocks; the outer ring is the image border. Cluster 0 = blocks 6, 7, 11, 12 (dynamic), cluster 1 = the
+  // rest (static, bordering cluster 0). The dynamic cluster moves by (3, 0) px.
+  const cv::Mat labels = blockLabels(5);
+  std::vector<Superpixel> sp(25, superpixel(50, 2.0, 1));
+  for (int s : {6, 7, 11, 12}) sp[s].cluster = 0;
+  const auto neighbours = superpixelNeighbours(labels, 25);
+  std::vector<bool> border(25, true);
+  for (int s : {6, 7, 8, 11, 12, 13, 16, 17, 18}) border[s] = false;
+  const std::vector<bool> dynamic_cluster = {true, false};
+  auto at = [](int s) { return cv::Point2f(10.f * (s % 5) + 5, 10.f * (s / 5) + 5); };
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<TrackEvidence> tracks = {
+      {at(6), Eigen::Vector2d(3.0, 0.0), 0.1},   // moves with its dynamic cluster
+      {at(7), Eigen::Vector2d(3.1, 0.1), 0.1},
+      {at(11), Eigen::Vector2d(2.9, 0.0), 0.1},
+      {at(12), Eigen::Vector2d(0.1, 0.0), 0.1},  // still, inside the dynamic cluster: background caught by it
+      {at(8), Eigen::Vector2d(1.6, 0.0), 0.1},   // below static_px, but nearer the cluster's motion than zero
+      {at(13), Eigen::Vector2d(0.2, 0.0), 0.1},  // still
+      {at(16), std::nullopt, 5.0},               // no depth, off its epipolar line, next to the mover
+      {at(0), Eigen::Vector2d(3.0, 0.0), 0.1},   // border block: no vote
+      {at(18), std::nullopt, inf},               // nothing known
+  };
+  const auto seeds = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0);
+  const RegionLabel D = RegionLabel::kDynamic, S = RegionLabel::kStatic, U = RegionLabel::kUnlabelled;
+  EXPECT_EQ(seeds[6], D);
+  EXPECT_EQ(seeds[7], D);
+  EXPECT_EQ(seeds[11], D);
+  EXPECT_EQ(seeds[12], S);
+  EXPECT_EQ(seeds[8], D);
+  EXPECT_EQ(seeds[13], S);
+  EXPECT_EQ(seeds[16], D);
+  EXPECT_EQ(seeds[0], U);
+  EXPECT_EQ(seeds[18], U);
+  // Two opposite votes leave a superpixel unlabelled.
+  tracks.push_back({at(13), Eigen::Vector2d(3.0, 0.0), 0.1});
+  EXPECT_EQ(seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0)[13], U);
+  // With no static cluster dynamic, a moving track outside any dynamic cluster only abstains.
+  const auto none = seedSuperpixels(labels, sp, neighbours, border, {false, false}, tracks, 2.0, 2.0);
+  EXPECT_EQ(none[6], U);
+  EXPECT_EQ(none[12], S);
+  // A dynamic cluster whose own tracks all look still (judged by violators outside it) gets no dynamic seed.
+  const std::vector<TrackEvidence> still = {{at(12), Eigen::Vector2d(0.1, 0.0), 0.1}};
+  const auto quiet = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, still, 2.0, 2.0);
+  EXPECT_EQ(quiet[6], U);
+  EXPECT_EQ(quiet[12], S);
 }
 
 }  // namespace

@@ -22,6 +22,35 @@ int labelAt(const cv::Mat& map, cv::Point2f p) {
   return map.at<int>(y, x);
 }
 
+// Depth [m] at the pixel nearest p, 0 when invalid or outside the image.
+float depthAt(const cv::Mat& depth, cv::Point2f p) {
+  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
+  if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) return 0.f;
+  const float z = depth.at<float>(y, x);
+  return std::isfinite(z) && z > 0.f ? z : 0.f;
+}
+
+// Whether the (2 r + 1)^2 window around p holds an occlusion edge: two adjacent valid depths differing by more than
+// `ratio` of the nearer one (holes are skipped). Adjacent pixels, not the window's range, so that a slanted surface
+// (a floor, a box face seen obliquely: a few mm per pixel) does not count.
+bool depthEdgeInWindow(const cv::Mat& depth, cv::Point2f p, int r, double ratio) {
+  const int cx = static_cast<int>(std::lround(p.x)), cy = static_cast<int>(std::lround(p.y));
+  const int x0 = std::max(0, cx - r), x1 = std::min(depth.cols - 1, cx + r);
+  const int y0 = std::max(0, cy - r), y1 = std::min(depth.rows - 1, cy + r);
+  auto jump = [ratio](float a, float b) {
+    return a > 0.f && b > 0.f && std::fabs(a - b) > ratio * std::min(a, b);  // NaN compares false: skipped
+  };
+  for (int y = y0; y <= y1; ++y) {
+    const float* row = depth.ptr<float>(y);
+    const float* below = y < y1 ? depth.ptr<float>(y + 1) : nullptr;
+    for (int x = x0; x <= x1; ++x) {
+      if (x < x1 && jump(row[x], row[x + 1])) return true;
+      if (below && jump(row[x], below[x])) return true;
+    }
+  }
+  return false;
+}
+
 void checkInput(const DynamicFrameInput& in) {
   core::require(!in.gray.empty() && in.gray.type() == CV_8UC1, "DynamicFrontEnd: gray must be CV_8UC1");
   const cv::Size size = in.gray.size();
@@ -102,25 +131,55 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   }
   out.cluster_scores = scoreClusters(errors, cluster_of_track, num_clusters, options_.reprojection);
   std::vector<double> cluster_error(num_clusters);
-  for (int c = 0; c < num_clusters; ++c) {
-    cluster_error[c] = out.cluster_scores[c].mean_rho;
-    if (out.cluster_scores[c].candidate) ++diag.candidate_clusters;
+  for (int c = 0; c < num_clusters; ++c) cluster_error[c] = out.cluster_scores[c].mean_rho;
+
+  // Tracks outside the potential motion regions found so far (candidate clusters, prior regions): what F and the
+  // pose refit are estimated on.
+  std::vector<bool> outside_candidates(out.tracks.size(), false);
+  for (std::size_t i = 0; i < out.tracks.size(); ++i) {
+    const int c = cluster_of_track[i];
+    if (c >= 0 && out.cluster_scores[c].candidate) continue;
+    if (use_prior && labelAt(prior_components, out.tracks[i].current) > 0) continue;
+    outside_candidates[i] = true;
   }
+
+  // The pose again, without the candidates (see ReprojectionOptions::refit_pose), and every cluster scored under it.
+  PoseRefit refit;
+  refit.T_cw = in.T_cw_initial;
+  if (options_.reprojection.refit_pose)
+    refit = refitPose(out.tracks, points_w, outside_candidates, in.T_cw_initial, camera_, options_.reprojection);
+  diag.pose_refit_ok = refit.ok;
+  diag.pose_refit_points = refit.points;
+  diag.pose_refit_inliers = refit.inliers;
+  diag.pose_refit_sigma_px = refit.sigma_px;
+  out.T_cw_judged = refit.T_cw;
+  const auto residuals = reprojectionResiduals(out.tracks, points_w, refit.T_cw, camera_);
+  if (refit.ok) {
+    std::vector<std::optional<double>> refit_errors(residuals.size());
+    for (std::size_t i = 0; i < residuals.size(); ++i)
+      if (residuals[i]) refit_errors[i] = residuals[i]->norm();
+    ReprojectionOptions confirm = options_.reprojection;
+    confirm.candidate_threshold_px = confirmThreshold(refit, options_.reprojection);
+    diag.confirm_threshold_px = confirm.candidate_threshold_px;
+    out.confirm_scores = scoreClusters(refit_errors, cluster_of_track, num_clusters, confirm);
+  }
+  auto confirmed = [&](int c) { return refit.ok && out.confirm_scores[c].candidate; };
+  diag.candidate_clusters = 0;
+  for (int c = 0; c < num_clusters; ++c)
+    if (out.cluster_scores[c].candidate || confirmed(c)) ++diag.candidate_clusters;
   lap("reprojection");
 
   // Stage 2 (III-C, Eq. 7-8): fundamental matrix on undistorted tracks, epipolar distance of every track.
   std::vector<cv::Point2f> last_raw, current_raw;
   for (const PointTrack& t : out.tracks) last_raw.push_back(t.last), current_raw.push_back(t.current);
   const std::vector<cv::Point2f> last_u = camera_.undistort(last_raw), current_u = camera_.undistort(current_raw);
-  // F is fitted on the tracks outside the potential motion regions (candidate clusters, prior regions): a rigid
-  // moving object holding many tracks would otherwise pull F towards its own motion whenever the static scene
-  // has little parallax (small baseline, one dominant plane), and then it would satisfy the epipolar test.
-  // With too few such tracks (e.g. every cluster a candidate after a bad initial pose) all tracks are used.
+  // F is fitted on the tracks outside the potential motion regions: a rigid moving object holding many tracks
+  // would otherwise pull F towards its own motion whenever the static scene has little parallax (small baseline,
+  // one dominant plane), and then it would satisfy the epipolar test. With too few such tracks (e.g. every
+  // cluster a candidate after a bad initial pose) all tracks are used.
   std::vector<cv::Point2f> fit_last, fit_current;
   for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-    const int c = cluster_of_track[i];
-    if (c >= 0 && out.cluster_scores[c].candidate) continue;
-    if (use_prior && labelAt(prior_components, out.tracks[i].current) > 0) continue;
+    if (!outside_candidates[i]) continue;
     fit_last.push_back(last_u[i]);
     fit_current.push_back(current_u[i]);
   }
@@ -140,7 +199,8 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   lap("epipolar");
 
   // Decision: each epipolar violator votes for the cluster it belongs to after boundary reassignment and for
-  // the prior region it lies in; a candidate region with enough votes is dynamic. Without F nothing is judged.
+  // the prior region it lies in; a candidate region with enough votes is dynamic, and so is a cluster confirmed
+  // under the refitted pose. Without F only the confirmation judges.
   std::vector<int> cluster_votes(num_clusters, 0), prior_votes(prior_count + 1, 0);
   if (fit.ok) {
     for (std::size_t i = 0; i < out.tracks.size(); ++i) {
@@ -159,15 +219,60 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   const int min_votes = options_.epipolar.min_dynamic_points;
   out.dynamic_cluster.assign(num_clusters, false);
   for (int c = 0; c < num_clusters; ++c) {
-    out.dynamic_cluster[c] = out.cluster_scores[c].candidate && cluster_votes[c] >= min_votes;
+    out.dynamic_cluster[c] = (out.cluster_scores[c].candidate && cluster_votes[c] >= min_votes) || confirmed(c);
+    if (confirmed(c)) ++diag.confirmed_clusters;
     if (out.dynamic_cluster[c]) ++diag.dynamic_clusters;
   }
-  // The mask covers whole dynamic clusters, border blocks included (they only abstain from the decision).
-  for (int y = 0; y < out.mask.rows; ++y) {
-    const int* cm = out.cluster_map.ptr<int>(y);
-    uchar* m = out.mask.ptr<uchar>(y);
-    for (int x = 0; x < out.mask.cols; ++x)
-      if (out.dynamic_cluster[cm[x]]) m[x] = 255;
+  out.superpixel_labels = segmentation.labels;
+  if (options_.boundary.superpixel_mask && diag.dynamic_clusters > 0) {
+    // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
+    // A track moves with what fills its LK window. When the window (in either frame) holds an occlusion edge
+    // (a depth step beyond the depth-edge ratio) that may be the other side's motion: a wall corner next to a
+    // moving box follows the box. Such a track, or one whose current pixel shows another surface than its last
+    // one, would seed the wrong superpixel; it abstains.
+    const int half_window = options_.tracking.lk_window / 2;
+    const double ratio = options_.reprojection.depth_edge_ratio;
+    std::vector<TrackEvidence> evidence;
+    evidence.reserve(out.tracks.size());
+    for (std::size_t i = 0; i < out.tracks.size(); ++i) {
+      const PointTrack& t = out.tracks[i];
+      const float z_last = depthAt(in.last_depth, t.last), z_now = depthAt(in.depth, t.current);
+      if (z_last > 0 && z_now > 0 && std::fabs(z_now - z_last) > ratio * z_last) continue;
+      if (depthEdgeInWindow(in.last_depth, t.last, half_window, ratio) ||
+          depthEdgeInWindow(in.depth, t.current, half_window, ratio))
+        continue;
+      evidence.push_back({t.current, residuals[i], out.epipolar_distance_px[i]});
+    }
+    const auto neighbours = superpixelNeighbours(segmentation.labels, diag.superpixels);
+    const std::vector<RegionLabel> seeds =
+        seedSuperpixels(segmentation.labels, segmentation.superpixels, neighbours, border, out.dynamic_cluster,
+                        evidence, refit.ok ? confirmThreshold(refit, options_.reprojection) : options_.reprojection.candidate_threshold_px,
+                        options_.epipolar.dynamic_threshold_px);
+    std::vector<bool> may_be_dynamic(diag.superpixels);
+    for (int s = 0; s < diag.superpixels; ++s)
+      may_be_dynamic[s] = out.dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
+    const std::vector<RegionLabel> labels =
+        growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options_.superpixel.colour_scale,
+                    options_.superpixel.depth_scale_m);
+    std::vector<uchar> dynamic_superpixel(diag.superpixels, 0);
+    for (int s = 0; s < diag.superpixels; ++s) {
+      dynamic_superpixel[s] = labels[s] == RegionLabel::kDynamic;
+      diag.dynamic_superpixels += dynamic_superpixel[s];
+    }
+    for (int y = 0; y < out.mask.rows; ++y) {
+      const int* sp = segmentation.labels.ptr<int>(y);
+      uchar* m = out.mask.ptr<uchar>(y);
+      for (int x = 0; x < out.mask.cols; ++x)
+        if (dynamic_superpixel[sp[x]]) m[x] = 255;
+    }
+  } else {
+    // The mask covers whole dynamic clusters, border blocks included (they only abstain from the decision).
+    for (int y = 0; y < out.mask.rows; ++y) {
+      const int* cm = out.cluster_map.ptr<int>(y);
+      uchar* m = out.mask.ptr<uchar>(y);
+      for (int x = 0; x < out.mask.cols; ++x)
+        if (out.dynamic_cluster[cm[x]]) m[x] = 255;
+    }
   }
   if (judge_prior) {
     std::vector<bool> keep(prior_count + 1, false);

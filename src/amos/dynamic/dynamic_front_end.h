@@ -4,7 +4,11 @@
 //     geometric clusters (depth-SLIC superpixels grouped by k-means) whose Cauchy-robust mean reprojection
 //     error under the initial pose is high (Eq. 5-6);
 //   stage 2, dynamic judgement: a fundamental matrix from last->current corner tracks (Eq. 7-8); a candidate
-//     region holding epipolar violators (after boundary reassignment) is dynamic.
+//     region holding epipolar violators (after boundary reassignment) is dynamic. So is a cluster whose error
+//     stays high under the pose refitted on the tracks outside the candidates (reprojection_scoring.h: the
+//     epipolar test is blind to motion along the epipolar lines, the depth-based error is not).
+//   mask: per superpixel in and around the dynamic clusters (boundary_assignment.h), so that it follows the
+//     mover's outline rather than the clusters' blobs.
 // State: none. The caller keeps the last frame (gray, depth, pose) and passes it in with the current frame, so
 // one DynamicFrontEnd can be shared, tested and benchmarked frame pair by frame pair. process() is const and
 // thread-compatible (no mutable members).
@@ -38,8 +42,14 @@ struct DynamicDiagnostics {
   bool geometry_ran = false;
   int superpixels = 0;
   int clusters = 0;
-  int candidate_clusters = 0;
+  int candidate_clusters = 0;  // potential motion regions: above threshold under the initial or the refitted pose
   int dynamic_clusters = 0;
+  int confirmed_clusters = 0;  // of which above Dynamic.Reprojection.confirmThreshold under the refitted pose
+  bool pose_refit_ok = false;
+  int pose_refit_points = 0, pose_refit_inliers = 0;
+  double pose_refit_sigma_px = 0;  // the static tracks' noise scale the refit found
+  double confirm_threshold_px = 0;  // the confirmation threshold that followed from it
+  int dynamic_superpixels = 0;  // superpixels in the mask (per-superpixel mask only)
   int tracks = 0;             // last->current corner tracks
   int tracks_with_depth = 0;  // of which lifted to 3D (Eq. 6) and reprojected
   int dynamic_points = 0;     // tracks beyond the epipolar threshold
@@ -57,8 +67,11 @@ struct DynamicFrameOutput {
   DynamicDiagnostics diagnostics;
   std::vector<std::pair<std::string, double>> timings_ms;  // stage name -> wall time, in execution order
   // Geometric detail for visualisation and tests (empty when the geometric stage did not run):
+  cv::Mat superpixel_labels;                                 // CV_32S depth-SLIC superpixel of every pixel
   cv::Mat cluster_map;                                       // CV_32S geometric cluster of every pixel
-  std::vector<ClusterScore> cluster_scores;                  // Eq. 5 per cluster
+  std::vector<ClusterScore> cluster_scores;                  // Eq. 5 per cluster, initial pose
+  std::vector<ClusterScore> confirm_scores;                  // Eq. 5 per cluster, refitted pose (empty without)
+  core::SE3 T_cw_judged = core::SE3::Identity();             // the refitted pose, else the initial one
   std::vector<bool> dynamic_cluster;                         // per cluster
   std::vector<PointTrack> tracks;                            // the tracks used
   std::vector<std::optional<double>> reprojection_error_px;  // per track (Eq. 5's ||e||), empty without depth

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -290,11 +291,28 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
   EXPECT_GT(d.superpixels, 200);
   EXPECT_EQ(d.clusters, options.cluster.num_clusters);
   EXPECT_LE(d.dynamic_clusters, d.candidate_clusters);
-  // The mask is exactly the union of the dynamic clusters.
+  // The mask is made of whole superpixels, as many as the diagnostics count.
+  std::vector<int> in_mask(d.superpixels, 0), size(d.superpixels, 0);
+  for (int y = 0; y < out.mask.rows; ++y)
+    for (int x = 0; x < out.mask.cols; ++x) {
+      const int s = out.superpixel_labels.at<int>(y, x);
+      ++size[s];
+      in_mask[s] += out.mask.at<uchar>(y, x) != 0;
+    }
+  int whole = 0;
+  for (int s = 0; s < d.superpixels; ++s) {
+    EXPECT_TRUE(in_mask[s] == 0 || in_mask[s] == size[s]) << "superpixel " << s << " is cut";
+    whole += in_mask[s] == size[s];
+  }
+  EXPECT_EQ(whole, d.dynamic_superpixels);
+  // With the per-superpixel mask switched off the mask is exactly the union of the dynamic clusters.
+  options.boundary.superpixel_mask = false;
+  const DynamicFrameOutput clusters = DynamicFrontEnd(cam, options).process(in);
   int expected = 0;
-  for (int y = 0; y < out.cluster_map.rows; ++y)
-    for (int x = 0; x < out.cluster_map.cols; ++x) expected += out.dynamic_cluster[out.cluster_map.at<int>(y, x)];
-  EXPECT_EQ(cv::countNonZero(out.mask), expected);
+  for (int y = 0; y < clusters.cluster_map.rows; ++y)
+    for (int x = 0; x < clusters.cluster_map.cols; ++x)
+      expected += clusters.dynamic_cluster[clusters.cluster_map.at<int>(y, x)];
+  EXPECT_EQ(cv::countNonZero(clusters.mask), expected);
 }
 
 // Why F is fitted outside the potential motion regions: fitted on all tracks of this small-baseline pair, F bends
@@ -302,6 +320,7 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
 TEST(DynamicFrontEnd, FittingOnAllTracksLetsARigidMoverHide) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
+  options.reprojection.refit_pose = false;   // the epipolar test alone
   options.epipolar.min_fit_points = 100000;  // never enough tracks outside the candidates: fit on all
   const DynamicFrameOutput all = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
   EXPECT_EQ(all.diagnostics.f_fit_points, all.diagnostics.tracks);
@@ -310,6 +329,60 @@ TEST(DynamicFrontEnd, FittingOnAllTracksLetsARigidMoverHide) {
   const DynamicFrameOutput outside = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
   EXPECT_LT(outside.diagnostics.f_fit_points, outside.diagnostics.tracks);
   EXPECT_GT(coverage(outside.mask, syntheticPair().current.box_mask), 0.85);
+}
+
+// The blind spot of the epipolar test: the camera slides sideways (horizontal epipolar lines) and the box moves
+// sideways too, along its epipolar lines. F sees nothing; the reprojection error under the pose refitted on the
+// static tracks does.
+TEST(DynamicFrontEnd, RefittedPoseFindsAMoverSlidingAlongItsEpipolarLines) {
+  const core::PinholeCamera cam = testCamera();
+  SyntheticPair along = syntheticPair();
+  along.current = render(along.T_cw_current, Eigen::Vector3d(0.05, 0.0, 0.0), cam);
+  DynamicOptions options;
+  options.mode = DynamicMode::kGeometry;
+  options.reprojection.refit_pose = false;
+  const DynamicFrameOutput epipolar_only = DynamicFrontEnd(cam, options).process(inputFor(along));
+  EXPECT_LT(coverage(epipolar_only.mask, along.current.box_mask), 0.2);
+  EXPECT_FALSE(epipolar_only.diagnostics.pose_refit_ok);
+
+  options.reprojection.refit_pose = true;
+  const DynamicFrameOutput refitted = DynamicFrontEnd(cam, options).process(inputFor(along));
+  const DynamicDiagnostics& d = refitted.diagnostics;
+  EXPECT_TRUE(d.pose_refit_ok);
+  EXPECT_GE(d.confirmed_clusters, 1);
+  EXPECT_GE(d.pose_refit_inliers, 200);
+  // Noise-free rendering: the static tracks' scale is LK's own (a few hundredths to tenths of a pixel).
+  EXPECT_LT(d.pose_refit_sigma_px, 0.3);
+  EXPECT_DOUBLE_EQ(d.confirm_threshold_px, std::max(1.0, 5.0 * d.pose_refit_sigma_px));
+  // The input pose was exact, and the refit keeps it.
+  EXPECT_LT(core::translationNorm(refitted.T_cw_judged * along.T_cw_current.inverse()), 1e-3);
+  cv::Mat wall;
+  cv::bitwise_not(along.current.box_mask, wall);
+  EXPECT_GT(coverage(refitted.mask, along.current.box_mask), 0.85);
+  EXPECT_LT(coverage(refitted.mask, wall), 0.05);
+}
+
+// The per-superpixel mask follows the box's outline, where the union of dynamic clusters (~140 px blobs) also
+// covers the wall and floor around it.
+TEST(DynamicFrontEnd, SuperpixelMaskFollowsTheMoverOutline) {
+  const SyntheticPair& pair = syntheticPair();
+  const core::PinholeCamera cam = testCamera();
+  DynamicOptions options;
+  options.mode = DynamicMode::kGeometry;
+  auto precisionOf = [&](const cv::Mat& mask) {
+    return coverage(pair.current.box_mask, mask);  // share of the mask on the box
+  };
+  const DynamicFrameOutput superpixels = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  options.boundary.superpixel_mask = false;
+  const DynamicFrameOutput clusters = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  const double sp_precision = precisionOf(superpixels.mask), cl_precision = precisionOf(clusters.mask);
+  const double sp_recall = coverage(superpixels.mask, pair.current.box_mask);
+  std::cout << "superpixel mask: precision " << sp_precision << " recall " << sp_recall << "; cluster mask: precision "
+            << cl_precision << " recall " << coverage(clusters.mask, pair.current.box_mask) << "\n";
+  EXPECT_GT(sp_recall, 0.9);
+  EXPECT_GT(sp_precision, 0.9);
+  EXPECT_GT(sp_precision, cl_precision);
+  EXPECT_GT(superpixels.diagnostics.dynamic_superpixels, 0);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "amos/core/error.h"
 
@@ -20,6 +21,12 @@ void ReprojectionOptions::check() const {
                 fmt::format("Dynamic.Reprojection.maxDepth must be positive, got {}", max_depth_m));
   core::require(std::isfinite(depth_edge_ratio) && depth_edge_ratio > 0,
                 fmt::format("Dynamic.Reprojection.depthEdgeRatio must be positive, got {}", depth_edge_ratio));
+  core::require(refit_min_points >= 6,
+                fmt::format("Dynamic.Reprojection.refitMinPoints must be >= 6, got {}", refit_min_points));
+  core::require(std::isfinite(confirm_threshold_px) && confirm_threshold_px > 0,
+                fmt::format("Dynamic.Reprojection.confirmThreshold must be positive, got {}", confirm_threshold_px));
+  core::require(std::isfinite(confirm_sigmas) && confirm_sigmas >= 0,
+                fmt::format("Dynamic.Reprojection.confirmSigmas must be >= 0, got {}", confirm_sigmas));
 }
 
 double cauchyRho(double squared_error, double scale) {
@@ -72,24 +79,88 @@ std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<
   return points;
 }
 
-std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTrack>& tracks,
-                                                      const std::vector<std::optional<Eigen::Vector3d>>& points_w,
-                                                      const core::SE3& T_cw_current,
-                                                      const core::PinholeCamera& camera) {
-  core::require(tracks.size() == points_w.size(), "reprojectionErrors: tracks and points differ in number");
+std::vector<std::optional<Eigen::Vector2d>> reprojectionResiduals(
+    const std::vector<PointTrack>& tracks, const std::vector<std::optional<Eigen::Vector3d>>& points_w,
+    const core::SE3& T_cw_current, const core::PinholeCamera& camera) {
+  core::require(tracks.size() == points_w.size(), "reprojectionResiduals: tracks and points differ in number");
   std::vector<cv::Point2f> raw;
   raw.reserve(tracks.size());
   for (const PointTrack& t : tracks) raw.push_back(t.current);
   const std::vector<cv::Point2f> undistorted = camera.undistort(raw);
-  std::vector<std::optional<double>> errors(tracks.size());
+  std::vector<std::optional<Eigen::Vector2d>> residuals(tracks.size());
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     if (!points_w[i]) continue;
     const Eigen::Vector3d p_c = T_cw_current * *points_w[i];
     if (p_c.z() <= 1e-6) continue;
-    const Eigen::Vector2d e = Eigen::Vector2d(undistorted[i].x, undistorted[i].y) - camera.project(p_c);
-    errors[i] = e.norm();
+    residuals[i] = Eigen::Vector2d(undistorted[i].x, undistorted[i].y) - camera.project(p_c);
   }
+  return residuals;
+}
+
+std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTrack>& tracks,
+                                                      const std::vector<std::optional<Eigen::Vector3d>>& points_w,
+                                                      const core::SE3& T_cw_current, const core::PinholeCamera& camera) {
+  const auto residuals = reprojectionResiduals(tracks, points_w, T_cw_current, camera);
+  std::vector<std::optional<double>> errors(residuals.size());
+  for (std::size_t i = 0; i < residuals.size(); ++i)
+    if (residuals[i]) errors[i] = residuals[i]->norm();
   return errors;
+}
+
+double confirmThreshold(const PoseRefit& refit, const ReprojectionOptions& options) {
+  return std::max(options.confirm_threshold_px, options.confirm_sigmas * refit.sigma_px);
+}
+
+PoseRefit refitPose(const std::vector<PointTrack>& tracks, const std::vector<std::optional<Eigen::Vector3d>>& points_w,
+                    const std::vector<bool>& use, const core::SE3& T_cw_initial, const core::PinholeCamera& camera,
+                    const ReprojectionOptions& options) {
+  options.check();
+  core::require(tracks.size() == points_w.size() && tracks.size() == use.size(),
+                "refitPose: tracks, points and flags differ in number");
+  std::vector<cv::Point2f> raw;
+  std::vector<std::size_t> index;
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    if (!use[i] || !points_w[i]) continue;
+    raw.push_back(tracks[i].current);
+    index.push_back(i);
+  }
+  PoseRefit refit;
+  refit.T_cw = T_cw_initial;
+  refit.points = static_cast<int>(index.size());
+  if (refit.points < options.refit_min_points) return refit;
+  const std::vector<cv::Point2f> undistorted = camera.undistort(raw);
+  std::vector<geometry::PoseObservation> observations(index.size());
+  for (std::size_t k = 0; k < index.size(); ++k) {
+    observations[k].point_w = *points_w[index[k]];
+    observations[k].pixel = {undistorted[k].x, undistorted[k].y};
+  }
+  geometry::StereoProjection projection;
+  projection.fx = camera.fx(), projection.fy = camera.fy(), projection.cx = camera.cx(), projection.cy = camera.cy();
+  // sigma from the median residual (2D Gaussian: median |r| = sqrt(2 ln 2) sigma), then a robust refit with it.
+  constexpr double kMedianToSigma = 1.0 / 1.1774;
+  constexpr double kMinSigmaPx = 0.1;
+  constexpr int kRounds = 3;
+  core::SE3 T = T_cw_initial;
+  geometry::PoseOptimizerResult result;
+  std::vector<double> norms(observations.size());
+  for (int round = 0; round < kRounds; ++round) {
+    for (std::size_t k = 0; k < observations.size(); ++k) {
+      const Eigen::Vector3d p_c = T * observations[k].point_w;
+      norms[k] = p_c.z() > 1e-6 ? (observations[k].pixel - camera.project(p_c)).norm()
+                                : std::numeric_limits<double>::max();
+    }
+    std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
+    refit.sigma_px = std::max(kMinSigmaPx, norms[norms.size() / 2] * kMedianToSigma);
+    for (auto& o : observations) o.inv_sigma2 = 1.0 / (refit.sigma_px * refit.sigma_px);
+    result = geometry::optimizePose(observations, T, projection, geometry::PoseOptimizerOptions{});
+    T = result.T_cw;
+  }
+  refit.inliers = result.num_inliers;
+  if (refit.inliers >= options.refit_min_points) {
+    refit.ok = true;
+    refit.T_cw = T;
+  }
+  return refit;
 }
 
 std::vector<ClusterScore> scoreClusters(const std::vector<std::optional<double>>& errors_px,

@@ -3,6 +3,8 @@
 // frame becomes a temporary map point P = T_wl * backproject(u_last, Z) (Eq. 6); it is reprojected into the
 // current frame with the current frame's initial pose; each geometric cluster scores the Cauchy-robust mean
 // of its points' squared reprojection errors (Eq. 5). Clusters scoring above a threshold are candidates.
+// The pose refit below re-estimates the current pose on the tracks outside the candidates, as the paper refits F
+// without its violators (III-C), so that the errors can be judged under a pose that the movers did not bias.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -11,6 +13,7 @@
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
 #include "amos/dynamic/corner_tracking.h"
+#include "amos/geometry/pose_optimizer.h"
 
 namespace amos::dynamic {
 
@@ -37,6 +40,26 @@ struct ReprojectionOptions {
   // 3 m); noise (6 sigma(z)) stays below 5% of z up to 4.5 m; a plane seen 70 deg off its normal changes depth
   // by ~2% of z over +-2 px.
   double depth_edge_ratio = 0.05;
+  // Dynamic.Reprojection.refitPose: re-estimate the current pose (motion-only, robust) on the tracks with depth
+  // outside the candidate and prior regions, and judge every cluster again under it (see confirmThreshold).
+  // The epipolar test cannot see motion along the epipolar lines (an object moving parallel to the camera's
+  // translation, e.g. pushed sideways while the camera slides sideways); the depth-based error can, once the
+  // pose error it was guarding against is removed.
+  bool refit_pose = true;
+  // Dynamic.Reprojection.refitMinPoints: the refit counts only with at least this many inliers; 30 constrain
+  // 6 pose parameters ~5x over, with a pose error well under the 0.3 px noise per point.
+  int refit_min_points = 30;
+  // Dynamic.Reprojection.confirmSigmas / confirmThreshold: a cluster is dynamic when its equivalent error under
+  // the refitted pose exceeds max(confirmThreshold, confirmSigmas * sigma), sigma being the static tracks' noise
+  // scale that the refit measured (PoseRefit::sigma_px). Under the refit only the tracks' own noise remains, so
+  // the bar follows it: for Gaussian noise the RMS of 3 errors exceeds 2.7 sigma with p = 0.001, and 5 sigma
+  // leaves room for heavier tails (LK slips) and spatially correlated errors. The floor, 1 px, covers what a
+  // median-based sigma does not see on a real sensor (residual distortion, depth-to-colour registration, rolling
+  // shutter: a few tenths of a pixel each). On clean images (sigma ~ 0.1-0.2 px) a mover is found from ~1 px
+  // of motion per frame, on noisy ones (sigma ~ 0.5 px) from 2.5 px; the candidate threshold above, which must
+  // also absorb the initial pose's bias, stays at 3 px.
+  double confirm_sigmas = 5.0;
+  double confirm_threshold_px = 1.0;
   void check() const;
 };
 
@@ -60,6 +83,33 @@ std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<
 std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTrack>& tracks,
                                                       const std::vector<std::optional<Eigen::Vector3d>>& points_w,
                                                       const core::SE3& T_cw_current, const core::PinholeCamera& camera);
+
+// The residual vectors behind reprojectionErrors: current undistorted pixel minus the projection [px].
+std::vector<std::optional<Eigen::Vector2d>> reprojectionResiduals(
+    const std::vector<PointTrack>& tracks, const std::vector<std::optional<Eigen::Vector3d>>& points_w,
+    const core::SE3& T_cw_current, const core::PinholeCamera& camera);
+
+struct PoseRefit {
+  bool ok = false;                            // enough inliers (refit_min_points)
+  core::SE3 T_cw = core::SE3::Identity();     // the refitted pose (the initial one when !ok)
+  int points = 0;                             // tracks offered to the refit
+  int inliers = 0;                            // of which inliers of the final pose
+  double sigma_px = 0;                        // the noise scale of the last round
+};
+
+// The confirmation threshold for a refit (see confirm_sigmas).
+double confirmThreshold(const PoseRefit& refit, const ReprojectionOptions& options);
+
+// Motion-only refinement of T_cw_initial on the tracks with use[i] and a world point: Gauss-Newton with a Huber
+// kernel and chi-square outlier rounds (geometry::optimizePose), in a few rounds that each re-estimate the noise
+// scale sigma from the median residual of the current pose (median |r| = 1.18 sigma for 2D Gaussian noise;
+// at least 0.1 px, LK's floor on clean images). A fixed, generous sigma would let a mover that slipped into the
+// set stay an inlier: sliding the pose along the translation/rotation ambiguity of a shallow scene (x against
+// yaw) costs the static points a fraction of a pixel and halves a slow mover's error. With sigma matched to the
+// static points the mover falls outside 2.45 sigma and the pose returns to the static optimum.
+PoseRefit refitPose(const std::vector<PointTrack>& tracks, const std::vector<std::optional<Eigen::Vector3d>>& points_w,
+                    const std::vector<bool>& use, const core::SE3& T_cw_initial, const core::PinholeCamera& camera,
+                    const ReprojectionOptions& options);
 
 struct ClusterScore {
   int points = 0;            // errors that entered the mean
