@@ -80,6 +80,8 @@ void readMappingSection(YamlReader& in, mapping::LocalMappingOptions& o, map::Co
   in.read("Mapping.fuseSecondNeighbors", o.fusion.second_neighbors);
   in.read("Mapping.fuseRadius", o.fusion.radius);
   in.read("Mapping.fuseMaxDistance", o.fusion.max_distance);
+  in.read("Mapping.dynamicCullMinHits", o.dynamic_culling.min_hits);
+  in.read("Mapping.dynamicCullRatio", o.dynamic_culling.min_ratio);
 
   in.read("LocalBA.enabled", o.local_ba);
   in.read("LocalBA.iterationsRobust", o.ba.iterations_robust);

@@ -16,6 +16,7 @@ void LocalMappingOptions::check() const {
   core::require(redundant_observers >= 1, "Mapping.redundantObservers must be >= 1");
   new_points.check();
   fusion.check();
+  dynamic_culling.check();
   ba.check();
 }
 
@@ -118,6 +119,7 @@ void LocalMapper::process(Job job) {
     const int before = static_cast<int>(map_->numMapPoints());
     cullRecentPoints(kf);
     delta.points_culled = before - static_cast<int>(map_->numMapPoints());
+    delta.dynamic_points_culled = cullDynamicPoints(*map_, options_.dynamic_culling);
   }
   if (times_) times_->add("mapping.process_keyframe", watch.elapsedMs());
   watch.restart();
@@ -176,6 +178,7 @@ void LocalMapper::process(Job job) {
   stats_.points_fused += delta.points_fused;
   stats_.ba_runs += delta.ba_runs;
   stats_.ba_aborted += delta.ba_aborted;
+  stats_.dynamic_points_culled += delta.dynamic_points_culled;
 }
 
 void LocalMapper::cullRecentPoints(const map::KeyFramePtr& kf) {

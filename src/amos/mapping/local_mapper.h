@@ -20,6 +20,7 @@
 #include "amos/core/stage_timer.h"
 #include "amos/map/map.h"
 #include "amos/mapping/bundle_adjustment.h"
+#include "amos/mapping/dynamic_culling.h"
 #include "amos/mapping/fusion.h"
 #include "amos/mapping/new_points.h"
 #include "amos/tracking/keyframe_sink.h"
@@ -35,6 +36,7 @@ struct LocalMappingOptions {
   bool cull_keyframes = true;        // Mapping.cullKeyFrames
   NewPointsOptions new_points;
   FusionOptions fusion;
+  DynamicCullingOptions dynamic_culling;
   BundleAdjustmentOptions ba;
   void check() const;
 };
@@ -43,6 +45,7 @@ struct LocalMappingStats {
   int keyframes_processed = 0, keyframes_culled = 0;
   int points_triangulated = 0, points_culled = 0, points_fused = 0;
   int ba_runs = 0, ba_aborted = 0;
+  int dynamic_points_culled = 0;
 };
 
 // Called in the mapping thread after each keyframe is processed, without any lock held (loop closing hooks in

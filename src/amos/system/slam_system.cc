@@ -59,6 +59,7 @@ FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeature
                                        extras.dynamic_mask, &build);
   map::Frame f = map::makeFrame(next_frame_id_++, frame.timestamp, sensor_, std::move(built),
                                 map::makeThumbnail(features.gray), extras.dynamic_mask);
+  if (!extras.dynamic_mask.empty()) f.depth_image = frame.depth;
   out.build_ms = watch.elapsedMs();
   watch.restart();
   out.track = tracker_->track(std::move(f), extras.initial_T_cw);

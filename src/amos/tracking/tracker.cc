@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "amos/core/error.h"
+#include "amos/tracking/dynamic_evidence.h"
 
 namespace amos::tracking {
 
@@ -401,12 +402,12 @@ void Tracker::searchLocalPoints(map::Frame& frame) {
     if (!projectIntoFrame(frame, p, 0.5, pp)) continue;
     p->increaseVisible();
     if (masked) {
-      // Hook (d): how often the point lands on pixels the front end calls dynamic. The mask is in raw image
-      // coordinates; the undistorted projection is within a few pixels of it, which is enough for a count.
-      p->increaseMaskedViews();
-      const int x = std::clamp(static_cast<int>(pp.u + 0.5), 0, frame.dynamic_mask.cols - 1);
-      const int y = std::clamp(static_cast<int>(pp.v + 0.5), 0, frame.dynamic_mask.rows - 1);
-      if (frame.dynamic_mask.at<std::uint8_t>(y, x) != 0) p->increaseDynamicHits();
+      // Evidence for culling points on movers (Sec. III-C). The mask and depth are in raw image coordinates;
+      // the undistorted projection is within a few pixels of it, which is enough for a count.
+      const double z = (frame.T_cw * p->position()).z();
+      const MaskEvidence evidence = maskEvidence(frame.dynamic_mask, frame.depth_image, pp.u, pp.v, z);
+      if (evidence != MaskEvidence::kNone) p->increaseMaskedViews();
+      if (evidence == MaskEvidence::kDynamic) p->increaseDynamicHits();
     }
     candidates.push_back(std::move(pp));
   }
