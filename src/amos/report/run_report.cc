@@ -29,7 +29,9 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
                   {"points_culled", s.mapping.points_culled},
                   {"points_fused", s.mapping.points_fused},
                   {"local_ba_runs", s.mapping.ba_runs},
-                  {"local_ba_aborted", s.mapping.ba_aborted}};
+                  {"local_ba_aborted", s.mapping.ba_aborted},
+                  {"dynamic_points_culled", s.mapping.dynamic_points_culled},
+                  {"loops_closed", s.loops_closed}};
   nlohmann::json stages = nlohmann::json::object();
   auto addStages = [&stages](const core::StageTimes& source) {
     for (const auto& [name, sum] : source.summary()) {
