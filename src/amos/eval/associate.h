@@ -1,8 +1,6 @@
 #pragma once
-// Timestamp association exactly as the TUM RGB-D benchmark's associate.py (used by evaluate_ate.py):
-//   candidates are all (a, b) with |a - (b + offset)| < max_difference (strict), taken greedily in order of
-//   increasing difference (ties: smaller a, then smaller b), each stamp used at most once; the matches are
-//   returned sorted by a.
+// Timestamp association of trajectories exactly as the TUM RGB-D benchmark's associate.py (used by
+// evaluate_ate.py); the rule itself is io::associateStamps (io/associate.h), shared with the dataset reader.
 // Also the trajectory normalisation the scripts get from reading into a Python dict.
 #include <cstddef>
 #include <utility>
@@ -17,7 +15,7 @@ struct AssociationOptions {
   double offset_s = 0.0;           // eval.time_offset: added to the second list's stamps
 };
 
-// Index pairs (i into first, j into second). Inputs need not be sorted. O((n + m) log + candidates).
+// Index pairs (i into first, j into second), see io::associateStamps.
 std::vector<std::pair<std::size_t, std::size_t>> associate(const std::vector<double>& first,
                                                            const std::vector<double>& second,
                                                            const AssociationOptions& options = {});

@@ -78,33 +78,6 @@ void dropMissingFiles(std::vector<AssociatedFrame>& frames) {
 
 }  // namespace
 
-std::vector<std::pair<std::size_t, std::size_t>> associateStamps(const std::vector<double>& a,
-                                                                 const std::vector<double>& b, double max_dt) {
-  struct Candidate {
-    double diff;
-    std::size_t i, j;
-  };
-  std::vector<Candidate> candidates;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    for (std::size_t j = 0; j < b.size(); ++j) {
-      const double diff = std::abs(a[i] - b[j]);
-      if (diff < max_dt) candidates.push_back({diff, i, j});
-    }
-  }
-  // Greedy by smallest difference; ties keep list order (stable), as Python's sort does.
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& x, const Candidate& y) { return x.diff < y.diff; });
-  std::vector<bool> used_a(a.size(), false), used_b(b.size(), false);
-  std::vector<std::pair<std::size_t, std::size_t>> matches;
-  for (const auto& c : candidates) {
-    if (used_a[c.i] || used_b[c.j]) continue;
-    used_a[c.i] = used_b[c.j] = true;
-    matches.emplace_back(c.i, c.j);
-  }
-  std::sort(matches.begin(), matches.end(), [&](const auto& x, const auto& y) { return a[x.first] < a[y.first]; });
-  return matches;
-}
-
 SequenceIndex indexSequence(const std::string& dir, double max_dt) {
   const fs::path root(dir);
   core::require(fs::is_directory(root), fmt::format("sequence folder '{}' does not exist", dir));

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "amos/io/associate.h"
+
 namespace amos::io {
 
 struct AssociatedFrame {
@@ -29,10 +31,6 @@ struct SequenceIndex {
 // them; malformed lines throw core::Error naming file and line; an empty result throws.
 SequenceIndex indexSequence(const std::string& dir, double max_dt = 0.02);
 
-// Associates two stamped lists like associate.py: candidate pairs within max_dt, greedily by smallest time
-// difference, each stamp used once; result sorted by the first list's stamps. Returns index pairs (a, b).
-std::vector<std::pair<std::size_t, std::size_t>> associateStamps(const std::vector<double>& a,
-                                                                 const std::vector<double>& b, double max_dt);
 
 struct RgbdFrame {
   std::size_t index = 0;  // position in the sequence
