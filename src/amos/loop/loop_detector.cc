@@ -97,27 +97,14 @@ std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFrame
   std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (ranked.size() > static_cast<std::size_t>(options.candidates)) ranked.resize(options.candidates);
 
-  const map::FrameFeatures& f = current->features();
   for (const auto& [distance, candidate] : ranked) {
     map::Frame frame = frameOf(*current);
     int n = 0;
     std::vector<map::MapPointPtr> matches =
         tracking::matchFrameToKeyFrame(frame, *candidate, options.match_ratio, options.matching, &n);
     if (n < options.min_matches) continue;
-    std::vector<Eigen::Vector3d> points;
-    std::vector<Eigen::Vector2d> pixels;
-    std::vector<int> index;
-    for (std::size_t i = 0; i < matches.size(); ++i) {
-      if (!matches[i]) continue;
-      points.push_back(matches[i]->position());
-      pixels.emplace_back(f.keys[i].pt.x, f.keys[i].pt.y);
-      index.push_back(static_cast<int>(i));
-    }
-    const geometry::PnpResult pnp = geometry::solvePnpRansac(points, pixels, current->sensor().camera(), options.pnp);
-    if (!pnp.success) continue;
-    frame.resetMatches();
-    frame.setPose(pnp.T_cw);
-    for (const int k : pnp.inliers) frame.map_points[index[k]] = matches[index[k]];
+    const int pnp_inliers = tracking::poseFromMatchesByPnp(frame, matches, options.pnp);
+    if (pnp_inliers == 0) continue;
     if (optimizeAndDropOutliers(frame, options.pose) < options.min_matches) continue;
 
     // The loop neighbourhood: the candidate and its covisible keyframes, projected with the verified pose.
@@ -128,7 +115,7 @@ std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFrame
     }
     const int inliers = localizeAgainst(frame, neighbourhood, options);
     spdlog::debug("loop candidate {} for keyframe {}: {} matches, {} PnP inliers, {} inliers after projection",
-                  candidate->id(), current->id(), n, pnp.inliers.size(), inliers);
+                  candidate->id(), current->id(), n, pnp_inliers, inliers);
     if (inliers < options.min_inliers) continue;
 
     LoopCandidate loop;

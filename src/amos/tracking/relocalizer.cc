@@ -38,6 +38,26 @@ int optimizeFramePose(map::Frame& frame, const geometry::PoseOptimizerOptions& o
   return result.num_inliers;
 }
 
+int poseFromMatchesByPnp(map::Frame& frame, const std::vector<map::MapPointPtr>& matches,
+                         const geometry::PnpRansacOptions& options) {
+  const map::FrameFeatures& f = *frame.features;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector2d> pixels;
+  std::vector<int> index;
+  for (std::size_t i = 0; i < matches.size(); ++i) {
+    if (!matches[i]) continue;
+    points.push_back(matches[i]->position());
+    pixels.emplace_back(f.keys[i].pt.x, f.keys[i].pt.y);
+    index.push_back(static_cast<int>(i));
+  }
+  const geometry::PnpResult pnp = geometry::solvePnpRansac(points, pixels, frame.sensor->camera(), options);
+  if (!pnp.success) return 0;
+  frame.resetMatches();
+  frame.setPose(pnp.T_cw);
+  for (const int k : pnp.inliers) frame.map_points[index[k]] = matches[index[k]];
+  return static_cast<int>(pnp.inliers.size());
+}
+
 Relocalizer::Relocalizer(const RelocalizerOptions& options, const MatchingOptions& matching,
                          const geometry::PoseOptimizerOptions& pose)
     : options_(options), matching_(matching), pose_(pose) {}
@@ -62,25 +82,11 @@ map::KeyFramePtr Relocalizer::relocalize(map::Frame& frame, const map::Map& map)
   std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (ranked.size() > static_cast<std::size_t>(options_.num_candidates)) ranked.resize(options_.num_candidates);
 
-  const map::FrameFeatures& f = *frame.features;
   for (const auto& [score, kf] : ranked) {
     int n = 0;
     std::vector<map::MapPointPtr> matches = matchFrameToKeyFrame(frame, *kf, options_.match_ratio, matching_, &n);
     if (n < options_.min_matches) continue;
-    std::vector<Eigen::Vector3d> points;
-    std::vector<Eigen::Vector2d> pixels;
-    std::vector<int> index;
-    for (std::size_t i = 0; i < matches.size(); ++i) {
-      if (!matches[i]) continue;
-      points.push_back(matches[i]->position());
-      pixels.emplace_back(f.keys[i].pt.x, f.keys[i].pt.y);
-      index.push_back(static_cast<int>(i));
-    }
-    const geometry::PnpResult pnp = geometry::solvePnpRansac(points, pixels, frame.sensor->camera(), options_.pnp);
-    if (!pnp.success) continue;
-    frame.resetMatches();
-    frame.setPose(pnp.T_cw);
-    for (const int k : pnp.inliers) frame.map_points[index[k]] = matches[index[k]];
+    if (poseFromMatchesByPnp(frame, matches, options_.pnp) == 0) continue;
     int good = optimize(frame);
     if (good < 10) continue;
     if (good < options_.min_inliers) {

@@ -42,4 +42,10 @@ class Relocalizer {
 // Returns the number of inliers.
 int optimizeFramePose(map::Frame& frame, const geometry::PoseOptimizerOptions& options);
 
+// PnP RANSAC on the frame's keypoints matched to `matches` (per keypoint, null = none). On success the frame
+// takes the PnP pose and keeps only the inlier matches; returns the number of inliers (0 on failure, frame
+// unchanged). Relocalisation and loop verification both start from this.
+int poseFromMatchesByPnp(map::Frame& frame, const std::vector<map::MapPointPtr>& matches,
+                         const geometry::PnpRansacOptions& options);
+
 }  // namespace amos::tracking
