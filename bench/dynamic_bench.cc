@@ -304,7 +304,7 @@ BENCHMARK(BM_FrontEndGeometry)->Unit(benchmark::kMillisecond);
 // with and without look-ahead (process(frame k, next = frame k+1): frame k+1 is segmented while frame k is
 // tracked), and with settings changed from the file's: args {look_ahead 0/1, Segmentation.mask_input_size,
 // Dynamic.LK.window, Dynamic.LK.maxIterations, LK epsilon in 1/1000 px, OpenCV threads (0 = OpenCV's default),
-// System.deterministic 0/1}. One iteration = one pass over
+// System.deterministic 0/1, Segmentation.input_shape 0 = square / 1 = frame}. One iteration = one pass over
 // the 270 frames. Counters: fps (wall), cpu_ms per frame (all threads of the
 // process, from getrusage), ATE RMSE in metres, lost frames, and the median wait for the masks. Run it from the
 // repository root (it reads configs/bonn.yaml):
@@ -326,6 +326,7 @@ void BM_BonnFullSequence(benchmark::State& state) {
   settings.dynamic.tracking.lk_epsilon = static_cast<double>(state.range(4)) / 1000.0;
   const int cv_threads = static_cast<int>(state.range(5));
   const bool deterministic = state.range(6) != 0;
+  settings.segmentation.input_shape = state.range(7) == 0 ? "square" : "frame";
   const int default_threads = cv::getNumThreads();
   settings.segmentation.threads = cv_threads;  // applied by the segmenter; 0 leaves OpenCV's default
   double fps = 0, cpu_ms = 0, ate = 0, lost = 0, wait_ms = 0, keyframe_points_median = 0;
@@ -376,17 +377,16 @@ void BM_BonnFullSequence(benchmark::State& state) {
   cv::setNumThreads(default_threads);
 }
 BENCHMARK(BM_BonnFullSequence)
-    ->Args({0, 256, 15, 30, 10, 0, 0})
-    ->Args({1, 256, 15, 30, 10, 0, 0})
-    ->Args({1, 256, 15, 30, 10, 1, 0})
-    ->Args({1, 160, 15, 30, 10, 1, 0})
-    ->Args({1, 160, 15, 10, 30, 1, 0})
-    ->Args({1, 256, 15, 30, 10, 1, 1})
-    ->Args({1, 192, 15, 30, 10, 1, 1})
-    ->Args({1, 160, 15, 30, 10, 1, 1})
-    ->Args({1, 160, 15, 10, 30, 1, 1})
-    ->Args({1, 160, 11, 30, 10, 1, 1})
-    ->ArgNames({"look_ahead", "mask_input", "lk_window", "lk_iters", "lk_eps_milli", "cv_threads", "deterministic"})
+    ->Args({0, 256, 15, 30, 10, 0, 0, 0})  // the front end as it was: no look-ahead, export shapes, OpenCV threads
+    ->Args({1, 160, 15, 30, 10, 1, 0, 1})  // defaults
+    ->Args({0, 256, 15, 30, 10, 0, 1, 0})
+    ->Args({1, 256, 15, 30, 10, 0, 1, 0})
+    ->Args({1, 256, 15, 30, 10, 1, 1, 0})
+    ->Args({1, 256, 15, 30, 10, 1, 1, 1})
+    ->Args({1, 160, 15, 30, 10, 1, 1, 0})
+    ->Args({1, 160, 15, 30, 10, 1, 1, 1})
+    ->ArgNames({"look_ahead", "mask_input", "lk_window", "lk_iters", "lk_eps_milli", "cv_threads", "deterministic",
+                "frame_shape"})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kSecond);
