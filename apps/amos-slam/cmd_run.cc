@@ -51,9 +51,9 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
     const auto& m = *r.info.mask_accuracy;
     std::cout << fmt::format(
         "dynamic mask vs true movers ({} frames, {} with movers): precision {:.3f}  recall {:.3f}  IoU {:.3f};  "
-        "per-frame medians {:.3f} / {:.3f} / {:.3f}\n",
+        "per-frame medians {:.3f} / {:.3f} / {:.3f};  {:.2f}% of pixels marked\n",
         m.frames, m.frames_with_truth, m.precision, m.recall, m.iou, m.median_precision, m.median_recall,
-        m.median_iou);
+        m.median_iou, 100.0 * m.dynamic_fraction);
   }
   std::cout << "outputs written to " << output << "\n";
 }

@@ -104,6 +104,53 @@ std::vector<std::vector<int>> superpixelNeighbours(const cv::Mat& labels, int co
   return neighbours;
 }
 
+std::vector<std::vector<bool>> occlusionEdges(const cv::Mat& labels, const std::vector<std::vector<int>>& neighbours,
+                                              const cv::Mat& depth, double ratio) {
+  core::require(labels.type() == CV_32S && depth.type() == CV_32F && depth.size() == labels.size(),
+                "occlusionEdges: labels CV_32S and depth CV_32F of the same size");
+  const int count = static_cast<int>(neighbours.size());
+  std::vector<std::vector<int>> pairs(count), steps(count);
+  for (int a = 0; a < count; ++a) pairs[a].assign(neighbours[a].size(), 0), steps[a].assign(neighbours[a].size(), 0);
+  auto slot = [&](int a, int b) {
+    const auto& list = neighbours[a];
+    const auto it = std::lower_bound(list.begin(), list.end(), b);
+    core::require(it != list.end() && *it == b, "occlusionEdges: neighbours do not match the labels");
+    return static_cast<std::size_t>(it - list.begin());
+  };
+  // The label map may come from a lower working resolution, so its border can sit a pixel or two off the depth
+  // step: compare depths two pixels away on either side.
+  constexpr int kReach = 2;
+  auto record = [&](int a, int b, float za, float zb) {
+    if (!(za > 0.f) || !(zb > 0.f)) return;  // unknown (or NaN) depth: no say
+    const bool step = std::fabs(za - zb) > ratio * std::min(za, zb);
+    const std::size_t i = slot(a, b), j = slot(b, a);
+    ++pairs[a][i], ++pairs[b][j];
+    if (step) ++steps[a][i], ++steps[b][j];
+  };
+  const int w = labels.cols, h = labels.rows;
+  for (int y = 0; y < h; ++y) {
+    const int* row = labels.ptr<int>(y);
+    for (int x = 0; x < w; ++x) {
+      if (x + 1 < w && row[x] != row[x + 1]) {
+        const float* d = depth.ptr<float>(y);
+        record(row[x], row[x + 1], d[std::max(0, x + 1 - kReach)], d[std::min(w - 1, x + kReach)]);
+      }
+      if (y + 1 < h) {
+        const int below = labels.at<int>(y + 1, x);
+        if (row[x] != below)
+          record(row[x], below, depth.at<float>(std::max(0, y + 1 - kReach), x),
+                 depth.at<float>(std::min(h - 1, y + kReach), x));
+      }
+    }
+  }
+  std::vector<std::vector<bool>> occluding(count);
+  for (int a = 0; a < count; ++a) {
+    occluding[a].resize(neighbours[a].size());
+    for (std::size_t k = 0; k < neighbours[a].size(); ++k) occluding[a][k] = 2 * steps[a][k] > pairs[a][k];
+  }
+  return occluding;
+}
+
 double superpixelDissimilarity(const Superpixel& a, const Superpixel& b, double colour_scale, double depth_scale_m) {
   const double dl = a.L - b.L, da = a.A - b.A, db = a.B - b.B;
   double d = std::sqrt(dl * dl + da * da + db * db) / colour_scale;
@@ -114,19 +161,21 @@ double superpixelDissimilarity(const Superpixel& a, const Superpixel& b, double 
 std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
                                      const std::vector<std::vector<int>>& neighbours, std::vector<RegionLabel> labels,
                                      const std::vector<bool>& may_be_dynamic, double colour_scale,
-                                     double depth_scale_m) {
+                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding) {
   const std::size_t n = superpixels.size();
   core::require(neighbours.size() == n && labels.size() == n && may_be_dynamic.size() == n,
                 "growRegions: superpixels, neighbours, seeds and flags differ in number");
+  core::require(occluding.empty() || occluding.size() == n, "growRegions: occlusion flags differ in number");
   core::require(colour_scale > 0 && depth_scale_m > 0, "growRegions: scales must be positive");
   // (cost, superpixel to label, label offered): the cheapest offer is taken first.
   using Offer = std::tuple<double, int, int>;
   std::priority_queue<Offer, std::vector<Offer>, std::greater<Offer>> offers;
   auto offerFrom = [&](int a) {
     const RegionLabel l = labels[a];
-    for (int b : neighbours[a]) {
+    for (std::size_t k = 0; k < neighbours[a].size(); ++k) {
+      const int b = neighbours[a][k];
       if (labels[b] != RegionLabel::kUnlabelled) continue;
-      if (l == RegionLabel::kDynamic && !may_be_dynamic[b]) continue;
+      if (l == RegionLabel::kDynamic && (!may_be_dynamic[b] || (!occluding.empty() && occluding[a][k]))) continue;
       offers.emplace(superpixelDissimilarity(superpixels[a], superpixels[b], colour_scale, depth_scale_m), b,
                      static_cast<int>(l));
     }

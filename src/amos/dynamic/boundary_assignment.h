@@ -50,6 +50,14 @@ int assignToNeighbourCluster(cv::Point2f p, const cv::Mat& decision_map, const s
 // Neighbours of every superpixel (labels CV_32S in [0, count), 4-connectivity), each list sorted.
 std::vector<std::vector<int>> superpixelNeighbours(const cv::Mat& superpixel_labels, int count);
 
+// For every neighbour pair of superpixelNeighbours (same layout): whether most of their shared border is a depth
+// step, i.e. depths a few pixels apart across it (depth CV_32F metres, 0 = unknown) differ by more than `ratio`
+// of the nearer one. A mover seen against the scene behind it is bounded by such occlusion edges (except where it
+// rests on a surface, where colour has to separate it); a slanted surface (a few mm per pixel) is not one.
+std::vector<std::vector<bool>> occlusionEdges(const cv::Mat& superpixel_labels,
+                                              const std::vector<std::vector<int>>& neighbours, const cv::Mat& depth,
+                                              double ratio);
+
 // How unlike two superpixels are: Eq. 1 without the position term, |Lab difference| / colour_scale +
 // |depth difference| / depth_scale_m (the depth term only when both have depth).
 double superpixelDissimilarity(const Superpixel& a, const Superpixel& b, double colour_scale, double depth_scale_m);
@@ -58,12 +66,14 @@ enum class RegionLabel : std::int8_t { kUnlabelled = -1, kStatic = 0, kDynamic =
 
 // Seeded region growing: starting from the seeds, repeatedly the unlabelled superpixel adjacent to a labelled one
 // with the smallest dissimilarity to it takes that neighbour's label. A superpixel with may_be_dynamic false
-// never takes the dynamic label (it can still be reached by the static one); superpixels no label reaches are
-// static. Deterministic (ties broken by superpixel id).
+// never takes the dynamic label (it can still be reached by the static one), and the dynamic label does not cross
+// an occlusion edge (occluding, laid out as neighbours; empty = none): a trackless background surface that looks
+// like the mover (the desk behind a cardboard box) is not part of it. Superpixels no label reaches are static.
+// Deterministic (ties broken by superpixel id).
 std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
                                      const std::vector<std::vector<int>>& neighbours, std::vector<RegionLabel> seeds,
                                      const std::vector<bool>& may_be_dynamic, double colour_scale,
-                                     double depth_scale_m);
+                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding = {});
 
 // What one last->current track says about the superpixel it ends in.
 struct TrackEvidence {

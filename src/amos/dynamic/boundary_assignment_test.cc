@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 
 namespace amos::dynamic {
@@ -113,6 +114,40 @@ TEST(SuperpixelRegions, GrowingFollowsTheCheapestEdges) {
   const auto blocked = growRegions(sp, neighbours, seeds, restricted, 1.0, 1.0);
   EXPECT_EQ(blocked[1], RegionLabel::kDynamic);
   EXPECT_EQ(blocked[2], RegionLabel::kStatic);
+}
+
+TEST(SuperpixelRegions, OcclusionEdgesAreDepthStepsAlongTheSharedBorder) {
+  // 3 x 3 blocks; the left column stands at 1 m in front of a 2 m wall, the right column is a slanted surface
+  // (1 cm per pixel, about 0.5% of the depth: no step).
+  const cv::Mat labels = blockLabels(3);
+  cv::Mat depth(30, 30, CV_32F, cv::Scalar(2.f));
+  depth.colRange(0, 10).setTo(1.f);
+  for (int x = 20; x < 30; ++x) depth.col(x).setTo(2.f + 0.01f * (x - 19));
+  depth.at<float>(15, 15) = 0.f;  // a hole changes nothing
+  const auto neighbours = superpixelNeighbours(labels, 9);
+  const auto occluding = occlusionEdges(labels, neighbours, depth, 0.05);
+  auto edge = [&](int a, int b) {
+    const auto it = std::find(neighbours[a].begin(), neighbours[a].end(), b);
+    return static_cast<bool>(occluding[a][it - neighbours[a].begin()]);
+  };
+  EXPECT_TRUE(edge(0, 1));
+  EXPECT_TRUE(edge(1, 0));
+  EXPECT_TRUE(edge(4, 3));
+  EXPECT_FALSE(edge(0, 3));  // same surface, one above the other
+  EXPECT_FALSE(edge(4, 5));  // wall meets the slanted surface without a step
+  EXPECT_FALSE(edge(5, 8));
+  // The dynamic label does not cross an occlusion edge; the static one does.
+  std::vector<Superpixel> sp(9, superpixel(50, 2.0));
+  std::vector<RegionLabel> seeds(9, RegionLabel::kUnlabelled);
+  seeds[0] = RegionLabel::kDynamic;
+  seeds[8] = RegionLabel::kStatic;
+  const std::vector<bool> anywhere(9, true);
+  const auto free = growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1);
+  const auto blocked = growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1, occluding);
+  EXPECT_EQ(free[1], RegionLabel::kDynamic);  // equal costs: the lower id's offer (0 -> 1) comes first
+  EXPECT_EQ(blocked[1], RegionLabel::kStatic);
+  EXPECT_EQ(blocked[3], RegionLabel::kDynamic);  // down the same surface
+  EXPECT_EQ(blocked[4], RegionLabel::kStatic);
 }
 
 TEST(SuperpixelRegions, TracksSeedByTheirMotion) {

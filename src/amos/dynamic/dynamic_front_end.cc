@@ -241,6 +241,12 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
       if (depthEdgeInWindow(in.last_depth, t.last, half_window, ratio) ||
           depthEdgeInWindow(in.depth, t.current, half_window, ratio))
         continue;
+      // Nor does one that lies off its superpixel's surface: where a superpixel straddles the mover's border (its
+      // outline is found at a coarser scale), the track belongs to the other side.
+      const int s = labelAt(segmentation.labels, t.current);
+      const float z_superpixel = s >= 0 ? segmentation.superpixels[s].depth : 0.f;
+      if (z_now > 0 && z_superpixel > 0 && std::fabs(z_now - z_superpixel) > ratio * std::min(z_now, z_superpixel))
+        continue;
       evidence.push_back({t.current, residuals[i], out.epipolar_distance_px[i]});
     }
     const auto neighbours = superpixelNeighbours(segmentation.labels, diag.superpixels);
@@ -253,7 +259,8 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
       may_be_dynamic[s] = out.dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
     const std::vector<RegionLabel> labels =
         growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options_.superpixel.colour_scale,
-                    options_.superpixel.depth_scale_m);
+                    options_.superpixel.depth_scale_m,
+                    occlusionEdges(segmentation.labels, neighbours, in.depth, options_.reprojection.depth_edge_ratio));
     std::vector<uchar> dynamic_superpixel(diag.superpixels, 0);
     for (int s = 0; s < diag.superpixels; ++s) {
       dynamic_superpixel[s] = labels[s] == RegionLabel::kDynamic;

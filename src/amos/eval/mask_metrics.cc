@@ -76,6 +76,9 @@ MaskAccuracy MaskAccuracyAccumulator::summary() const {
   a.precision = precision(a.total);
   a.recall = recall(a.total);
   a.iou = iou(a.total);
+  const MaskCounts& t = a.total;
+  a.dynamic_fraction =
+      ratio(t.true_positive + t.false_positive, t.true_positive + t.false_positive + t.false_negative + t.true_negative);
   a.median_precision = medianOfDefined(p);
   a.median_recall = medianOfDefined(r);
   a.median_iou = medianOfDefined(j);
@@ -89,6 +92,7 @@ nlohmann::json toJson(const MaskAccuracy& a) {
           {"precision", number(a.precision)},
           {"recall", number(a.recall)},
           {"iou", number(a.iou)},
+          {"dynamic_fraction", number(a.dynamic_fraction)},
           {"median_precision", number(a.median_precision)},
           {"median_recall", number(a.median_recall)},
           {"median_iou", number(a.median_iou)},

@@ -32,6 +32,8 @@ struct MaskAccuracy {
   MaskCounts total;           // summed over the frames
   // Pooled over every pixel of every frame (a frame weighs by its pixel counts).
   double precision = kNaN, recall = kNaN, iou = kNaN;
+  // Share of all pixels marked dynamic (on a static sequence: the false-positive rate).
+  double dynamic_fraction = kNaN;
   // Medians of the per-frame values, each over the frames where it is defined (see precision() etc.).
   double median_precision = kNaN, median_recall = kNaN, median_iou = kNaN;
 };
@@ -49,7 +51,7 @@ class MaskAccuracyAccumulator {
   std::vector<MaskCounts> per_frame_;
 };
 
-// Keys: frames frames_with_truth precision recall iou median_precision median_recall median_iou
+// Keys: frames frames_with_truth precision recall iou dynamic_fraction median_precision median_recall median_iou
 // true_positive false_positive false_negative (NaN becomes null).
 nlohmann::json toJson(const MaskAccuracy& accuracy);
 

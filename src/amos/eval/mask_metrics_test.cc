@@ -70,6 +70,7 @@ TEST(MaskMetrics, PoolsPixelsAndTakesPerFrameMedians) {
   EXPECT_DOUBLE_EQ(a.precision, 90.0 / 200.0);
   EXPECT_DOUBLE_EQ(a.recall, 90.0 / 120.0);
   EXPECT_DOUBLE_EQ(a.iou, 90.0 / 230.0);
+  EXPECT_DOUBLE_EQ(a.dynamic_fraction, 200.0 / 400.0);
   // Medians over the three defined frames: P {1, 0.4, 0.2}, R {1, 0.4, 1}, IoU {1, 0.25, 0.2}.
   EXPECT_DOUBLE_EQ(a.median_precision, 0.4);
   EXPECT_DOUBLE_EQ(a.median_recall, 1.0);
