@@ -1,8 +1,8 @@
 #pragma once
 // OpenCV-dnn segmentation backends (compiled only with AMOS_WITH_DNN; implemented in segmenter_dnn.cc).
 //
-// "nanodet_selfie": NanoDet-m (COCO detector, the 320 or 416 export, run on a frame-shaped input such as 320x256
-// by default, see nanodet_import_dnn.h) finds boxes of the configured classes; for each person box a MediaPipe
+// "nanodet_selfie": NanoDet-m (COCO detector, the 320 or 416 export, on its square input or a frame-shaped one such
+// as 320x256, see nanodet_import_dnn.h) finds boxes of the configured classes; for each person box a MediaPipe
 // selfie-segmentation network gives the mask: the box is widened (box_widen_x/y), the crop squashed to
 // mask_input_size x mask_input_size (160 by default; the export's 256 costs 2.4 times as much), the person
 // probability thresholded and pasted back inside the box. Other classes get a box + depth mask

@@ -28,7 +28,7 @@ TEST(SegmenterOptions, DefaultsAreValidAndMatchThePaper) {
   EXPECT_EQ(options.classes, std::vector<std::string>{"person"});
   EXPECT_EQ(options.dilation.size, 31);
   EXPECT_EQ(options.dilation.shape, "ellipse");
-  EXPECT_EQ(options.input_shape, "frame");
+  EXPECT_EQ(options.input_shape, "square");
   EXPECT_EQ(options.mask_input_size, 160);
 }
 
