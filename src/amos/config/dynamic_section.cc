@@ -58,6 +58,8 @@ void readSegmentationSection(YamlReader& in, dynamic::SegmenterOptions& o) {
   in.read("Segmentation.backend", o.backend);
   in.read("Segmentation.models_dir", o.models_dir);
   in.read("Segmentation.input_size", o.input_size);
+  in.read("Segmentation.input_shape", o.input_shape);
+  in.read("Segmentation.mask_input_size", o.mask_input_size);
   in.read("Segmentation.score_threshold", o.score_threshold);
   in.read("Segmentation.nms_iou", o.nms_iou);
   in.read("Segmentation.classes", o.classes);

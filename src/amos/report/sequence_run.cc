@@ -70,8 +70,11 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   core::Stopwatch wall;
   double outputs_ms = 0;  // mask scoring and writing, kept out of the run's wall time
   std::size_t n = 0;
-  while (auto frame = reader.next()) {
-    const system::DynamicFrameOutput out = result.pipeline->process(*frame);
+  // One frame of look-ahead: the pipeline starts segmenting frame k+1 while it tracks frame k.
+  std::optional<io::RgbdFrame> frame = reader.next();
+  for (; frame; ++n) {
+    std::optional<io::RgbdFrame> next = reader.next();
+    const system::DynamicFrameOutput out = result.pipeline->process(*frame, next ? &*next : nullptr);
     core::Stopwatch outputs;
     cv::Mat truth;
     if (truth_masks && (mask_writer || !out.dynamic_mask.empty())) {
@@ -80,8 +83,9 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     if (!truth.empty() && !out.dynamic_mask.empty()) mask_accuracy.add(out.dynamic_mask, truth);
     if (mask_writer) mask_writer->add(n, frame->rgb_file, frame->bgr, out.dynamic_mask, out.prior_mask, truth);
     outputs_ms += outputs.elapsedMs();
-    ++n;
-    if (options.on_frame) options.on_frame({n, reader.size(), &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
+    if (options.on_frame)
+      options.on_frame({n + 1, reader.size(), &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
+    frame = std::move(next);
   }
   result.pipeline->finish();
   if (result.pipeline->mode() != dynamic::DynamicMode::kNone) {
