@@ -25,7 +25,7 @@ std::vector<bool> borderSuperpixels(const cv::Mat& superpixel_labels, int count,
   const int m = std::min(margin_px, std::max(0, std::min(w, h) / 2 - 1));
   auto mark = [&](int x, int y) {
     const int label = superpixel_labels.at<int>(y, x);
-    core::require(label >= 0 && label < count, "borderSuperpixels: label out of range");
+    if (label < 0 || label >= count) throw core::Error("borderSuperpixels: label out of range");
     border[label] = true;
   };
   for (int y = 0; y < h; ++y) {
@@ -79,28 +79,45 @@ int assignToNeighbourCluster(cv::Point2f p, const cv::Mat& decision_map, const s
   return best;
 }
 
+namespace {
+
+// Index of b in list, or -1. Lists are short (a superpixel has ~6 neighbours), so a linear scan beats anything.
+int findIn(const std::vector<int>& list, int b) {
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (list[i] == b) return static_cast<int>(i);
+  return -1;
+}
+
+// Calls visit(a, b, x_a, y_a, x_b, y_b) for every pair of 4-neighbouring pixels with different labels a != b.
+template <typename Visit>
+void forEachLabelChange(const cv::Mat& labels, Visit&& visit) {
+  const int w = labels.cols, h = labels.rows;
+  for (int y = 0; y < h; ++y) {
+    const int* row = labels.ptr<int>(y);
+    const int* below = y + 1 < h ? labels.ptr<int>(y + 1) : nullptr;
+    for (int x = 0; x < w; ++x) {
+      const int a = row[x];
+      if (x + 1 < w && a != row[x + 1]) visit(a, row[x + 1], x, y, x + 1, y);
+      if (below && a != below[x]) visit(a, below[x], x, y, x, y + 1);
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<std::vector<int>> superpixelNeighbours(const cv::Mat& labels, int count) {
   core::require(labels.type() == CV_32S, "superpixelNeighbours: labels must be CV_32S");
   std::vector<std::vector<int>> neighbours(std::max(0, count));
-  auto link = [&](int a, int b) {
-    if (a == b) return;
-    core::require(a >= 0 && b >= 0 && a < count && b < count, "superpixelNeighbours: label out of range");
+  int last_a = -1, last_b = -1;  // runs of pixels along one border repeat the same pair
+  forEachLabelChange(labels, [&](int a, int b, int, int, int, int) {
+    if (a == last_a && b == last_b) return;
+    last_a = a, last_b = b;
+    if (a < 0 || b < 0 || a >= count || b >= count) throw core::Error("superpixelNeighbours: label out of range");
+    if (findIn(neighbours[a], b) >= 0) return;
     neighbours[a].push_back(b);
     neighbours[b].push_back(a);
-  };
-  for (int y = 0; y < labels.rows; ++y) {
-    const int* row = labels.ptr<int>(y);
-    const int* below = y + 1 < labels.rows ? labels.ptr<int>(y + 1) : nullptr;
-    for (int x = 0; x < labels.cols; ++x) {
-      // Only label changes add pairs, so the lists stay short before deduplication.
-      if (x + 1 < labels.cols && row[x] != row[x + 1]) link(row[x], row[x + 1]);
-      if (below && row[x] != below[x]) link(row[x], below[x]);
-    }
-  }
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
+  });
+  for (auto& list : neighbours) std::sort(list.begin(), list.end());
   return neighbours;
 }
 
@@ -109,40 +126,32 @@ std::vector<std::vector<bool>> occlusionEdges(const cv::Mat& labels, const std::
   core::require(labels.type() == CV_32S && depth.type() == CV_32F && depth.size() == labels.size(),
                 "occlusionEdges: labels CV_32S and depth CV_32F of the same size");
   const int count = static_cast<int>(neighbours.size());
+  // Per neighbour slot: border pixel pairs with known depth on both sides, and how many of them are steps.
   std::vector<std::vector<int>> pairs(count), steps(count);
   for (int a = 0; a < count; ++a) pairs[a].assign(neighbours[a].size(), 0), steps[a].assign(neighbours[a].size(), 0);
-  auto slot = [&](int a, int b) {
-    const auto& list = neighbours[a];
-    const auto it = std::lower_bound(list.begin(), list.end(), b);
-    core::require(it != list.end() && *it == b, "occlusionEdges: neighbours do not match the labels");
-    return static_cast<std::size_t>(it - list.begin());
-  };
   // The label map may come from a lower working resolution, so its border can sit a pixel or two off the depth
   // step: compare depths two pixels away on either side.
   constexpr int kReach = 2;
-  auto record = [&](int a, int b, float za, float zb) {
-    if (!(za > 0.f) || !(zb > 0.f)) return;  // unknown (or NaN) depth: no say
-    const bool step = std::fabs(za - zb) > ratio * std::min(za, zb);
-    const std::size_t i = slot(a, b), j = slot(b, a);
-    ++pairs[a][i], ++pairs[b][j];
-    if (step) ++steps[a][i], ++steps[b][j];
-  };
   const int w = labels.cols, h = labels.rows;
-  for (int y = 0; y < h; ++y) {
-    const int* row = labels.ptr<int>(y);
-    for (int x = 0; x < w; ++x) {
-      if (x + 1 < w && row[x] != row[x + 1]) {
-        const float* d = depth.ptr<float>(y);
-        record(row[x], row[x + 1], d[std::max(0, x + 1 - kReach)], d[std::min(w - 1, x + kReach)]);
-      }
-      if (y + 1 < h) {
-        const int below = labels.at<int>(y + 1, x);
-        if (row[x] != below)
-          record(row[x], below, depth.at<float>(std::max(0, y + 1 - kReach), x),
-                 depth.at<float>(std::min(h - 1, y + kReach), x));
-      }
+  const float r = static_cast<float>(ratio);
+  int last_a = -1, last_b = -1, slot_a = -1, slot_b = -1;
+  forEachLabelChange(labels, [&](int a, int b, int xa, int ya, int xb, int yb) {
+    // Step outwards from the border on both sides (along the row or the column the pair lies on).
+    const int dx = xb - xa, dy = yb - ya;
+    const int xa2 = std::max(0, xa - dx * (kReach - 1)), ya2 = std::max(0, ya - dy * (kReach - 1));
+    const int xb2 = std::min(w - 1, xb + dx * (kReach - 1)), yb2 = std::min(h - 1, yb + dy * (kReach - 1));
+    const float za = depth.ptr<float>(ya2)[xa2], zb = depth.ptr<float>(yb2)[xb2];
+    if (!(za > 0.f) || !(zb > 0.f)) return;  // unknown (or NaN) depth: no say
+    if (a != last_a || b != last_b) {
+      if (a < 0 || b < 0 || a >= count || b >= count) throw core::Error("occlusionEdges: label out of range");
+      slot_a = findIn(neighbours[a], b), slot_b = findIn(neighbours[b], a);
+      if (slot_a < 0 || slot_b < 0) throw core::Error("occlusionEdges: neighbours do not match the labels");
+      last_a = a, last_b = b;
     }
-  }
+    const bool step = std::fabs(za - zb) > r * std::min(za, zb);
+    ++pairs[a][slot_a], ++pairs[b][slot_b];
+    if (step) ++steps[a][slot_a], ++steps[b][slot_b];
+  });
   std::vector<std::vector<bool>> occluding(count);
   for (int a = 0; a < count; ++a) {
     occluding[a].resize(neighbours[a].size());
@@ -206,7 +215,7 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
                 "seedSuperpixels: superpixels, neighbours and border flags differ in number");
   auto clusterOf = [&](int s) {
     const int c = superpixels[s].cluster;
-    core::require(c >= 0 && c < clusters, "seedSuperpixels: superpixel without a valid cluster");
+    if (c < 0 || c >= clusters) throw core::Error("seedSuperpixels: superpixel without a valid cluster");
     return c;
   };
   // Dynamic clusters bordering each cluster.
