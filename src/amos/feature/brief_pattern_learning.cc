@@ -11,18 +11,12 @@
 #include <tuple>
 
 #include "amos/core/error.h"
+#include "amos/core/popcnt_clones.h"
 #include "amos/feature/image_pyramid.h"
 
 namespace amos::feature {
 
 namespace {
-
-// Same switch as in match/descriptor_distance.cc: POPCNT clones for the correlation counts.
-#if defined(__x86_64__) && defined(__linux__) && (defined(__GNUC__) || defined(__clang__))
-#define AMOS_POPCNT_CLONES __attribute__((target_clones("popcnt", "default")))
-#else
-#define AMOS_POPCNT_CLONES
-#endif
 
 constexpr int kRadius = 15;
 

@@ -7,19 +7,11 @@
 #include <limits>
 
 #include "amos/core/error.h"
+#include "amos/core/popcnt_clones.h"
 
 namespace amos::match {
 
 namespace {
-
-// The project builds for baseline x86-64, where __builtin_popcountll becomes a slow library call. The hot
-// functions are therefore compiled twice, with and without the POPCNT instruction, and the loader picks the
-// right one for the CPU (GCC/Clang function multi-versioning).
-#if defined(__x86_64__) && defined(__linux__) && (defined(__GNUC__) || defined(__clang__))
-#define AMOS_POPCNT_CLONES __attribute__((target_clones("popcnt", "default")))
-#else
-#define AMOS_POPCNT_CLONES
-#endif
 
 // Four 64-bit words; memcpy keeps the loads free of alignment and aliasing assumptions (compiles to plain loads).
 inline int distance256(const std::uint8_t* a, const std::uint8_t* b) {
