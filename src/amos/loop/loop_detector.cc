@@ -22,10 +22,6 @@ void LoopDetectorOptions::check() const {
   matching.check();
 }
 
-namespace {
-
-}  // namespace
-
 map::Frame frameOf(const map::KeyFrame& kf) {
   map::Frame f;
   f.id = kf.frameId();
@@ -38,36 +34,13 @@ map::Frame frameOf(const map::KeyFrame& kf) {
   return f;
 }
 
-namespace {
-
-int optimizeAndDropOutliers(map::Frame& frame, const geometry::PoseOptimizerOptions& options) {
-  const int inliers = tracking::optimizeFramePose(frame, options);
-  for (std::size_t i = 0; i < frame.size(); ++i) {
-    if (frame.outlier[i]) {
-      frame.map_points[i].reset();
-      frame.outlier[i] = false;
-    }
-  }
-  return inliers;
-}
-
-std::unordered_set<const map::MapPoint*> matchedSet(const map::Frame& frame) {
-  std::unordered_set<const map::MapPoint*> s;
-  for (const auto& p : frame.map_points) {
-    if (p) s.insert(p.get());
-  }
-  return s;
-}
-
-}  // namespace
-
 int localizeAgainst(map::Frame& frame, const std::vector<map::KeyFramePtr>& keyframes,
                     const LoopDetectorOptions& options) {
   for (const auto& kf : keyframes) {
-    tracking::searchKeyFrameByProjection(frame, *kf, matchedSet(frame), 10, options.matching.th_high,
+    tracking::searchKeyFrameByProjection(frame, *kf, tracking::matchedPoints(frame), 10, options.matching.th_high,
                                          options.matching);
   }
-  return optimizeAndDropOutliers(frame, options.pose);
+  return tracking::optimizeFramePoseDroppingOutliers(frame, options.pose);
 }
 
 std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFramePtr& current,
@@ -105,7 +78,7 @@ std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFrame
     if (n < options.min_matches) continue;
     const int pnp_inliers = tracking::poseFromMatchesByPnp(frame, matches, options.pnp);
     if (pnp_inliers == 0) continue;
-    if (optimizeAndDropOutliers(frame, options.pose) < options.min_matches) continue;
+    if (tracking::optimizeFramePoseDroppingOutliers(frame, options.pose) < options.min_matches) continue;
 
     // The loop neighbourhood: the candidate and its covisible keyframes, projected with the verified pose.
     std::vector<map::KeyFramePtr> neighbourhood{candidate};

@@ -139,9 +139,12 @@ void LocalMapper::process(Job job) {
   if (queuedKeyFrames() == 0) {
     std::unique_lock lock(map_->mutex());
     delta.points_fused = fuseWithNeighbors(*map_, kf, options_.fusion);
-    spdlog::debug("keyframe {}: {} new points, {} triangulated, {} fused; points {} seen by 2+ keyframes {} neighbours {}",
-                  kf->id(), job_new_points, delta.points_triangulated, delta.points_fused, kf->trackedMapPoints(0),
-                  kf->trackedMapPoints(3), kf->orderedConnections().size());
+    if (spdlog::should_log(spdlog::level::debug)) {  // the counts walk the keyframe's points: only when shown
+      spdlog::debug("keyframe {}: {} new points, {} triangulated, {} fused; points {} seen by 2+ keyframes {} "
+                    "neighbours {}",
+                    kf->id(), job_new_points, delta.points_triangulated, delta.points_fused, kf->trackedMapPoints(0),
+                    kf->trackedMapPoints(3), kf->orderedConnections().size());
+    }
   }
   if (times_) times_->add("mapping.fusion", watch.elapsedMs());
   if (queuedKeyFrames() == 0) {

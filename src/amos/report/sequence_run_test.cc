@@ -99,7 +99,7 @@ TEST(SequenceRun, SavesMasksAndScoresThemAgainstSyntheticGroundTruth) {
     const cv::Mat m = cv::imread(mask.string(), cv::IMREAD_UNCHANGED);
     ASSERT_EQ(m.type(), CV_8UC1);
     ASSERT_EQ(m.size(), cv::Size(640, 480));
-    EXPECT_EQ(cv::countNonZero(m != 0 & m != 255), 0);
+    EXPECT_EQ(cv::countNonZero((m != 0) & (m != 255)), 0);
     ++masks;
   }
   EXPECT_EQ(masks, 12u);

@@ -64,6 +64,7 @@ bool projectIntoFrame(const map::Frame& frame, const map::MapPointPtr& p, double
   out.u = u;
   out.v = v;
   out.u_right = u - s.bf() * inv_z;
+  out.z = pc.z();
   out.level = p->predictScale(dist, s);
   out.view_cos = view_cos;
   return true;

@@ -26,6 +26,7 @@ struct MatchingOptions {
 struct ProjectedPoint {
   map::MapPointPtr point;
   double u = 0, v = 0, u_right = 0;
+  double z = 0;  // depth in the camera
   int level = 0;
   double view_cos = 1;
 };

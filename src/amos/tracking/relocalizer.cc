@@ -62,8 +62,8 @@ Relocalizer::Relocalizer(const RelocalizerOptions& options, const MatchingOption
                          const geometry::PoseOptimizerOptions& pose)
     : options_(options), matching_(matching), pose_(pose) {}
 
-int Relocalizer::optimize(map::Frame& frame) const {
-  const int inliers = optimizeFramePose(frame, pose_);
+int optimizeFramePoseDroppingOutliers(map::Frame& frame, const geometry::PoseOptimizerOptions& options) {
+  const int inliers = optimizeFramePose(frame, options);
   for (std::size_t i = 0; i < frame.size(); ++i) {
     if (frame.outlier[i]) {
       frame.map_points[i].reset();
@@ -72,6 +72,16 @@ int Relocalizer::optimize(map::Frame& frame) const {
   }
   return inliers;
 }
+
+std::unordered_set<const map::MapPoint*> matchedPoints(const map::Frame& frame) {
+  std::unordered_set<const map::MapPoint*> matched;
+  for (const auto& p : frame.map_points) {
+    if (p) matched.insert(p.get());
+  }
+  return matched;
+}
+
+int Relocalizer::optimize(map::Frame& frame) const { return optimizeFramePoseDroppingOutliers(frame, pose_); }
 
 map::KeyFramePtr Relocalizer::relocalize(map::Frame& frame, const map::Map& map) const {
   // Rank keyframes by thumbnail distance (ties: older first, deterministic).
@@ -91,15 +101,11 @@ map::KeyFramePtr Relocalizer::relocalize(map::Frame& frame, const map::Map& map)
     if (good < 10) continue;
     if (good < options_.min_inliers) {
       // Look for more matches by projecting the keyframe's points with the estimated pose.
-      std::unordered_set<const map::MapPoint*> found;
-      for (const auto& p : frame.map_points) if (p) found.insert(p.get());
-      const int extra = searchKeyFrameByProjection(frame, *kf, found, 10, 100, matching_);
+      const int extra = searchKeyFrameByProjection(frame, *kf, matchedPoints(frame), 10, 100, matching_);
       if (extra + good >= options_.min_inliers) {
         good = optimize(frame);
         if (good > 30 && good < options_.min_inliers) {
-          found.clear();
-          for (const auto& p : frame.map_points) if (p) found.insert(p.get());
-          const int more = searchKeyFrameByProjection(frame, *kf, found, 3, 64, matching_);
+          const int more = searchKeyFrameByProjection(frame, *kf, matchedPoints(frame), 3, 64, matching_);
           if (good + more >= options_.min_inliers) good = optimize(frame);
         }
       }

@@ -1,4 +1,5 @@
 #pragma once
+#include <unordered_set>
 // Relocalisation of a lost frame without a bag-of-words vocabulary: keyframes are ranked by the similarity of
 // their thumbnails (small blurred images, as in PTAM), the best few are matched to the frame by brute-force
 // descriptor matching, and each candidate pose comes from EPnP RANSAC, refined by pose optimisation and a
@@ -41,6 +42,11 @@ class Relocalizer {
 // Runs pose optimisation on the frame's current matches from frame.T_cw, writes pose and outlier flags back.
 // Returns the number of inliers.
 int optimizeFramePose(map::Frame& frame, const geometry::PoseOptimizerOptions& options);
+
+// optimizeFramePose, then the outlier matches are removed from the frame. Returns the number of inliers.
+int optimizeFramePoseDroppingOutliers(map::Frame& frame, const geometry::PoseOptimizerOptions& options);
+// The map points the frame is matched to (for projection searches that must skip them).
+std::unordered_set<const map::MapPoint*> matchedPoints(const map::Frame& frame);
 
 // PnP RANSAC on the frame's keypoints matched to `matches` (per keypoint, null = none). On success the frame
 // takes the PnP pose and keeps only the inlier matches; returns the number of inliers (0 on failure, frame

@@ -404,8 +404,7 @@ void Tracker::searchLocalPoints(map::Frame& frame) {
     if (masked) {
       // Evidence for culling points on movers (Sec. III-C). The mask and depth are in raw image coordinates;
       // the undistorted projection is within a few pixels of it, which is enough for a count.
-      const double z = (frame.T_cw * p->position()).z();
-      const MaskEvidence evidence = maskEvidence(frame.dynamic_mask, frame.depth_image, pp.u, pp.v, z);
+      const MaskEvidence evidence = maskEvidence(frame.dynamic_mask, frame.depth_image, pp.u, pp.v, pp.z);
       if (evidence != MaskEvidence::kNone) p->increaseMaskedViews();
       if (evidence == MaskEvidence::kDynamic) p->increaseDynamicHits();
     }
