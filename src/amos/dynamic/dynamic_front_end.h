@@ -33,6 +33,9 @@ struct DynamicFrameInput {
   core::SE3 T_cw_last = core::SE3::Identity();     // last frame's estimated pose
   core::SE3 T_cw_initial = core::SE3::Identity();  // current frame's initial pose (III-D)
   cv::Mat prior_mask;  // CV_8U, != 0 on prior dynamic objects (already dilated); empty = none
+  // The last frame's final dynamic mask (CV_8U, 255 = dynamic), in the last frame's pixels; empty when unknown
+  // (first frame, after a lost frame, mode none). Temporal evidence: movers rarely stop between two frames.
+  cv::Mat last_mask;
   // Optional: last->current corner tracks already computed (e.g. for the initial pose model 2); when null the
   // front end detects and tracks corners itself. Non-owning.
   const std::vector<PointTrack>* tracks = nullptr;

@@ -147,6 +147,7 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
       input.last_gray = last_->gray;
       input.last_depth = last_->depth;
       input.T_cw_last = last_->T_cw;
+      input.last_mask = last_->dynamic_mask;
       input.T_cw_initial = last_->T_cw;
       if (usesGeometry()) {
         core::Stopwatch watch;
@@ -178,7 +179,7 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
   const tracking::TrackResult& track = out.slam.track;
   if (track.state == tracking::TrackingState::kOk) {
     if (usesGeometry() && current_pyramid.empty()) current_pyramid = dynamic::buildPyramid(features.gray, options_.tracking);
-    last_ = LastFrame{features.gray, frame.depth, current_pyramid, track.T_cw};
+    last_ = LastFrame{features.gray, frame.depth, out.dynamic_mask, current_pyramid, track.T_cw};
     if (usesGeometry() && (track.new_keyframe || track.initialized_map)) rememberKeyFramePyramid(current_pyramid);
   } else {
     last_.reset();  // a lost frame's pose would poison the reprojection test of the next one

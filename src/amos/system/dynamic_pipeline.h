@@ -75,6 +75,7 @@ class DynamicPipeline {
 
   struct LastFrame {
     cv::Mat gray, depth;
+    cv::Mat dynamic_mask;           // its final dynamic mask (empty in mode none)
     dynamic::ImagePyramid pyramid;  // LK pyramid of gray (empty when the geometric stage is off)
     core::SE3 T_cw = core::SE3::Identity();
   };
