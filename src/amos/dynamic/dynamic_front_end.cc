@@ -103,9 +103,13 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   };
 
   // Stage 1a (III-B): superpixels and geometric clusters of the current frame.
-  SuperpixelSegmentation segmentation = computeDepthSlic(in.bgr, in.depth, options_.superpixel);
-  lap("superpixels");
-  out.cluster_map = clusterSuperpixels(segmentation, options_.cluster);
+  GeometricPartition computed;
+  if (in.partition == nullptr) computed = computeGeometricPartition(in.bgr, in.depth, options_.superpixel, options_.cluster);
+  const GeometricPartition& partition = in.partition ? *in.partition : computed;
+  const SuperpixelSegmentation& segmentation = partition.segmentation;
+  out.timings_ms.emplace_back("superpixels", partition.superpixel_ms);
+  out.cluster_map = partition.cluster_map;
+  stage.restart();
   const int num_clusters = clusterCount(segmentation);
   diag.superpixels = static_cast<int>(segmentation.superpixels.size());
   diag.clusters = num_clusters;
@@ -113,7 +117,8 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   const std::vector<bool> border =
       borderSuperpixels(segmentation.labels, diag.superpixels, options_.boundary.border_margin_px);
   const cv::Mat decision_map = decisionClusterMap(out.cluster_map, segmentation.labels, border);
-  lap("clusters");
+  out.timings_ms.emplace_back("clusters", partition.cluster_ms + stage.elapsedMs());
+  stage.restart();
 
   // Correspondences last -> current.
   out.tracks = in.tracks ? *in.tracks : trackCorners(in.last_gray, in.gray, options_.tracking);

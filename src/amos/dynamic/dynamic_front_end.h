@@ -39,6 +39,9 @@ struct DynamicFrameInput {
   // Optional: last->current corner tracks already computed (e.g. for the initial pose model 2); when null the
   // front end detects and tracks corners itself. Non-owning.
   const std::vector<PointTrack>* tracks = nullptr;
+  // Optional: this frame's superpixels and clusters, computed ahead (they depend only on bgr and depth, with the
+  // front end's options); when null the front end computes them. Non-owning.
+  const GeometricPartition* partition = nullptr;
 };
 
 struct DynamicDiagnostics {

@@ -170,6 +170,22 @@ TEST(DynamicFrontEnd, GeometryModeMasksTheMovingBoxAndNotTheWall) {
   EXPECT_EQ(out.timings_ms.back().first, "total");
 }
 
+TEST(DynamicFrontEnd, PrecomputedPartitionGivesTheSameMask) {
+  const SyntheticPair& pair = syntheticPair();
+  DynamicOptions options;
+  options.mode = DynamicMode::kGeometry;
+  const DynamicFrontEnd front_end(testCamera(), options);
+  DynamicFrameInput in = inputFor(pair);
+  const DynamicFrameOutput computed_here = front_end.process(in);
+  const GeometricPartition ahead =
+      computeGeometricPartition(pair.current.bgr, pair.current.depth, options.superpixel, options.cluster);
+  in.partition = &ahead;
+  const DynamicFrameOutput precomputed = front_end.process(in);
+  ASSERT_GT(cv::countNonZero(computed_here.mask), 0);
+  EXPECT_EQ(cv::countNonZero(computed_here.mask != precomputed.mask), 0);
+  EXPECT_EQ(cv::countNonZero(computed_here.cluster_map != precomputed.cluster_map), 0);
+}
+
 TEST(DynamicFrontEnd, StaticSceneGivesAnEmptyMask) {
   const SyntheticPair& pair = syntheticPair();
   // The same camera motion without the box moving.

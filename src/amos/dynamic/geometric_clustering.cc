@@ -8,6 +8,7 @@
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/core/stage_timer.h"
 
 namespace amos::dynamic {
 
@@ -146,6 +147,19 @@ int clusterCount(const SuperpixelSegmentation& segmentation) {
   int count = 0;
   for (const Superpixel& s : segmentation.superpixels) count = std::max(count, s.cluster + 1);
   return count;
+}
+
+GeometricPartition computeGeometricPartition(const cv::Mat& bgr, const cv::Mat& depth,
+                                             const DepthSlicOptions& superpixel_options,
+                                             const ClusteringOptions& cluster_options) {
+  GeometricPartition partition;
+  core::Stopwatch watch;
+  partition.segmentation = computeDepthSlic(bgr, depth, superpixel_options);
+  partition.superpixel_ms = watch.elapsedMs();
+  watch.restart();
+  partition.cluster_map = clusterSuperpixels(partition.segmentation, cluster_options);
+  partition.cluster_ms = watch.elapsedMs();
+  return partition;
 }
 
 }  // namespace amos::dynamic

@@ -40,6 +40,18 @@ std::vector<int> kmeansClusters(const std::vector<ClusterPoint>& points, cv::Siz
 // (CV_32S, same size as segmentation.labels).
 cv::Mat clusterSuperpixels(SuperpixelSegmentation& segmentation, const ClusteringOptions& options);
 
+// The geometric partition of one frame (III-B): its depth-SLIC superpixels, clustered, and the per-pixel cluster
+// map. It needs only that frame's colour and depth, so it can be computed ahead of time (e.g. for the next frame
+// in a look-ahead worker) and handed to DynamicFrontEnd through DynamicFrameInput::partition.
+struct GeometricPartition {
+  SuperpixelSegmentation segmentation;  // Superpixel::cluster filled in
+  cv::Mat cluster_map;                  // CV_32S cluster of every pixel
+  double superpixel_ms = 0, cluster_ms = 0;  // time the two steps took
+};
+GeometricPartition computeGeometricPartition(const cv::Mat& bgr, const cv::Mat& depth,
+                                             const DepthSlicOptions& superpixel_options,
+                                             const ClusteringOptions& cluster_options);
+
 // Number of clusters in use (1 + the largest Superpixel::cluster; 0 when there are no superpixels).
 int clusterCount(const SuperpixelSegmentation& segmentation);
 
