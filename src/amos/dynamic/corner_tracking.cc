@@ -95,11 +95,19 @@ std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const FramePairPy
                                      const CornerTrackingOptions& options, const cv::Mat& mask) {
   core::require(!last_gray.empty() && !pyramids.last.empty() && pyramids.last.front().size() == last_gray.size(),
                 "trackCorners: the last frame's pyramid does not belong to its image");
+  return trackPoints(pyramids, detectCorners(last_gray, options, mask), options);
+}
+
+std::vector<cv::Point2f> detectCorners(const cv::Mat& gray, const CornerTrackingOptions& options, const cv::Mat& mask) {
+  options.check();
+  core::require(!gray.empty() && gray.type() == CV_8UC1, "detectCorners: the image must be a non-empty CV_8UC1");
+  core::require(mask.empty() || (mask.type() == CV_8UC1 && mask.size() == gray.size()),
+                "detectCorners: the mask must be empty or CV_8UC1 of the image size");
   std::vector<cv::Point2f> corners;
   if (options.detection_scale < 1.0) {
     const double s = options.detection_scale;
     cv::Mat small, small_mask;
-    cv::resize(last_gray, small, cv::Size(), s, s, cv::INTER_AREA);
+    cv::resize(gray, small, cv::Size(), s, s, cv::INTER_AREA);
     if (!mask.empty()) cv::resize(mask, small_mask, small.size(), 0, 0, cv::INTER_NEAREST);
     cv::goodFeaturesToTrack(small, corners, options.max_corners, options.quality_level, options.min_distance_px * s,
                             small_mask);
@@ -107,10 +115,10 @@ std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const FramePairPy
     for (cv::Point2f& c : corners)
       c = cv::Point2f(static_cast<float>((c.x + 0.5) / s - 0.5), static_cast<float>((c.y + 0.5) / s - 0.5));
   } else {
-    cv::goodFeaturesToTrack(last_gray, corners, options.max_corners, options.quality_level, options.min_distance_px,
+    cv::goodFeaturesToTrack(gray, corners, options.max_corners, options.quality_level, options.min_distance_px,
                             mask);
   }
-  return trackPoints(pyramids, corners, options);
+  return corners;
 }
 
 }  // namespace amos::dynamic

@@ -62,7 +62,13 @@ FramePairPyramids buildPyramids(const cv::Mat& last_gray, const cv::Mat& current
 std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std::vector<cv::Point2f>& points,
                                     const CornerTrackingOptions& options);
 
-// Detects corners in the last frame (optionally only where mask != 0) and tracks them.
+// Shi-Tomasi corners of one frame (optionally only where mask != 0), found at options.detection_scale and returned
+// in full-resolution pixels, strongest first. They depend on nothing but that frame, so a frame's corners can be
+// found ahead (e.g. while the frame before it is tracked) and tracked with trackPoints once the next frame exists.
+std::vector<cv::Point2f> detectCorners(const cv::Mat& gray, const CornerTrackingOptions& options,
+                                       const cv::Mat& mask = cv::Mat());
+
+// Detects corners in the last frame (optionally only where mask != 0) and tracks them: detectCorners + trackPoints.
 std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const cv::Mat& current_gray,
                                      const CornerTrackingOptions& options, const cv::Mat& mask = cv::Mat());
 // The same on pyramids built beforehand (pyramids.last must be last_gray's).

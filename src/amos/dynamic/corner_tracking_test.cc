@@ -35,6 +35,32 @@ TEST(CornerTracking, RecoversAKnownSubpixelShift) {
   EXPECT_GT(close, static_cast<int>(tracks.size() * 95 / 100));
 }
 
+// Corners found ahead (detectCorners on the last frame alone) and tracked later give exactly trackCorners' tracks,
+// and a mask keeps them off the masked-out area.
+TEST(CornerTracking, CornersDetectedAheadTrackLikeTrackCorners) {
+  const cv::Mat last = texture();
+  cv::Mat current;
+  const cv::Mat A = (cv::Mat_<double>(2, 3) << 1, 0, 1.5, 0, 1, 2.0);
+  cv::warpAffine(last, current, A, last.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  const CornerTrackingOptions options;
+  const std::vector<cv::Point2f> corners = detectCorners(last, options);
+  ASSERT_GT(corners.size(), 300u);
+  const FramePairPyramids pyramids = buildPyramids(last, current, options);
+  const std::vector<PointTrack> ahead = trackPoints(pyramids, corners, options);
+  const std::vector<PointTrack> direct = trackCorners(last, pyramids, options);
+  ASSERT_EQ(ahead.size(), direct.size());
+  for (std::size_t i = 0; i < ahead.size(); ++i) {
+    EXPECT_EQ(ahead[i].last, direct[i].last);
+    EXPECT_EQ(ahead[i].current, direct[i].current);
+  }
+  cv::Mat mask(last.size(), CV_8U, cv::Scalar(255));
+  mask(cv::Rect(0, 0, 320, 480)).setTo(0);
+  const std::vector<cv::Point2f> right = detectCorners(last, options, mask);
+  ASSERT_FALSE(right.empty());
+  for (const cv::Point2f& c : right) EXPECT_GE(c.x, 319.f);
+  EXPECT_THROW(detectCorners(last, options, cv::Mat(10, 10, CV_8U)), core::Error);
+}
+
 TEST(CornerTracking, ForwardBackwardCheckDropsOccludedPoints) {
   const cv::Mat last = texture();
   cv::Mat current = last.clone();

@@ -2,8 +2,11 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include <functional>
+#include <thread>
 #include <utility>
 
+#include "amos/core/bounded_queue.h"
 #include "amos/core/error.h"
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/reprojection_scoring.h"
@@ -32,6 +35,35 @@ std::vector<cv::Point2f> distortPixels(const std::vector<cv::Point2f>& undistort
 
 }  // namespace
 
+// One thread running preparation jobs in submission order; results come back through futures (an exception of a job
+// is rethrown by its future's get()).
+class DynamicPipeline::LookAheadWorker {
+ public:
+  LookAheadWorker() : jobs_(kQueuedJobs), thread_([this] { run(); }) {}
+  ~LookAheadWorker() {
+    jobs_.close();  // jobs already queued still run: their futures are never left without a value
+    thread_.join();
+  }
+  LookAheadWorker(const LookAheadWorker&) = delete;
+  LookAheadWorker& operator=(const LookAheadWorker&) = delete;
+
+  std::future<PreparedFrame> submit(std::function<PreparedFrame()> job) {
+    std::packaged_task<PreparedFrame()> task(std::move(job));
+    std::future<PreparedFrame> result = task.get_future();
+    core::require(jobs_.push(std::move(task)), "DynamicPipeline: look-ahead worker closed");
+    return result;
+  }
+
+ private:
+  // The current and the next frame are the most in flight; room for a few announced-but-skipped ones.
+  static constexpr std::size_t kQueuedJobs = 4;
+  void run() {
+    while (std::optional<std::packaged_task<PreparedFrame()>> job = jobs_.pop()) (*job)();
+  }
+  core::BoundedQueue<std::packaged_task<PreparedFrame()>> jobs_;
+  std::thread thread_;  // last: started once the queue exists
+};
+
 DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions& options,
                                  std::unique_ptr<dynamic::SegmentationWorker> segmentation)
     : slam_(slam),
@@ -44,6 +76,7 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
 }
 
 DynamicPipeline::~DynamicPipeline() {
+  look_ahead_.reset();
   if (segmentation_) segmentation_->close();
 }
 
@@ -107,6 +140,44 @@ std::future<dynamic::SegmentationResult> DynamicPipeline::takeSegmentation(const
   return result;
 }
 
+PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_partition) const {
+  PreparedFrame prepared;
+  prepared.features = slam_.extract(frame);
+  if (usesGeometry()) {
+    core::Stopwatch watch;
+    prepared.pyramid = dynamic::buildPyramid(prepared.features.gray, options_.tracking);
+    prepared.pyramid_ms = watch.elapsedMs();
+    watch.restart();
+    prepared.corners = dynamic::detectCorners(prepared.features.gray, options_.tracking);
+    prepared.corners_ms = watch.elapsedMs();
+    if (with_partition)
+      prepared.partition =
+          dynamic::computeGeometricPartition(frame.bgr, frame.depth, options_.superpixel, options_.cluster);
+  }
+  return prepared;
+}
+
+void DynamicPipeline::requestPreparation(const io::RgbdFrame& frame) {
+  for (const Preparing& p : preparing_)
+    if (p.index == frame.index && p.image == frame.bgr.data) return;
+  if (!look_ahead_) look_ahead_ = std::make_unique<LookAheadWorker>();
+  // The job holds its own references to the images (cv::Mat headers share the pixels), not to the caller's frame.
+  // The partition is made even though whether the frame will have a last frame (and use it) is not known yet.
+  preparing_.push_back({frame.index, frame.bgr.data,
+                        look_ahead_->submit([this, frame] { return prepare(frame, usesGeometry()); })});
+}
+
+PreparedFrame DynamicPipeline::takePreparation(const io::RgbdFrame& frame) {
+  while (!preparing_.empty() && (preparing_.front().index != frame.index || preparing_.front().image != frame.bgr.data))
+    preparing_.pop_front();  // announced but never processed: dropped (the worker still finishes it)
+  if (preparing_.empty()) return prepare(frame, false);
+  core::Stopwatch wait;
+  PreparedFrame prepared = preparing_.front().result.get();
+  preparing_.pop_front();
+  times_.add("dynamic.prepare_wait", wait.elapsedMs());
+  return prepared;
+}
+
 DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io::RgbdFrame* next) {
   DynamicFrameOutput out;
   // 1. Segmentation of this frame runs in its own thread (it started during the previous call when that call was
@@ -117,16 +188,24 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
     pending = takeSegmentation(frame);
     if (next != nullptr) requestSegmentation(*next);
   }
-  // 2. ... while this thread extracts features.
-  const ExtractedFeatures features = slam_.extract(frame);
+  // 2. ... while this thread extracts features (or takes them from the look-ahead worker, which then goes on with
+  //    the next frame).
+  if (next != nullptr) requestPreparation(*next);
+  PreparedFrame prepared = takePreparation(frame);
+  const ExtractedFeatures& features = prepared.features;
+  dynamic::ImagePyramid& current_pyramid = prepared.pyramid;
+  if (!current_pyramid.empty()) {
+    times_.add("dynamic.pyramid", prepared.pyramid_ms);
+    times_.add("dynamic.corner_detection", prepared.corners_ms);
+  }
 
   FrameExtras extras;
-  dynamic::ImagePyramid current_pyramid;
   if (options_.mode != dynamic::DynamicMode::kNone) {
     dynamic::DynamicFrameInput input;
     input.gray = features.gray;
     input.bgr = frame.bgr;
     input.depth = frame.depth;
+    if (prepared.partition) input.partition = &*prepared.partition;
     if (pending.valid()) {
       core::Stopwatch wait;
       dynamic::SegmentationResult segmented = pending.get();
@@ -136,13 +215,6 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
       out.prior_mask = segmented.mask;
     }
     std::vector<dynamic::PointTrack> tracks;
-    if (last_ && usesGeometry()) {
-      // This frame's LK pyramid, built once: last->current corners and keyframe->current points now, and this
-      // frame as the last one (or as a keyframe) later.
-      core::Stopwatch watch;
-      current_pyramid = dynamic::buildPyramid(features.gray, options_.tracking);
-      times_.add("dynamic.pyramid", watch.elapsedMs());
-    }
     if (last_) {
       input.last_gray = last_->gray;
       input.last_depth = last_->depth;
@@ -151,7 +223,7 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
       input.T_cw_initial = last_->T_cw;
       if (usesGeometry()) {
         core::Stopwatch watch;
-        tracks = dynamic::trackCorners(last_->gray, {last_->pyramid, current_pyramid}, options_.tracking);
+        tracks = dynamic::trackPoints({last_->pyramid, current_pyramid}, last_->corners, options_.tracking);
         times_.add("dynamic.corner_tracking", watch.elapsedMs());
         watch.restart();
         std::optional<dynamic::PoseModel> model;
@@ -178,8 +250,8 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
 
   const tracking::TrackResult& track = out.slam.track;
   if (track.state == tracking::TrackingState::kOk) {
-    if (usesGeometry() && current_pyramid.empty()) current_pyramid = dynamic::buildPyramid(features.gray, options_.tracking);
-    last_ = LastFrame{features.gray, frame.depth, out.dynamic_mask, current_pyramid, track.T_cw};
+    last_ = LastFrame{features.gray, frame.depth, out.dynamic_mask, current_pyramid, std::move(prepared.corners),
+                      track.T_cw};
     if (usesGeometry() && (track.new_keyframe || track.initialized_map)) rememberKeyFramePyramid(current_pyramid);
   } else {
     last_.reset();  // a lost frame's pose would poison the reprojection test of the next one

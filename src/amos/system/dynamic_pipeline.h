@@ -17,6 +17,11 @@
 // masks are usually ready when process(k+1) needs them. Every frame is still segmented on its own, in order, by
 // the same segmenter, so the masks (and, in deterministic mode, the trajectory) are the same with or without
 // look-ahead; only the waiting changes.
+// The look-ahead frame is also prepared ahead in a second worker thread: what depends on nothing but that frame
+// (ORB features, its LK pyramid, its superpixels and geometric clusters of Sec. III-B) is computed while this
+// thread tracks the current frame, which leaves this thread only the work that needs the last frame or the map
+// (corner tracks, initial pose, judgement, tracking). The preparation is the same pure function with or without
+// look-ahead, so the results do not change either.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -34,6 +39,17 @@
 #include "amos/system/slam_system.h"
 
 namespace amos::system {
+
+// What one frame needs that depends on nothing but its own images; computed ahead for the look-ahead frame.
+struct PreparedFrame {
+  ExtractedFeatures features;
+  dynamic::ImagePyramid pyramid;  // LK pyramid of features.gray (empty when the geometric stage is off)
+  std::vector<cv::Point2f> corners;  // its corners, tracked into the next frame (geometric stage only)
+  // Superpixels and clusters (geometric stage only, and only when prepared ahead: computed inline, the front end
+  // makes them itself when it needs them).
+  std::optional<dynamic::GeometricPartition> partition;
+  double pyramid_ms = 0, corners_ms = 0;
+};
 
 struct DynamicFrameOutput {
   FrameOutput slam;
@@ -67,6 +83,12 @@ class DynamicPipeline {
   // Submits `frame` unless it is already on its way; drops what was submitted for frames that were skipped.
   void requestSegmentation(const io::RgbdFrame& frame);
   std::future<dynamic::SegmentationResult> takeSegmentation(const io::RgbdFrame& frame);
+  // Everything of `frame` that needs only the frame; with_partition adds the geometric partition.
+  PreparedFrame prepare(const io::RgbdFrame& frame, bool with_partition) const;
+  // Hands `frame` to the look-ahead worker unless it is already there.
+  void requestPreparation(const io::RgbdFrame& frame);
+  // The prepared frame from the worker when it was requested, else prepared here.
+  PreparedFrame takePreparation(const io::RgbdFrame& frame);
   bool usesGeometry() const;
   std::optional<core::SE3> initialPose(const dynamic::ImagePyramid& current,
                                        const std::vector<dynamic::PointTrack>& tracks,
@@ -77,6 +99,7 @@ class DynamicPipeline {
     cv::Mat gray, depth;
     cv::Mat dynamic_mask;           // its final dynamic mask (empty in mode none)
     dynamic::ImagePyramid pyramid;  // LK pyramid of gray (empty when the geometric stage is off)
+    std::vector<cv::Point2f> corners;  // corners of gray (dynamic::detectCorners), tracked into the next frame
     core::SE3 T_cw = core::SE3::Identity();
   };
 
@@ -93,11 +116,22 @@ class DynamicPipeline {
     std::future<dynamic::SegmentationResult> result;
   };
   std::deque<Submitted> submitted_;
+  // Frames handed to the look-ahead worker (same rules as submitted_).
+  struct Preparing {
+    std::size_t index = 0;
+    const void* image = nullptr;
+    std::future<PreparedFrame> result;
+  };
+  std::deque<Preparing> preparing_;
   std::optional<LastFrame> last_;
   // LK pyramids of recent keyframes by id, for the reference-keyframe LK model (bounded: old ones are dropped).
   std::deque<std::pair<std::uint64_t, dynamic::ImagePyramid>> keyframe_pyramids_;
   core::StageTimes times_;
   std::vector<double> removed_fractions_;
+  // The thread that prepares look-ahead frames (created on the first look-ahead frame). Last member: it is stopped
+  // and joined first, before anything its jobs use goes away.
+  class LookAheadWorker;
+  std::unique_ptr<LookAheadWorker> look_ahead_;
 };
 
 }  // namespace amos::system
