@@ -190,8 +190,8 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
   }
   // 2. ... while this thread extracts features (or takes them from the look-ahead worker, which then goes on with
   //    the next frame).
-  if (next != nullptr) requestPreparation(*next);
   PreparedFrame prepared = takePreparation(frame);
+  if (next != nullptr) requestPreparation(*next);
   const ExtractedFeatures& features = prepared.features;
   dynamic::ImagePyramid& current_pyramid = prepared.pyramid;
   if (!current_pyramid.empty()) {

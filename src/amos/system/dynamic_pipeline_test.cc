@@ -52,6 +52,7 @@ std::unique_ptr<dynamic::SegmentationWorker> realSegmentation() {
 struct RunRecord {
   std::vector<cv::Mat> prior_masks, dynamic_masks;
   std::vector<core::SE3> poses;
+  std::size_t prepared_ahead = 0;  // frames whose features came from the look-ahead worker
 };
 
 // Mode full, deterministic, over `frames`; with look_ahead every call also gets the next frame.
@@ -68,6 +69,8 @@ RunRecord runPipeline(const std::vector<io::RgbdFrame>& frames, bool look_ahead)
     record.dynamic_masks.push_back(out.dynamic_mask);
     record.poses.push_back(out.slam.track.T_cw);
   }
+  const auto summary = pipeline.times().summary();
+  if (const auto it = summary.find("dynamic.prepare_wait"); it != summary.end()) record.prepared_ahead = it->second.count;
   pipeline.finish();
   return record;
 }
@@ -91,6 +94,9 @@ TEST(DynamicPipeline, LookAheadGivesTheSameMasksAndPoses) {
     with_people += cv::countNonZero(plain.prior_masks[k]) > 0;
   }
   EXPECT_GE(with_people, 10);  // the comparison is about real masks, not empty ones
+  // Every frame but the first was prepared (features, pyramid, corners, superpixels) by the look-ahead worker.
+  EXPECT_EQ(plain.prepared_ahead, 0u);
+  EXPECT_EQ(ahead.prepared_ahead, frames.size() - 1);
 }
 
 // A segmenter that records which frames (by the code in pixel (0, 0)) it has started, so a test can wait until a
