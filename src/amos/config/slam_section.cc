@@ -102,6 +102,7 @@ void readLoopSection(YamlReader& in, const mapping::LocalMappingOptions& mapping
   in.read("Loop.minMatches", o.detector.min_matches);
   in.read("Loop.matchRatio", o.detector.match_ratio);
   in.read("Loop.minInliers", o.detector.min_inliers);
+  in.read("Loop.consistency", o.detector.consistency);
   in.read("Loop.reprojectionThreshold", o.detector.pnp.reprojection_threshold_px);
 }
 

@@ -22,7 +22,7 @@ void LoopClosingOptions::check() const {
 }
 
 LoopCloser::LoopCloser(const LoopClosingOptions& options, std::shared_ptr<map::Map> map)
-    : options_(options), map_(std::move(map)) {
+    : options_(options), map_(std::move(map)), consistency_(options.detector.consistency) {
   options_.check();
   core::require(map_ != nullptr, "LoopCloser: map must not be null");
 }
@@ -32,7 +32,7 @@ std::optional<LoopClosureReport> LoopCloser::process(const map::KeyFramePtr& kf)
   std::optional<LoopCandidate> loop;
   {
     std::shared_lock lock(map_->mutex());
-    loop = detectLoop(*map_, kf, last_loop_kf_, options_.detector);
+    loop = detectLoop(*map_, kf, last_loop_kf_, options_.detector, &consistency_);
   }
   if (!loop) return std::nullopt;
   LoopClosureReport report;
@@ -45,6 +45,7 @@ std::optional<LoopClosureReport> LoopCloser::process(const map::KeyFramePtr& kf)
     correct(*loop, report);
   }
   last_loop_kf_ = kf->id();
+  consistency_.reset();
   {
     std::lock_guard guard(closures_mutex_);
     closures_.push_back(report);

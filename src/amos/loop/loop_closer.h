@@ -54,6 +54,7 @@ class LoopCloser {
   LoopClosingOptions options_;
   std::shared_ptr<map::Map> map_;
   map::KeyFrameId last_loop_kf_ = map::kNoKeyFrame;
+  LoopConsistency consistency_;
   std::vector<std::pair<map::KeyFrameId, map::KeyFrameId>> loop_edges_;  // kept in every later pose graph
   mutable std::mutex closures_mutex_;
   std::vector<LoopClosureReport> closures_;

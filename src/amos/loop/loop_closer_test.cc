@@ -124,7 +124,12 @@ TEST(LoopCloser, ClosesTheLoopAndRemovesTheDrift) {
   LoopClosingOptions options;
   options.detector.min_inliers = 60;
   LoopCloser closer(options, s.map);
-  // Keyframes before the last one are not checked in this test; the last one is the loop candidate.
+  // The last keyframes of the way back, in order: their candidates point at the start, and the loop is believed
+  // once the candidates of options.detector.consistency (3) keyframes before agreed (temporal consistency).
+  const std::size_t n = s.kfs.size();
+  for (std::size_t k = n - 4; k + 1 < n; ++k) {
+    EXPECT_FALSE(closer.process(s.kfs[k]).has_value()) << "keyframe " << k << ": not consistent long enough yet";
+  }
   const auto report = closer.process(last);
   ASSERT_TRUE(report.has_value());
   EXPECT_EQ(report->current, last->id());
@@ -139,6 +144,20 @@ TEST(LoopCloser, ClosesTheLoopAndRemovesTheDrift) {
   EXPECT_LT(worst_after, 0.6 * drift_before);
   EXPECT_LT(positionError(*s.kfs[0], s.truth[0]), 1e-9);
   EXPECT_EQ(closer.closures().size(), 1u);
+}
+
+TEST(LoopCloser, OneKeyFramePointingAtAPlaceIsNotEnough) {
+  LoopScene s;
+  buildScene(s);
+  LoopClosingOptions options;
+  options.detector.min_inliers = 60;
+  {
+    LoopCloser closer(options, s.map);
+    EXPECT_FALSE(closer.process(s.kfs.back()).has_value());  // no earlier keyframe agreed
+  }
+  options.detector.consistency = 0;  // the test off: the same keyframe closes the loop at once
+  LoopCloser closer(options, s.map);
+  EXPECT_TRUE(closer.process(s.kfs.back()).has_value());
 }
 
 TEST(LoopCloser, NoLoopWithoutRevisit) {

@@ -17,6 +17,7 @@ void LoopDetectorOptions::check() const {
   core::require(min_matches >= 6, "Loop.minMatches must be >= 6");
   core::require(match_ratio > 0 && match_ratio <= 1, "Loop.matchRatio must be in (0, 1]");
   core::require(min_inliers >= min_matches, "Loop.minInliers must be >= Loop.minMatches");
+  core::require(consistency >= 0, "Loop.consistency must be >= 0");
   pnp.check();
   pose.check();
   matching.check();
@@ -43,14 +44,15 @@ int localizeAgainst(map::Frame& frame, const std::vector<map::KeyFramePtr>& keyf
   return tracking::optimizeFramePoseDroppingOutliers(frame, options.pose);
 }
 
-std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFramePtr& current,
-                                        map::KeyFrameId last_loop_kf, const LoopDetectorOptions& options) {
-  options.check();
-  if (!current || current->isBad()) return std::nullopt;
-  if (map.numKeyFrames() < static_cast<std::size_t>(options.min_keyframes)) return std::nullopt;
-  if (last_loop_kf != map::kNoKeyFrame && current->id() < last_loop_kf + options.min_keyframe_gap) return std::nullopt;
+namespace {
 
-  std::unordered_set<map::KeyFrameId> connected{current->id()};
+// Keyframes not covisible with `current` whose thumbnail is at least as similar as its least similar covisible
+// neighbour's, best first, at most options.candidates. `connected` receives current and its covisible keyframes.
+std::vector<map::KeyFramePtr> rankCandidates(const map::Map& map, const map::KeyFramePtr& current,
+                                             const LoopDetectorOptions& options,
+                                             std::unordered_set<map::KeyFrameId>& connected) {
+  connected = {current->id()};
+
   double max_neighbour_distance = 0;
   for (const auto& [w, id] : current->orderedConnections()) {
     connected.insert(id);
@@ -59,7 +61,7 @@ std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFrame
           std::max(max_neighbour_distance, map::thumbnailDistance(current->thumbnail(), n->thumbnail()));
     }
   }
-  if (connected.size() < 2) return std::nullopt;  // no neighbour: nothing to compare similarity with
+  if (connected.size() < 2) return {};  // no neighbour: nothing to compare similarity with
 
   std::vector<std::pair<double, map::KeyFramePtr>> ranked;
   for (const auto& kf : map.keyFrames()) {
@@ -69,8 +71,30 @@ std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFrame
   }
   std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (ranked.size() > static_cast<std::size_t>(options.candidates)) ranked.resize(options.candidates);
+  std::vector<map::KeyFramePtr> out;
+  for (const auto& entry : ranked) out.push_back(entry.second);
+  return out;
+}
 
-  for (const auto& [distance, candidate] : ranked) {
+}  // namespace
+
+std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFramePtr& current,
+                                        map::KeyFrameId last_loop_kf, const LoopDetectorOptions& options,
+                                        LoopConsistency* consistency) {
+  options.check();
+  if (!current || current->isBad()) return std::nullopt;
+  if (map.numKeyFrames() < static_cast<std::size_t>(options.min_keyframes)) return std::nullopt;
+  if (last_loop_kf != map::kNoKeyFrame && current->id() < last_loop_kf + options.min_keyframe_gap) return std::nullopt;
+
+  std::unordered_set<map::KeyFrameId> connected;
+  std::vector<map::KeyFramePtr> candidates = rankCandidates(map, current, options, connected);
+  if (consistency != nullptr) {
+    const std::size_t ranked = candidates.size();
+    candidates = consistency->filter(map, candidates);
+    spdlog::debug("loop search at keyframe {}: {} candidates, {} consistent", current->id(), ranked, candidates.size());
+  }
+
+  for (const map::KeyFramePtr& candidate : candidates) {
     map::Frame frame = frameOf(*current);
     int n = 0;
     std::vector<map::MapPointPtr> matches =

@@ -3,13 +3,16 @@
 //   1. candidates: keyframes not connected to the current one in the covisibility graph, whose thumbnail is at
 //      least as similar to the current keyframe's as that of its least similar covisible neighbour (the same
 //      relative test ORB-SLAM2 applies to bag-of-words scores), best first;
-//   2. geometric verification: brute-force descriptor matches to the candidate's map points, PnP RANSAC,
+//   2. temporal consistency (loop_consistency.h): only candidates that candidates of the previous keyframes also
+//      pointed at go on;
+//   3. geometric verification: brute-force descriptor matches to the candidate's map points, PnP RANSAC,
 //      pose optimisation, then the points of the candidate's whole neighbourhood projected with that pose;
 //      the loop is accepted with at least `min_inliers` inliers after the final optimisation.
 // Pure reading of the map: call with Map::mutex() held (shared is enough).
 #include <vector>
 
 #include "amos/geometry/pnp_ransac.h"
+#include "amos/loop/loop_consistency.h"
 #include "amos/geometry/pose_optimizer.h"
 #include "amos/map/map.h"
 #include "amos/tracking/matching.h"
@@ -23,9 +26,12 @@ struct LoopDetectorOptions {
   int min_matches = 20;       // Loop.minMatches: descriptor matches to attempt PnP (ORB-SLAM2 SearchByBoW: 20)
   float match_ratio = 0.75f;  // Loop.matchRatio: Lowe ratio of those matches
   // Loop.minInliers: inliers after projecting the loop neighbourhood and optimising. A false loop corrupts the
-  // whole map, so this is stricter than relocalisation (50) and ORB-SLAM2's 40 matches, which it backs up with
-  // a three-keyframe consistency test this detector does not have.
+  // whole map, so this is stricter than relocalisation (50) and ORB-SLAM2's 40 matches.
   int min_inliers = 80;
+  // Loop.consistency: consecutive keyframes whose candidates must agree before a candidate is verified
+  // (loop_consistency.h; ORB-SLAM2: 3). Our candidates come from thumbnails, a weaker place signature than
+  // ORB-SLAM2's bag of words, so the test matters at least as much here. 0 = off.
+  int consistency = 3;
   geometry::PnpRansacOptions pnp;       // reprojection threshold, iterations, seed
   geometry::PoseOptimizerOptions pose;  // robust pose refinement
   tracking::MatchingOptions matching;
@@ -51,8 +57,10 @@ int localizeAgainst(map::Frame& frame, const std::vector<map::KeyFramePtr>& keyf
 map::Frame frameOf(const map::KeyFrame& kf);
 
 // Returns the verified loop of `current`, or nothing. `last_loop_kf` is the id of the keyframe that closed the
-// previous loop (kNoKeyFrame when none).
+// previous loop (kNoKeyFrame when none). `consistency`: the temporal test's state, advanced by one keyframe
+// (null = no test: every candidate is verified at once).
 std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFramePtr& current,
-                                        map::KeyFrameId last_loop_kf, const LoopDetectorOptions& options);
+                                        map::KeyFrameId last_loop_kf, const LoopDetectorOptions& options,
+                                        LoopConsistency* consistency = nullptr);
 
 }  // namespace amos::loop
