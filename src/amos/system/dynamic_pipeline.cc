@@ -1,6 +1,7 @@
 #include "amos/system/dynamic_pipeline.h"
 
 #include <opencv2/calib3d.hpp>
+#include <time.h>
 
 #include <functional>
 #include <thread>
@@ -31,6 +32,15 @@ std::vector<cv::Point2f> distortPixels(const std::vector<cv::Point2f>& undistort
   std::vector<cv::Point2f> raw;
   cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.distortion(), raw);
   return raw;
+}
+
+// CPU time of the calling thread [ms]. The per-stage CPU costs ("cpu.*" stages) do not grow when other processes
+// share the cores, unlike the wall times; OpenCV runs single-threaded here (Segmentation.threads), so a stage's
+// OpenCV work is in its thread's time.
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
 }  // namespace
@@ -141,6 +151,7 @@ std::future<dynamic::SegmentationResult> DynamicPipeline::takeSegmentation(const
 }
 
 PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_partition) const {
+  const double cpu_start = threadCpuMs();
   PreparedFrame prepared;
   prepared.features = slam_.extract(frame);
   if (usesGeometry()) {
@@ -154,6 +165,7 @@ PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_par
       prepared.partition =
           dynamic::computeGeometricPartition(frame.bgr, frame.depth, options_.superpixel, options_.cluster);
   }
+  prepared.cpu_ms = threadCpuMs() - cpu_start;
   return prepared;
 }
 
@@ -194,6 +206,7 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
   if (next != nullptr) requestPreparation(*next);
   const ExtractedFeatures& features = prepared.features;
   dynamic::ImagePyramid& current_pyramid = prepared.pyramid;
+  times_.add("cpu.prepare", prepared.cpu_ms);
   if (!current_pyramid.empty()) {
     times_.add("dynamic.pyramid", prepared.pyramid_ms);
     times_.add("dynamic.corner_detection", prepared.corners_ms);
@@ -211,6 +224,7 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
       dynamic::SegmentationResult segmented = pending.get();
       times_.add("dynamic.segmentation_wait", wait.elapsedMs());
       times_.add("dynamic.segmentation", segmented.segment_ms);
+      times_.add("cpu.segmentation", segmented.segment_cpu_ms);
       input.prior_mask = segmented.dilated_mask;
       out.prior_mask = segmented.mask;
     }
@@ -223,27 +237,35 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
       input.T_cw_initial = last_->T_cw;
       if (usesGeometry()) {
         core::Stopwatch watch;
+        double cpu = threadCpuMs();
         tracks = dynamic::trackPoints({last_->pyramid, current_pyramid}, last_->corners, options_.tracking);
         times_.add("dynamic.corner_tracking", watch.elapsedMs());
+        times_.add("cpu.corner_tracking", threadCpuMs() - cpu);
         watch.restart();
+        cpu = threadCpuMs();
         std::optional<dynamic::PoseModel> model;
         extras.initial_T_cw = initialPose(current_pyramid, tracks, model);
         out.initial_pose_model = model;
         times_.add("dynamic.initial_pose", watch.elapsedMs());
+        times_.add("cpu.initial_pose", threadCpuMs() - cpu);
         if (extras.initial_T_cw) input.T_cw_initial = *extras.initial_T_cw;
         input.tracks = &tracks;
       }
     }
     core::Stopwatch watch;
+    const double cpu = threadCpuMs();
     const dynamic::DynamicFrameOutput judged = front_end_.process(input);
     times_.add("dynamic.front_end", watch.elapsedMs());
+    times_.add("cpu.front_end", threadCpuMs() - cpu);
     for (const auto& [stage, ms] : judged.timings_ms) times_.add("dynamic." + stage, ms);
     extras.dynamic_mask = judged.mask;
     out.dynamic_mask = judged.mask;
   }
 
   // 5. Tracking without the dynamic keypoints.
+  const double track_cpu = threadCpuMs();
   out.slam = slam_.track(frame, features, extras);
+  times_.add("cpu.track", threadCpuMs() - track_cpu);
   const int extracted = out.slam.keypoints + out.slam.removed_dynamic;
   if (extracted > 0) out.removed_fraction = static_cast<double>(out.slam.removed_dynamic) / extracted;
   removed_fractions_.push_back(out.removed_fraction);

@@ -49,6 +49,7 @@ struct PreparedFrame {
   // makes them itself when it needs them).
   std::optional<dynamic::GeometricPartition> partition;
   double pyramid_ms = 0, corners_ms = 0;
+  double cpu_ms = 0;  // CPU time of the preparing thread
 };
 
 struct DynamicFrameOutput {
