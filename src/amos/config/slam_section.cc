@@ -39,6 +39,8 @@ void readTrackingSection(YamlReader& in, double fps, tracking::TrackerOptions& o
   in.read("Tracking.closeUntrackedMin", o.close_untracked_min);
   in.read("Tracking.newPointsMin", o.new_points_min);
   in.read("Tracking.voPointsMin", o.vo_points_min);
+  in.read("Tracking.recoveryFrames", o.recovery_frames);
+  in.read("Tracking.recoverySearchRadius", o.recovery_search_radius);
   std::string external = o.external_pose == tracking::ExternalPosePolicy::kReplace ? "replace" : "compete";
   in.read("Tracking.externalPose", external);
   o.external_pose = parseExternalPose(in, external);

@@ -43,6 +43,8 @@ void TrackerOptions::check() const {
   core::require(keyframe_ref_ratio > 0 && keyframe_ref_ratio <= 1, "Tracking.keyFrameRefRatio must be in (0, 1]");
   core::require(close_tracked_max >= 0 && close_untracked_min >= 0, "Tracking.closeTrackedMax/closeUntrackedMin must be >= 0");
   core::require(new_points_min >= 0 && vo_points_min >= 0, "Tracking.newPointsMin/voPointsMin must be >= 0");
+  core::require(recovery_frames >= 0, "Tracking.recoveryFrames must be >= 0");
+  core::require(recovery_search_radius > 0, "Tracking.recoverySearchRadius must be > 0");
   pose.check();
   matching.check();
   relocalization.check();
@@ -116,16 +118,28 @@ TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& ext
         if (!ok) ok = trackReferenceKeyFrame(frame);
       } else {
         ok = trackReferenceKeyFrame(frame);
+        // Right after a relocalisation the reference keyframe may share too few descriptors with the frame;
+        // the relocalised pose itself (no velocity yet) is still a good prediction for a projection search.
+        if (!ok) ok = trackWithMotionModel(frame, external_T_cw, result.used_external_pose);
       }
     } else {
-      const map::KeyFramePtr kf = relocalizer_.relocalize(frame, *map_);
-      ok = kf != nullptr;
+      const bool recently_lost = options_.recovery_frames > 0 && last_tracked_T_cw_ &&
+                                 frame.id <= last_tracked_frame_ + static_cast<map::FrameId>(options_.recovery_frames);
+      if (recently_lost && recoverNearLastPose(frame, external_T_cw)) {
+        ok = true;
+        spdlog::debug("frame {}: recovered near the last tracked pose", frame.id);
+      } else {
+        const map::KeyFramePtr kf = relocalizer_.relocalize(frame, *map_);
+        ok = kf != nullptr;
+        if (ok) {
+          reference_kf_ = kf;
+          spdlog::debug("frame {}: relocalised against keyframe {}", frame.id, kf->id());
+        }
+      }
       if (ok) {
-        reference_kf_ = kf;
         last_reloc_frame_ = frame.id;
         relocalized_once_ = true;
         result.relocalized = true;
-        spdlog::debug("frame {}: relocalised against keyframe {}", frame.id, kf->id());
       }
     }
     if (times_) times_->add("track.initial_pose", watch.elapsedMs());
@@ -183,6 +197,10 @@ TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& ext
   spdlog::debug("frame {}: {} inliers {} ref kf {}{}{}", frame.id, toString(state_), inliers, frame.reference_kf,
                 result.new_keyframe ? " new keyframe" : "", result.relocalized ? " relocalised" : "");
   result.T_cw = frame.T_cw;
+  if (ok) {
+    last_tracked_T_cw_ = frame.T_cw;
+    last_tracked_frame_ = frame.id;
+  }
   last_frame_ = std::move(frame);
   last_frame_tracked_ = ok;
   return result;
@@ -278,6 +296,7 @@ bool Tracker::trackWithMotionModel(map::Frame& frame, const std::optional<core::
   if (velocity_ && !(external && options_.external_pose == ExternalPosePolicy::kReplace)) {
     predictions.emplace_back(*velocity_ * last_frame_.T_cw, false);
   }
+  if (predictions.empty() && last_frame_tracked_) predictions.emplace_back(last_frame_.T_cw, false);  // no velocity yet
   const double th = options_.motion_search_radius;
   int best_n = -1;
   std::vector<map::MapPointPtr> best_matches;
@@ -416,6 +435,34 @@ void Tracker::searchLocalPoints(map::Frame& frame) {
   const int found = tracking::searchLocalPoints(frame, candidates, th, options_.matching);
   spdlog::debug("frame {}: local map {} kfs {} points, {} in view, {} new matches", frame.id, local_keyframes_.size(),
                 local_points_.size(), candidates.size(), found);
+}
+
+bool Tracker::recoverNearLastPose(map::Frame& frame, const std::optional<core::SE3>& external_T_cw) {
+  if (local_points_.empty()) return false;
+  std::vector<core::SE3> predictions;
+  if (external_T_cw) predictions.push_back(*external_T_cw);
+  predictions.push_back(*last_tracked_T_cw_);
+  for (const core::SE3& T : predictions) {
+    frame.resetMatches();
+    frame.setPose(T);
+    std::vector<ProjectedPoint> candidates;
+    candidates.reserve(local_points_.size());
+    for (const auto& p : local_points_) {
+      ProjectedPoint pp;
+      if (p && !p->isBad() && projectIntoFrame(frame, p, 0.5, pp)) candidates.push_back(std::move(pp));
+    }
+    const int found = tracking::searchLocalPoints(frame, candidates, options_.recovery_search_radius, options_.matching);
+    if (found < options_.reloc_min_inliers) continue;
+    // The wide window lets wrong matches in, and the prediction may be degrees off: PnP RANSAC on the matches
+    // (as the relocaliser does) rather than a pose optimisation started at the prediction.
+    const std::vector<map::MapPointPtr> matches = frame.map_points;
+    if (poseFromMatchesByPnp(frame, matches, options_.relocalization.pnp) < options_.reloc_min_inliers) continue;
+    const int inliers = optimizeFramePoseDroppingOutliers(frame, options_.pose);
+    spdlog::debug("frame {}: recovery search {} matches, {} inliers", frame.id, found, inliers);
+    if (inliers >= options_.reloc_min_inliers) return true;
+  }
+  frame.resetMatches();
+  return false;
 }
 
 bool Tracker::trackLocalMap(map::Frame& frame, int& inliers) {

@@ -46,6 +46,15 @@ struct TrackerOptions {
   int close_untracked_min = 70;      // Tracking.closeUntrackedMin: ... and this many untracked ones -> new keyframe
   int new_points_min = 100;          // Tracking.newPointsMin: depth points created per keyframe (at least, closest first)
   int vo_points_min = 100;           // Tracking.voPointsMin: temporary points from the last frame's depth
+  // Tracking.recoveryFrames: for this many frames after tracking was lost, the local map around the last tracked
+  // pose is searched first (wide window, relocMinInliers needed), before the global relocaliser. Losses in
+  // dynamic scenes are mostly people covering the view for a moment while the camera stays near where it was
+  // (ORB-SLAM3's "recently lost" state); the relocaliser needs a keyframe that looks like the frame, this only
+  // needs enough of the nearby map. 30 = one second at 30 Hz; 0 = off.
+  int recovery_frames = 30;
+  // Tracking.recoverySearchRadius: its window (ORB-SLAM2 radius units: x 2.5-4 px x level scale). 15 covers the
+  // image motion of ~0.5 s of hand-held rotation at 30 deg/s (~8 deg, ~75 px at f = 540) at the middle levels.
+  double recovery_search_radius = 15;
   ExternalPosePolicy external_pose = ExternalPosePolicy::kCompete;  // Tracking.externalPose
   geometry::PoseOptimizerOptions pose;  // Tracking.chi2Mono / chi2Stereo / poseRounds / poseIterations
   MatchingOptions matching;             // Matching.*
@@ -99,6 +108,8 @@ class Tracker {
   bool trackWithMotionModel(map::Frame& frame, const std::optional<core::SE3>& external, bool& used_external);
   bool trackReferenceKeyFrame(map::Frame& frame);
   bool trackLocalMap(map::Frame& frame, int& inliers);
+  // Recently lost: matches the last local map around the external or the last tracked pose (see recovery_frames).
+  bool recoverNearLastPose(map::Frame& frame, const std::optional<core::SE3>& external_T_cw);
   void updateLastFrame();
   void updateLocalMap(map::Frame& frame);
   void searchLocalPoints(map::Frame& frame);
@@ -121,6 +132,8 @@ class Tracker {
   map::KeyFramePtr reference_kf_;
   map::FrameId last_keyframe_frame_ = 0;
   map::FrameId last_reloc_frame_ = 0;
+  std::optional<core::SE3> last_tracked_T_cw_;  // pose of the last frame that was tracked (kept while lost)
+  map::FrameId last_tracked_frame_ = 0;
   bool relocalized_once_ = false;
   std::vector<map::KeyFramePtr> local_keyframes_;
   std::vector<map::MapPointPtr> local_points_;
