@@ -71,6 +71,11 @@ std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std
     returning.push_back(forward[i]);
   }
   if (candidates.empty()) return tracks;
+  if (!options.forward_backward_check) {
+    for (int i : candidates)
+      tracks.push_back({points[static_cast<std::size_t>(i)], forward[static_cast<std::size_t>(i)], i});
+    return tracks;
+  }
   std::vector<cv::Point2f> backward;
   std::vector<uchar> ok_backward;
   cv::calcOpticalFlowPyrLK(pyramids.current, pyramids.last, returning, backward, ok_backward, error, window,

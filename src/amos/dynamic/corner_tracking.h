@@ -21,7 +21,11 @@ struct CornerTrackingOptions {
   double detection_scale = 0.5;
   // Dynamic.LK.window: 15x15 px: with 3 pyramid levels it follows flows up to 7 * 2^3 = 56 px per frame, above
   // a person walking 1.5 m/s at 1.5 m (~18 px at 30 Hz, f ~ 540 px) or a camera turning 1 rad/s (~18 px), at
-  // half the cost of OpenCV's default 21x21 window.
+  // half the cost of OpenCV's default 21x21 window. 11 (5 * 2^3 = 40 px, still twice those flows) halves LK's cost
+  // again, which grows with the window's area: corner tracks + reference-keyframe model 20 -> 12 ms CPU per frame
+  // on Bonn crowd, end points moved by a median 0.09 px (bench_dynamic TrackPointsOnPyramids), full-mode ATE as
+  // good (1.61-2.03 cm, median 1.65 over 6 runs, against 1.86-2.35 with 15 over 5 runs at the same time; lost
+  // frames 22-25): set in the configs; the default stays 15 for the synthetic front-end tests built on it.
   int lk_window = 15;
   // Dynamic.LK.pyramidLevels: 3 extra levels (1/8 scale), see the window.
   int lk_levels = 3;
@@ -32,6 +36,10 @@ struct CornerTrackingOptions {
   // Dynamic.LK.forwardBackwardThreshold: a static well-tracked corner returns within ~2 * 0.3 px (two LK runs at
   // ~0.3 px each); > 1 px means occlusion, a textureless window or a jump to another structure.
   double forward_backward_px = 1.0;
+  // Whether trackPoints runs the backward pass at all (it doubles the LK cost). Off, every forward track that
+  // converged inside the image is kept: for callers that reject outliers themselves (the reference-keyframe pose
+  // model's RANSAC, see InitialPoseOptions::keyframe_forward_backward). Not a YAML key of its own.
+  bool forward_backward_check = true;
   void check() const;
 };
 

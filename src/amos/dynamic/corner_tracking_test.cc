@@ -95,6 +95,16 @@ TEST(CornerTracking, ForwardBackwardCheckDropsOccludedPoints) {
   for (const PointTrack& t : trackPoints(buildPyramids(last, current, no_check), points, no_check))
     inside_without_check += deep.contains(t.last);
   EXPECT_EQ(inside_without_check, total_inside);
+  // Without the backward pass at all: the same tracks as with an unlimited threshold, end points and order.
+  CornerTrackingOptions forward_only = options;
+  forward_only.forward_backward_check = false;
+  const auto unchecked = trackPoints(buildPyramids(last, current, no_check), points, no_check);
+  const auto forward = trackPoints(buildPyramids(last, current, forward_only), points, forward_only);
+  ASSERT_EQ(forward.size(), unchecked.size());
+  for (std::size_t i = 0; i < forward.size(); ++i) {
+    EXPECT_EQ(forward[i].source_index, unchecked[i].source_index);
+    EXPECT_EQ(forward[i].current, unchecked[i].current);
+  }
   EXPECT_LT(inside, total_inside / 3);
   EXPECT_GT(tracks.size(), points.size() * 3 / 4);
 }

@@ -28,6 +28,10 @@ struct InitialPoseOptions {
   double inlier_threshold_px = 2.45;
   // Dynamic.InitialPose.pnp*: EPnP RANSAC for models 1 and 2 (geometry::PnpRansacOptions keys).
   geometry::PnpRansacOptions pnp;
+  // Dynamic.InitialPose.keyframeForwardBackward: 1 = model 1's LK tracks (reference keyframe -> current frame) pass
+  // the forward-backward check like the corner tracks; 0 = only the forward pass runs (half the LK cost of model 1)
+  // and its EPnP RANSAC alone rejects the tracks that went astray.
+  bool keyframe_forward_backward = true;
   void check() const;
 };
 

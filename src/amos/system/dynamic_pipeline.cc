@@ -119,8 +119,10 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
       pixels.push_back(view.keypoints[i].pt);
       points_w.push_back(view.points_w[i]);
     }
+    dynamic::CornerTrackingOptions tracking = options_.tracking;
+    tracking.forward_backward_check = options_.initial_pose.keyframe_forward_backward;
     from_keyframe = dynamic::keyframeCorrespondences({keyframe, current}, distortPixels(pixels, camera), points_w,
-                                                     camera, options_.tracking);
+                                                     camera, tracking);
     break;
   }
   // Model 2: last-frame corners lifted with the last depth and pose (Eq. 6).
