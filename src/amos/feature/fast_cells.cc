@@ -12,7 +12,7 @@ constexpr int kFastRadius = 3;
 // FAST on the level rectangle `cell` (level coordinates), reading kFastRadius pixels of context around it so that
 // corners can be found up to the rectangle's edge. Appends corners in level coordinates.
 void fastInRect(const cv::Mat& padded, int border, const cv::Rect& cell, int threshold, const cv::Mat& mask,
-                std::vector<cv::KeyPoint>& out) {
+                const cv::Rect& allowed, std::vector<cv::KeyPoint>& out) {
   const cv::Rect region(border + cell.x - kFastRadius, border + cell.y - kFastRadius, cell.width + 2 * kFastRadius,
                         cell.height + 2 * kFastRadius);
   std::vector<cv::KeyPoint> found;
@@ -20,6 +20,7 @@ void fastInRect(const cv::Mat& padded, int border, const cv::Rect& cell, int thr
   for (cv::KeyPoint& kp : found) {
     kp.pt.x += static_cast<float>(cell.x - kFastRadius);
     kp.pt.y += static_cast<float>(cell.y - kFastRadius);
+    if (!allowed.contains(cv::Point(static_cast<int>(kp.pt.x), static_cast<int>(kp.pt.y)))) continue;
     if (!mask.empty() && mask.at<std::uint8_t>(static_cast<int>(kp.pt.y), static_cast<int>(kp.pt.x)) == 0) continue;
     out.push_back(kp);
   }
@@ -30,7 +31,10 @@ std::vector<cv::KeyPoint> detectFastInCells(const cv::Mat& padded, int border, c
                                             const FastCellOptions& options, const cv::Mat& mask) {
   std::vector<cv::KeyPoint> corners;
   if (size.width <= 0 || size.height <= 0) return corners;
-  fastInRect(padded, border, cv::Rect(0, 0, size.width, size.height), options.ini_threshold, mask, corners);
+  const int m = options.edge_margin;
+  const cv::Rect allowed(m, m, size.width - 2 * m, size.height - 2 * m);
+  if (allowed.width <= 0 || allowed.height <= 0) return corners;
+  fastInRect(padded, border, cv::Rect(0, 0, size.width, size.height), options.ini_threshold, mask, allowed, corners);
   if (options.min_threshold >= options.ini_threshold) return corners;
 
   // Cells of about cell_size pixels tiling the level exactly; cell c spans [edge(c), edge(c + 1)).
@@ -61,7 +65,7 @@ std::vector<cv::KeyPoint> detectFastInCells(const cv::Mat& padded, int border, c
       int end = c + 1;
       while (end < cols && !has_corner[static_cast<size_t>(r * cols + end)]) ++end;
       const cv::Rect run(xs[c], ys[r], xs[end] - xs[c], ys[r + 1] - ys[r]);
-      fastInRect(padded, border, run, options.min_threshold, mask, corners);
+      fastInRect(padded, border, run, options.min_threshold, mask, allowed, corners);
       c = end;
     }
   }

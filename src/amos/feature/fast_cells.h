@@ -12,11 +12,15 @@ struct FastCellOptions {
   int ini_threshold = 20;
   int min_threshold = 7;
   int cell_size = 30;  // pixels (ORB-SLAM2 uses 30)
+  // Corners closer than this to the level's edge are dropped. There the FAST circle (radius 3) and the non-maximum
+  // suppression read the reflected border, and the mirror axis itself makes corners: they stay pinned to the image
+  // edge while the scene moves, i.e. systematically wrong measurements of the motion.
+  int edge_margin = 4;
 };
 
 // padded: a level image with `border` >= 3 reflected pixels on each side; size: the level size without border.
-// mask (optional, same size as the level, 0 = forbidden): corners on forbidden pixels are dropped before the
-// cell's fallback decision. Returns corners in level coordinates, with response = FAST score; deterministic order.
+// mask (optional, same size as the level, 0 = forbidden): corners on forbidden pixels (and within edge_margin of the
+// level's edge) are dropped before the cell's fallback decision. Returns corners in level coordinates, with response = FAST score; deterministic order.
 std::vector<cv::KeyPoint> detectFastInCells(const cv::Mat& padded, int border, cv::Size size,
                                             const FastCellOptions& options, const cv::Mat& mask = cv::Mat());
 

@@ -86,5 +86,26 @@ TEST(FastCells, MaskRemovesCornersBeforeTheFallbackDecision) {
   EXPECT_GT(kps.size(), 50u);
 }
 
+// Texture running into the image edge: with the reflected border, the mirror axis makes corners right at the edge
+// (pinned to the image, not to the scene). None closer than edge_margin may come out; with margin 0 they do.
+TEST(FastCells, NoCornersWithinTheEdgeMargin) {
+  const cv::Mat img = twoContrastImage();
+  const int border = 19;
+  const cv::Mat padded = pad(img, border);
+  auto nearEdge = [&](const std::vector<cv::KeyPoint>& corners, int margin) {
+    int n = 0;
+    for (const auto& kp : corners) {
+      const int x = static_cast<int>(kp.pt.x), y = static_cast<int>(kp.pt.y);
+      n += (x < margin || y < margin || x >= img.cols - margin || y >= img.rows - margin) ? 1 : 0;
+    }
+    return n;
+  };
+  FastCellOptions options{20, 7, 30};
+  ASSERT_EQ(options.edge_margin, 4);
+  EXPECT_EQ(nearEdge(detectFastInCells(padded, border, img.size(), options), options.edge_margin), 0);
+  options.edge_margin = 0;
+  EXPECT_GT(nearEdge(detectFastInCells(padded, border, img.size(), options), 4), 0);
+}
+
 }  // namespace
 }  // namespace amos::feature
