@@ -301,10 +301,11 @@ void BM_FrontEndGeometry(benchmark::State& state) {
 BENCHMARK(BM_FrontEndGeometry)->Unit(benchmark::kMillisecond);
 
 // The whole of `amos-slam run --mode full` on bonn_crowd_dev (configs/bonn.yaml), the loop of report::runSequence,
-// with and without look-ahead (process(frame k, next = frame k+1): frame k+1 is segmented while frame k is
-// tracked), and with settings changed from the file's: args {look_ahead 0/1, Segmentation.mask_input_size,
-// Dynamic.LK.window, Dynamic.LK.maxIterations, LK epsilon in 1/1000 px, OpenCV threads (0 = OpenCV's default),
-// System.deterministic 0/1, Segmentation.input_shape 0 = square / 1 = frame}. One iteration = one pass over
+// with and without look-ahead (process(frame k, next = frame k+1): frame k+1 is segmented, and its features,
+// pyramid, corners and superpixels are prepared, while frame k is tracked), and with settings changed from the
+// file's: args {look_ahead 0/1, Segmentation.mask_input_size, Dynamic.LK.window, Dynamic.LK.maxIterations, LK
+// epsilon in 1/1000 px, OpenCV threads (0 = OpenCV's default), System.deterministic 0/1, Segmentation.input_shape
+// 0 = square / 1 = frame, Dynamic.InitialPose.keyframeForwardBackward 0/1}. One iteration = one pass over
 // the 270 frames. Counters: fps (wall), cpu_ms per frame (all threads of the
 // process, from getrusage), ATE RMSE in metres, lost frames, and the median wait for the masks. Run it from the
 // repository root (it reads configs/bonn.yaml):
@@ -327,6 +328,7 @@ void BM_BonnFullSequence(benchmark::State& state) {
   const int cv_threads = static_cast<int>(state.range(5));
   const bool deterministic = state.range(6) != 0;
   settings.segmentation.input_shape = state.range(7) == 0 ? "square" : "frame";
+  settings.dynamic.initial_pose.keyframe_forward_backward = state.range(8) != 0;
   const int default_threads = cv::getNumThreads();
   settings.segmentation.threads = cv_threads;  // applied by the segmenter; 0 leaves OpenCV's default
   double fps = 0, cpu_ms = 0, ate = 0, lost = 0, wait_ms = 0, keyframe_points_median = 0;
@@ -381,16 +383,18 @@ void BM_BonnFullSequence(benchmark::State& state) {
   cv::setNumThreads(default_threads);
 }
 BENCHMARK(BM_BonnFullSequence)
-    ->Args({0, 256, 15, 30, 10, 0, 0, 0})  // the front end as it was: no look-ahead, export shapes, OpenCV threads
-    ->Args({1, 160, 15, 30, 10, 1, 0, 0})  // defaults (with the look-ahead runSequence needs to pass)
-    ->Args({0, 256, 15, 30, 10, 0, 1, 0})
-    ->Args({1, 256, 15, 30, 10, 0, 1, 0})
-    ->Args({1, 256, 15, 30, 10, 1, 1, 0})
-    ->Args({1, 256, 15, 30, 10, 1, 1, 1})
-    ->Args({1, 160, 15, 30, 10, 1, 1, 0})
-    ->Args({1, 160, 15, 30, 10, 1, 1, 1})
+    ->Args({0, 256, 15, 30, 10, 0, 0, 0, 1})  // the front end as it was: no look-ahead, export shapes, OpenCV threads
+    ->Args({1, 160, 15, 30, 10, 1, 0, 0, 1})  // defaults (with the look-ahead runSequence needs to pass)
+    ->Args({0, 256, 15, 30, 10, 0, 1, 0, 1})
+    ->Args({1, 256, 15, 30, 10, 0, 1, 0, 1})
+    ->Args({1, 256, 15, 30, 10, 1, 1, 0, 1})
+    ->Args({1, 256, 15, 30, 10, 1, 1, 1, 1})
+    ->Args({1, 160, 15, 30, 10, 1, 1, 0, 1})
+    ->Args({1, 160, 15, 30, 10, 1, 1, 1, 1})
+    ->Args({1, 160, 11, 30, 10, 1, 0, 0, 1})  // LK window 11 (proposed for configs/bonn.yaml)
+    ->Args({1, 160, 11, 30, 10, 1, 0, 0, 0})  // ... and model 1 without the backward LK pass
     ->ArgNames({"look_ahead", "mask_input", "lk_window", "lk_iters", "lk_eps_milli", "cv_threads", "deterministic",
-                "frame_shape"})
+                "frame_shape", "keyframe_fb"})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kSecond);
