@@ -39,6 +39,7 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
   in.read("Dynamic.Reprojection.refitMinPoints", o.reprojection.refit_min_points);
   in.read("Dynamic.Reprojection.confirmSigmas", o.reprojection.confirm_sigmas);
   in.read("Dynamic.Reprojection.confirmThreshold", o.reprojection.confirm_threshold_px);
+  in.read("Dynamic.Reprojection.intervalErrors", o.reprojection.interval_errors);
 
   in.read("Dynamic.Epipolar.ransacThreshold", o.epipolar.ransac_threshold_px);
   in.read("Dynamic.Epipolar.threshold", o.epipolar.dynamic_threshold_px);
@@ -50,6 +51,8 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
   in.read("Dynamic.Boundary.radius", o.boundary.search_radius_px);
   in.read("Dynamic.Boundary.borderMargin", o.boundary.border_margin_px);
   in.read("Dynamic.Boundary.superpixelMask", o.boundary.superpixel_mask);
+  in.read("Dynamic.Boundary.seedOutsideClusters", o.boundary.seed_outside_clusters);
+  in.read("Dynamic.Temporal.excludeFromFits", o.temporal.exclude_last_mask_from_fits);
 
   in.read("Dynamic.InitialPose.inlierThreshold", o.initial_pose.inlier_threshold_px);
 }

@@ -207,7 +207,7 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
                                          const std::vector<std::vector<int>>& neighbours,
                                          const std::vector<bool>& border, const std::vector<bool>& dynamic_cluster,
                                          const std::vector<TrackEvidence>& tracks, double static_px,
-                                         double epipolar_px) {
+                                         double epipolar_px, const SeedOptions& options) {
   const int n = static_cast<int>(superpixels.size());
   const int clusters = static_cast<int>(dynamic_cluster.size());
   core::require(labels.type() == CV_32S, "seedSuperpixels: labels must be CV_32S");
@@ -255,18 +255,22 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
     if (m.norm() >= static_px) motion[c] = m;
   }
   std::vector<int> dynamic_votes(n, 0), static_votes(n, 0);
+  std::vector<bool> in_zone(n, false);
   for (const TrackEvidence& t : tracks) {
     const int s = superpixelAt(t.pixel);
     if (s < 0 || border[s]) continue;
     const int c = clusterOf(s);
     const std::vector<int> own{c};
     const std::vector<int>& zone = dynamic_cluster[c] ? own : dynamic_near[c];
+    in_zone[s] = !zone.empty();
     const bool still = t.residual && t.residual->norm() < static_px;
     bool moving = false;
     if (!zone.empty()) {
       moving = (std::isfinite(t.epipolar_px) && t.epipolar_px > epipolar_px) || (t.residual && !still);
       for (int z : zone)
         if (t.residual && motion[z] && (*t.residual - *motion[z]).norm() < t.residual->norm()) moving = true;
+    } else {
+      moving = options.seed_outside_zones && t.residual && !still;
     }
     if (moving)
       ++dynamic_votes[s];
@@ -275,7 +279,7 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
   }
   std::vector<RegionLabel> seeds(n, RegionLabel::kUnlabelled);
   for (int s = 0; s < n; ++s) {
-    if (dynamic_votes[s] > static_votes[s])
+    if (dynamic_votes[s] > static_votes[s] && (in_zone[s] || dynamic_votes[s] >= options.min_outside_votes))
       seeds[s] = RegionLabel::kDynamic;
     else if (static_votes[s] > dynamic_votes[s])
       seeds[s] = RegionLabel::kStatic;

@@ -31,6 +31,12 @@ struct BoundaryOptions {
   // Dynamic.Boundary.superpixelMask: true = the mask is decided per superpixel inside and around the dynamic
   // clusters (seeded region growing, see above); false = the mask is the union of the dynamic clusters.
   bool superpixel_mask = true;
+  // Dynamic.Boundary.seedOutsideClusters: with the per-superpixel mask and a successful pose refit, a superpixel
+  // outside the dynamic clusters and their neighbours whose own tracks move under the refitted pose (at least
+  // Dynamic.Epipolar.minDynamicPoints of them above the confirmation threshold, more than those below it) is a
+  // dynamic seed too. A deformable walker is split across the position-only clusters, and where it is a minority
+  // of a cluster that cluster's mean stays low; its superpixels' own tracks still move.
+  bool seed_outside_clusters = true;
   void check() const;
 };
 
@@ -92,10 +98,21 @@ struct TrackEvidence {
 // its border, see assignToNeighbourCluster) is reached only by growth from its neighbours' seeds: whole-cluster
 // marking is what the per-superpixel mask is there to avoid. labels: superpixel map (CV_32S);
 // superpixels[i].cluster: each one's cluster.
+// Seeding away from the dynamic clusters (see seedSuperpixels).
+struct SeedOptions {
+  // Tracks outside every dynamic cluster and its neighbours also vote dynamic when they move by themselves
+  // (residual >= static_px under a refitted pose). Needs a pose the movers did not bias: only then is a residual
+  // above the noise bar motion rather than pose error.
+  bool seed_outside_zones = false;
+  // Votes such a superpixel needs (and more than its static votes): two independent tracks, as for an epipolar
+  // region (one may be an LK slip).
+  int min_outside_votes = 2;
+};
+
 std::vector<RegionLabel> seedSuperpixels(const cv::Mat& superpixel_labels, const std::vector<Superpixel>& superpixels,
                                          const std::vector<std::vector<int>>& neighbours,
                                          const std::vector<bool>& border, const std::vector<bool>& dynamic_cluster,
                                          const std::vector<TrackEvidence>& tracks, double static_px,
-                                         double epipolar_px);
+                                         double epipolar_px, const SeedOptions& options = {});
 
 }  // namespace amos::dynamic

@@ -198,5 +198,36 @@ TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
   EXPECT_EQ(quiet[12], S);
 }
 
+TEST(SuperpixelRegions, TracksOutsideTheDynamicClustersSeedOnlyWhenAskedAndInPairs) {
+  // 5 x 5 blocks, nothing dynamic. Block 7 holds two tracks moving by themselves, block 17 one, block 13 two moving
+  // and three still ones.
+  const cv::Mat labels = blockLabels(5);
+  std::vector<Superpixel> sp(25, superpixel(50, 2.0, 1));
+  for (int s : {6, 7, 11, 12}) sp[s].cluster = 0;
+  const auto neighbours = superpixelNeighbours(labels, 25);
+  std::vector<bool> border(25, true);
+  for (int s : {6, 7, 8, 11, 12, 13, 16, 17, 18}) border[s] = false;
+  const std::vector<bool> dynamic_cluster = {false, false};
+  auto at = [](int s) { return cv::Point2f(10.f * (s % 5) + 5, 10.f * (s / 5) + 5); };
+  const Eigen::Vector2d moving(3.0, 0.0), still(0.1, 0.0);
+  const std::vector<TrackEvidence> tracks = {
+      {at(7), moving, 0.1},  {at(7), moving, 0.1},  {at(17), moving, 0.1}, {at(13), moving, 0.1},
+      {at(13), moving, 0.1}, {at(13), still, 0.1},  {at(13), still, 0.1},  {at(13), still, 0.1},
+      {at(16), std::nullopt, 5.0},  // an epipolar violator alone: the epipolar test needs a candidate region
+      {at(16), std::nullopt, 5.0},
+  };
+  const RegionLabel D = RegionLabel::kDynamic, S = RegionLabel::kStatic, U = RegionLabel::kUnlabelled;
+  const auto off = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0);
+  EXPECT_EQ(off[7], U);
+  EXPECT_EQ(off[13], S);
+  const auto on = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0, {true, 2});
+  EXPECT_EQ(on[7], D);
+  EXPECT_EQ(on[17], U);  // one track may be an LK slip
+  EXPECT_EQ(on[13], S);  // outvoted
+  EXPECT_EQ(on[16], U);
+  const auto three = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0, {true, 3});
+  EXPECT_EQ(three[7], U);
+}
+
 }  // namespace
 }  // namespace amos::dynamic

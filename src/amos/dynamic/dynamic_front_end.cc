@@ -51,6 +51,12 @@ bool depthEdgeInWindow(const cv::Mat& depth, cv::Point2f p, int r, double ratio)
   return false;
 }
 
+// Whether the pixel nearest p is set in a CV_8U mask (false outside the image).
+bool maskAt(const cv::Mat& mask, cv::Point2f p) {
+  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
+  return x >= 0 && y >= 0 && x < mask.cols && y < mask.rows && mask.at<uchar>(y, x) != 0;
+}
+
 void checkInput(const DynamicFrameInput& in) {
   core::require(!in.gray.empty() && in.gray.type() == CV_8UC1, "DynamicFrontEnd: gray must be CV_8UC1");
   const cv::Size size = in.gray.size();
@@ -59,6 +65,8 @@ void checkInput(const DynamicFrameInput& in) {
                 "DynamicFrontEnd: depth must be CV_32F metres, gray's size");
   core::require(in.prior_mask.empty() || (in.prior_mask.type() == CV_8UC1 && in.prior_mask.size() == size),
                 "DynamicFrontEnd: prior_mask must be empty or CV_8UC1 of the image size");
+  core::require(in.last_mask.empty() || (in.last_mask.type() == CV_8UC1 && in.last_mask.size() == size),
+                "DynamicFrontEnd: last_mask must be empty or CV_8UC1 of the image size");
   if (!in.last_gray.empty()) {
     core::require(in.last_gray.type() == CV_8UC1 && in.last_gray.size() == size,
                   "DynamicFrontEnd: last_gray must be CV_8UC1 of the image size");
@@ -128,6 +136,24 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   // Stage 1b (III-C, Eq. 5-6): cluster scores from reprojection errors under the initial pose.
   const auto points_w = backProjectTracks(out.tracks, in.last_depth, in.T_cw_last, camera_, options_.reprojection);
   out.reprojection_error_px = reprojectionErrors(out.tracks, points_w, in.T_cw_initial, camera_);
+  // Tracks without a trusted depth (on a depth edge, among holes) are where the corners of a mover's outline are,
+  // and on a person with dark clothes nearly all of them: each gets the smallest error any depth of its
+  // neighbourhood allows (intervalResiduals), a lower bound that a static point under the right pose keeps near 0.
+  const int half_window = options_.tracking.lk_window / 2;
+  std::vector<std::optional<DepthInterval>> intervals;
+  if (options_.reprojection.interval_errors) {
+    intervals = trackDepthIntervals(out.tracks, in.last_depth, half_window, options_.reprojection);
+    for (std::size_t i = 0; i < intervals.size(); ++i)
+      if (points_w[i]) intervals[i].reset();
+  }
+  auto withIntervals = [&](std::vector<std::optional<double>> errors_px, const core::SE3& T_cw) {
+    if (intervals.empty()) return errors_px;
+    const auto lower = intervalResiduals(out.tracks, intervals, in.T_cw_last, T_cw, camera_);
+    for (std::size_t i = 0; i < errors_px.size(); ++i)
+      if (!errors_px[i] && lower[i]) errors_px[i] = lower[i]->norm();
+    return errors_px;
+  };
+  out.reprojection_error_px = withIntervals(std::move(out.reprojection_error_px), in.T_cw_initial);
   const auto& errors = out.reprojection_error_px;
   std::vector<int> cluster_of_track(out.tracks.size());
   for (std::size_t i = 0; i < out.tracks.size(); ++i) {
@@ -138,27 +164,50 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   std::vector<double> cluster_error(num_clusters);
   for (int c = 0; c < num_clusters; ++c) cluster_error[c] = out.cluster_scores[c].mean_rho;
 
-  // Tracks outside the potential motion regions found so far (candidate clusters, prior regions): what F and the
-  // pose refit are estimated on.
-  std::vector<bool> outside_candidates(out.tracks.size(), false);
+  // Temporal evidence: the tracks that start inside the last frame's final mask were on a mover one frame ago, and
+  // movers rarely stop between two frames (33 ms). They are kept out of the fits below like the candidates: an
+  // undetected person holding a fifth of the tracks would otherwise pull the initial pose and the refit half-way
+  // to its own motion (a person moving 3 px per frame leaves both sides within the refit's inlier band), and then
+  // nothing in the frame looks dynamic. Only the fits lose them; every decision below is still made from this
+  // frame's evidence, so a static surface wrongly masked in the last frame is released here (its tracks fit the
+  // clean pose) instead of staying masked for good.
+  std::vector<bool> from_last_mask(out.tracks.size(), false);
+  if (options_.temporal.exclude_last_mask_from_fits && !in.last_mask.empty())
+    for (std::size_t i = 0; i < out.tracks.size(); ++i) from_last_mask[i] = maskAt(in.last_mask, out.tracks[i].last);
+
+  // Tracks outside the potential motion regions found so far (candidate clusters, prior regions, the last mask):
+  // what F and the pose refit are estimated on.
+  std::vector<bool> outside_candidates(out.tracks.size(), false), outside_now(out.tracks.size(), false);
   for (std::size_t i = 0; i < out.tracks.size(); ++i) {
     const int c = cluster_of_track[i];
     if (c >= 0 && out.cluster_scores[c].candidate) continue;
     if (use_prior && labelAt(prior_components, out.tracks[i].current) > 0) continue;
-    outside_candidates[i] = true;
+    outside_now[i] = true;
+    outside_candidates[i] = !from_last_mask[i];
   }
 
   // The pose again, without the candidates (see ReprojectionOptions::refit_pose), and every cluster scored under it.
+  // When the last mask leaves too few tracks (it covered most of the view), the refit does without it.
   PoseRefit refit;
   refit.T_cw = in.T_cw_initial;
-  if (options_.reprojection.refit_pose)
+  if (options_.reprojection.refit_pose) {
     refit = refitPose(out.tracks, points_w, outside_candidates, in.T_cw_initial, camera_, options_.reprojection);
+    if (!refit.ok && outside_now != outside_candidates) {
+      outside_candidates = outside_now;
+      refit = refitPose(out.tracks, points_w, outside_candidates, in.T_cw_initial, camera_, options_.reprojection);
+    }
+  }
   diag.pose_refit_ok = refit.ok;
   diag.pose_refit_points = refit.points;
   diag.pose_refit_inliers = refit.inliers;
   diag.pose_refit_sigma_px = refit.sigma_px;
   out.T_cw_judged = refit.T_cw;
-  const auto residuals = reprojectionResiduals(out.tracks, points_w, refit.T_cw, camera_);
+  auto residuals = reprojectionResiduals(out.tracks, points_w, refit.T_cw, camera_);
+  if (!intervals.empty()) {
+    const auto lower = intervalResiduals(out.tracks, intervals, in.T_cw_last, refit.T_cw, camera_);
+    for (std::size_t i = 0; i < residuals.size(); ++i)
+      if (!residuals[i]) residuals[i] = lower[i];
+  }
   if (refit.ok) {
     std::vector<std::optional<double>> refit_errors(residuals.size());
     for (std::size_t i = 0; i < residuals.size(); ++i)
@@ -229,27 +278,35 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     if (out.dynamic_cluster[c]) ++diag.dynamic_clusters;
   }
   out.superpixel_labels = segmentation.labels;
-  if (options_.boundary.superpixel_mask && diag.dynamic_clusters > 0) {
+  const bool seed_outside = options_.boundary.seed_outside_clusters && refit.ok;
+  if (options_.boundary.superpixel_mask && (diag.dynamic_clusters > 0 || seed_outside)) {
     // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
     // A track moves with what fills its LK window. When the window (in either frame) holds an occlusion edge
     // (a depth step beyond the depth-edge ratio) that may be the other side's motion: a wall corner next to a
     // moving box follows the box. Such a track, or one whose current pixel shows another surface than its last
     // one, would seed the wrong superpixel; it abstains.
-    const int half_window = options_.tracking.lk_window / 2;
     const double ratio = options_.reprojection.depth_edge_ratio;
+    const double static_bar = refit.ok ? confirmThreshold(refit, options_.reprojection) : options_.reprojection.candidate_threshold_px;
     std::vector<TrackEvidence> evidence;
     evidence.reserve(out.tracks.size());
     for (std::size_t i = 0; i < out.tracks.size(); ++i) {
       const PointTrack& t = out.tracks[i];
       const float z_last = depthAt(in.last_depth, t.last), z_now = depthAt(in.depth, t.current);
-      if (z_last > 0 && z_now > 0 && std::fabs(z_now - z_last) > ratio * z_last) continue;
-      if (depthEdgeInWindow(in.last_depth, t.last, half_window, ratio) ||
-          depthEdgeInWindow(in.depth, t.current, half_window, ratio))
-        continue;
-      // Nor does one that lies off its superpixel's surface: where a superpixel straddles the mover's border (its
-      // outline is found at a coarser scale), the track belongs to the other side.
       const int s = labelAt(segmentation.labels, t.current);
       const float z_superpixel = s >= 0 ? segmentation.superpixels[s].depth : 0.f;
+      if ((z_last > 0 && z_now > 0 && std::fabs(z_now - z_last) > ratio * z_last) ||
+          depthEdgeInWindow(in.last_depth, t.last, half_window, ratio) ||
+          depthEdgeInWindow(in.depth, t.current, half_window, ratio)) {
+        // Except when no depth of its window lets it be static: then the edge itself moved, and an edge moves
+        // with its occluding (near) side. It then votes, by its motion only, for its superpixel if that is the
+        // near side.
+        if (!points_w[i] && !intervals.empty() && intervals[i] && residuals[i] && residuals[i]->norm() >= static_bar &&
+            z_superpixel > 0 && z_superpixel <= (1 + ratio) * intervals[i]->near_m)
+          evidence.push_back({t.current, residuals[i], 0.0});
+        continue;
+      }
+      // Nor does one that lies off its superpixel's surface: where a superpixel straddles the mover's border (its
+      // outline is found at a coarser scale), the track belongs to the other side.
       if (z_now > 0 && z_superpixel > 0 && std::fabs(z_now - z_superpixel) > ratio * std::min(z_now, z_superpixel))
         continue;
       evidence.push_back({t.current, residuals[i], out.epipolar_distance_px[i]});
@@ -257,8 +314,9 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     const auto neighbours = superpixelNeighbours(segmentation.labels, diag.superpixels);
     const std::vector<RegionLabel> seeds =
         seedSuperpixels(segmentation.labels, segmentation.superpixels, neighbours, border, out.dynamic_cluster,
-                        evidence, refit.ok ? confirmThreshold(refit, options_.reprojection) : options_.reprojection.candidate_threshold_px,
-                        options_.epipolar.dynamic_threshold_px);
+                        evidence, static_bar,
+                        options_.epipolar.dynamic_threshold_px,
+                        SeedOptions{seed_outside, options_.epipolar.min_dynamic_points});
     std::vector<bool> may_be_dynamic(diag.superpixels);
     for (int s = 0; s < diag.superpixels; ++s)
       may_be_dynamic[s] = out.dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;

@@ -336,8 +336,9 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
 TEST(DynamicFrontEnd, FittingOnAllTracksLetsARigidMoverHide) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  options.reprojection.refit_pose = false;   // the epipolar test alone
-  options.epipolar.min_fit_points = 100000;  // never enough tracks outside the candidates: fit on all
+  options.reprojection.refit_pose = false;       // the epipolar test alone, with the paper's candidates
+  options.reprojection.interval_errors = false;  // (depth-edge tracks would make the box's cluster win its violators)
+  options.epipolar.min_fit_points = 100000;      // never enough tracks outside the candidates: fit on all
   const DynamicFrameOutput all = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
   EXPECT_EQ(all.diagnostics.f_fit_points, all.diagnostics.tracks);
   EXPECT_LT(coverage(all.mask, syntheticPair().current.box_mask), 0.2);
@@ -399,6 +400,73 @@ TEST(DynamicFrontEnd, SuperpixelMaskFollowsTheMoverOutline) {
   EXPECT_GT(sp_precision, 0.9);
   EXPECT_GT(sp_precision, cl_precision);
   EXPECT_GT(superpixels.diagnostics.dynamic_superpixels, 0);
+}
+
+// Temporal evidence: the tracks that start in the last frame's mask stay out of the pose refit and the F fit, but
+// the decisions are still this frame's: the box (in the last mask) is found, a patch of wall in the last mask is
+// released.
+TEST(DynamicFrontEnd, LastMaskKeepsTracksOutOfTheFitsButDoesNotDecide) {
+  DynamicOptions options;
+  options.mode = DynamicMode::kGeometry;
+  const DynamicFrontEnd front_end(testCamera(), options);
+  const DynamicFrameInput plain = inputFor(syntheticPair());
+  const DynamicFrameOutput without = front_end.process(plain);
+  ASSERT_TRUE(without.diagnostics.pose_refit_ok);
+
+  DynamicFrameInput with_box = plain;
+  with_box.last_mask = syntheticPair().last.box_mask;
+  const DynamicFrameOutput box = front_end.process(with_box);
+  ASSERT_TRUE(box.diagnostics.pose_refit_ok);
+  EXPECT_LE(box.diagnostics.pose_refit_points, without.diagnostics.pose_refit_points);
+  EXPECT_LE(box.diagnostics.f_fit_points, without.diagnostics.f_fit_points);
+  EXPECT_GT(coverage(box.mask, syntheticPair().current.box_mask), 0.85);
+
+  // A wall patch away from the box (left half, above the floor) wrongly in the last mask.
+  DynamicFrameInput with_wall = plain;
+  with_wall.last_mask = cv::Mat(480, 640, CV_8U, cv::Scalar(0));
+  const cv::Rect patch(20, 20, 120, 120);
+  with_wall.last_mask(patch).setTo(255);
+  int tracks_in_patch = 0;
+  for (const PointTrack& t : without.tracks) tracks_in_patch += patch.contains(cv::Point(t.last));
+  ASSERT_GT(tracks_in_patch, 10);
+  const DynamicFrameOutput wall = front_end.process(with_wall);
+  EXPECT_LT(wall.diagnostics.pose_refit_points, without.diagnostics.pose_refit_points);
+  EXPECT_GE(wall.diagnostics.pose_refit_points + tracks_in_patch, without.diagnostics.pose_refit_points);
+  cv::Mat patch_mask(480, 640, CV_8U, cv::Scalar(0));
+  patch_mask(patch).setTo(255);
+  EXPECT_LT(coverage(wall.mask, patch_mask), 0.02);
+  EXPECT_GT(coverage(wall.mask, syntheticPair().current.box_mask), 0.85);
+
+  // Switched off, the last mask changes nothing.
+  options.temporal.exclude_last_mask_from_fits = false;
+  const DynamicFrameOutput off = DynamicFrontEnd(testCamera(), options).process(with_wall);
+  EXPECT_EQ(off.diagnostics.pose_refit_points, without.diagnostics.pose_refit_points);
+  EXPECT_EQ(cv::countNonZero(off.mask != without.mask), 0);
+
+  // A last mask of the wrong size is an input error.
+  DynamicFrameInput bad = plain;
+  bad.last_mask = cv::Mat(10, 10, CV_8U, cv::Scalar(0));
+  EXPECT_THROW(front_end.process(bad), core::Error);
+}
+
+// Corners on a mover's outline have no single trusted depth; with the smallest error their window's depths allow
+// they still count. Here the box's own corners are hidden from Eq. 5 (as if its depth were all edges and holes):
+// only its outline tracks, scored by their depth intervals, can make it dynamic.
+TEST(DynamicFrontEnd, OutlineTracksScoredByTheirDepthIntervalsFindTheMover) {
+  const core::PinholeCamera cam = testCamera();
+  SyntheticPair pair = syntheticPair();
+  // Holes over the box's inside in the last frame: only its border keeps depth (on the far side, the wall's).
+  cv::Mat inside;
+  cv::erode(pair.last.box_mask, inside, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(9, 9)));
+  pair.last.depth = pair.last.depth.clone();
+  pair.last.depth.setTo(0.f, inside);
+  DynamicOptions options;
+  options.mode = DynamicMode::kGeometry;
+  const DynamicFrameOutput with = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  options.reprojection.interval_errors = false;
+  const DynamicFrameOutput without = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  EXPECT_GT(coverage(with.mask, pair.current.box_mask), coverage(without.mask, pair.current.box_mask));
+  EXPECT_GT(coverage(with.mask, pair.current.box_mask), 0.5);
 }
 
 }  // namespace

@@ -22,6 +22,15 @@ enum class DynamicMode { kNone, kPrior, kGeometry, kFull };
 DynamicMode parseDynamicMode(const std::string& text);
 std::string toString(DynamicMode mode);
 
+// Temporal evidence from the last frame's final dynamic mask (DynamicFrameInput::last_mask): a mover seen in the
+// last frame is most likely still moving 33 ms later.
+struct TemporalOptions {
+  // Dynamic.Temporal.excludeFromFits: the tracks starting inside the last mask take no part in the pose refit and
+  // the fundamental-matrix fit (they still take part in every decision). Keeps a mover that the detector and the
+  // candidate stage miss in this frame from biasing the pose the movers are judged against.
+  bool exclude_last_mask_from_fits = true;
+};
+
 struct DynamicOptions {
   DynamicMode mode = DynamicMode::kFull;  // Dynamic.mode
   // Dynamic.judgePriorRegions: false = every prior (segmented person) region is removed, as in paper III-A
@@ -35,6 +44,7 @@ struct DynamicOptions {
   ReprojectionOptions reprojection;  // Dynamic.Reprojection.*
   EpipolarOptions epipolar;          // Dynamic.Epipolar.*
   BoundaryOptions boundary;          // Dynamic.Boundary.*
+  TemporalOptions temporal;          // Dynamic.Temporal.*
   InitialPoseOptions initial_pose;   // Dynamic.InitialPose.* (used by tracking, III-D)
   void check() const;
 };

@@ -107,6 +107,69 @@ std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTra
   return errors;
 }
 
+std::vector<std::optional<DepthInterval>> trackDepthIntervals(const std::vector<PointTrack>& tracks,
+                                                              const cv::Mat& last_depth, int radius_px,
+                                                              const ReprojectionOptions& options) {
+  core::require(last_depth.type() == CV_32F, "trackDepthIntervals: depth must be CV_32F metres");
+  core::require(radius_px >= 0, "trackDepthIntervals: negative radius");
+  std::vector<std::optional<DepthInterval>> intervals(tracks.size());
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const int u = static_cast<int>(std::lround(tracks[i].last.x)), v = static_cast<int>(std::lround(tracks[i].last.y));
+    if (u < 0 || v < 0 || u >= last_depth.cols || v >= last_depth.rows) continue;
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    bool open = false;
+    for (int y = std::max(0, v - radius_px); y <= std::min(last_depth.rows - 1, v + radius_px); ++y) {
+      const float* row = last_depth.ptr<float>(y);
+      for (int x = std::max(0, u - radius_px); x <= std::min(last_depth.cols - 1, u + radius_px); ++x) {
+        const float z = row[x];
+        if (!(z > 0.f) || !std::isfinite(z) || z > options.max_depth_m) {
+          open = true;
+          continue;
+        }
+        lo = std::min(lo, static_cast<double>(z)), hi = std::max(hi, static_cast<double>(z));
+      }
+    }
+    if (hi <= 0) continue;
+    intervals[i] = DepthInterval{lo, open ? std::numeric_limits<double>::infinity() : hi};
+  }
+  return intervals;
+}
+
+std::vector<std::optional<Eigen::Vector2d>> intervalResiduals(const std::vector<PointTrack>& tracks,
+                                                              const std::vector<std::optional<DepthInterval>>& intervals,
+                                                              const core::SE3& T_cw_last, const core::SE3& T_cw_current,
+                                                              const core::PinholeCamera& camera) {
+  core::require(tracks.size() == intervals.size(), "intervalResiduals: tracks and intervals differ in number");
+  std::vector<cv::Point2f> last_raw, current_raw;
+  last_raw.reserve(tracks.size()), current_raw.reserve(tracks.size());
+  for (const PointTrack& t : tracks) last_raw.push_back(t.last), current_raw.push_back(t.current);
+  const std::vector<cv::Point2f> last_u = camera.undistort(last_raw), current_u = camera.undistort(current_raw);
+  const core::SE3 T_cl = T_cw_current * T_cw_last.inverse();
+  std::vector<std::optional<Eigen::Vector2d>> residuals(tracks.size());
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    if (!intervals[i]) continue;
+    // The ray X(z) = z R d + t in the current camera; its image is a segment between the ends' projections.
+    const Eigen::Vector3d d = camera.backProject(last_u[i].x, last_u[i].y, 1.0);
+    const Eigen::Vector3d Rd = T_cl.rotation() * d, t = T_cl.translation();
+    const Eigen::Vector3d near_c = intervals[i]->near_m * Rd + t;
+    if (near_c.z() <= 1e-6) continue;
+    const Eigen::Vector2d a = camera.project(near_c);
+    Eigen::Vector2d b = a;
+    if (std::isfinite(intervals[i]->far_m)) {
+      const Eigen::Vector3d far_c = intervals[i]->far_m * Rd + t;
+      if (far_c.z() > 1e-6) b = camera.project(far_c);
+    } else if (Rd.z() > 1e-9) {
+      b = camera.project(Rd);  // the vanishing point of the ray
+    }
+    const Eigen::Vector2d p(current_u[i].x, current_u[i].y);
+    const Eigen::Vector2d ab = b - a;
+    const double len2 = ab.squaredNorm();
+    const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    residuals[i] = p - (a + s * ab);
+  }
+  return residuals;
+}
+
 double confirmThreshold(const PoseRefit& refit, const ReprojectionOptions& options) {
   return std::max(options.confirm_threshold_px, options.confirm_sigmas * refit.sigma_px);
 }

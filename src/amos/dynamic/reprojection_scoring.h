@@ -60,6 +60,9 @@ struct ReprojectionOptions {
   // also absorb the initial pose's bias, stays at 3 px.
   double confirm_sigmas = 5.0;
   double confirm_threshold_px = 1.0;
+  // Dynamic.Reprojection.intervalErrors: tracks without a trusted depth (depth edge, holes) enter Eq. 5 with the
+  // smallest error any depth of their LK window allows (intervalResiduals); false = they are left out (paper).
+  bool interval_errors = true;
   void check() const;
 };
 
@@ -88,6 +91,28 @@ std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTra
 std::vector<std::optional<Eigen::Vector2d>> reprojectionResiduals(
     const std::vector<PointTrack>& tracks, const std::vector<std::optional<Eigen::Vector3d>>& points_w,
     const core::SE3& T_cw_current, const core::PinholeCamera& camera);
+
+// The depths a track's last pixel may have had when no single depth can be trusted (it sits on a depth edge or
+// among holes, so backProjectTracks gave it no point): the range of the valid depths within radius_px of it, open
+// to infinity when that window holds holes (a hole may be a surface beyond the sensor's range or the far side of an
+// occlusion band). Empty when the window holds no valid depth within max_depth_m.
+struct DepthInterval {
+  double near_m = 0;
+  double far_m = 0;  // infinity when open
+};
+std::vector<std::optional<DepthInterval>> trackDepthIntervals(const std::vector<PointTrack>& tracks,
+                                                              const cv::Mat& last_depth, int radius_px,
+                                                              const ReprojectionOptions& options);
+
+// The smallest residual a static point could have: wherever on its last pixel's ray within the depth interval the
+// point was, a static point projects under T_cw_current onto the segment that this part of the ray projects to.
+// Returns the current undistorted pixel minus the nearest point of that segment [px] (a lower bound of the
+// reprojection error of every depth in the interval; zero when the pixel lies on the segment). Empty without an
+// interval or when the near end lies behind the camera.
+std::vector<std::optional<Eigen::Vector2d>> intervalResiduals(const std::vector<PointTrack>& tracks,
+                                                              const std::vector<std::optional<DepthInterval>>& intervals,
+                                                              const core::SE3& T_cw_last, const core::SE3& T_cw_current,
+                                                              const core::PinholeCamera& camera);
 
 struct PoseRefit {
   bool ok = false;                            // enough inliers (refit_min_points)

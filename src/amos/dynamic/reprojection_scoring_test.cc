@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "amos/core/error.h"
@@ -189,6 +191,62 @@ TEST(ReprojectionScoring, RefitNeedsEnoughPoints) {
   EXPECT_TRUE(refit.T_cw.isApprox(scene.T_cw_current));
   options.refit_min_points = 3;
   EXPECT_THROW(options.check(), core::Error);
+}
+
+TEST(ReprojectionScoring, DepthIntervalsSpanTheWindowAndOpenAtHoles) {
+  // 2 m everywhere, a 1 m patch at x >= 50, a hole at (20, 80).
+  cv::Mat depth(100, 100, CV_32F, cv::Scalar(2.0f));
+  depth(cv::Rect(50, 0, 50, 100)).setTo(1.0f);
+  depth.at<float>(80, 20) = 0.f;
+  auto track = [](float x, float y) { return PointTrack{{x, y}, {x, y}}; };
+  const std::vector<PointTrack> tracks = {track(20, 20), track(49, 20), track(21, 79), track(-5, 20)};
+  const auto intervals = trackDepthIntervals(tracks, depth, 3, ReprojectionOptions{});
+  ASSERT_EQ(intervals.size(), 4u);
+  ASSERT_TRUE(intervals[0]);  // uniform: one depth
+  EXPECT_DOUBLE_EQ(intervals[0]->near_m, 2.0);
+  EXPECT_DOUBLE_EQ(intervals[0]->far_m, 2.0);
+  ASSERT_TRUE(intervals[1]);  // on the step: both sides
+  EXPECT_DOUBLE_EQ(intervals[1]->near_m, 1.0);
+  EXPECT_DOUBLE_EQ(intervals[1]->far_m, 2.0);
+  ASSERT_TRUE(intervals[2]);  // a hole in the window: open to infinity
+  EXPECT_DOUBLE_EQ(intervals[2]->near_m, 2.0);
+  EXPECT_TRUE(std::isinf(intervals[2]->far_m));
+  EXPECT_FALSE(intervals[3]);  // outside the image
+}
+
+TEST(ReprojectionScoring, IntervalResidualIsTheDistanceFromTheRaysImage) {
+  const core::PinholeCamera cam = testCamera();
+  // The camera moves 5 cm right (T_cw translation -5 cm): a point at depth z shifts by -fx * 0.05 / z px.
+  core::SE3 T_cw_current = core::SE3::Identity();
+  T_cw_current.translation() = Eigen::Vector3d(-0.05, 0.0, 0.0);
+  const cv::Point2f p(300.f, 200.f);
+  auto shifted = [&](double z, double extra_px) {
+    return PointTrack{p, {static_cast<float>(p.x - cam.fx() * 0.05 / z + extra_px), p.y}};
+  };
+  auto dy = [&](double z, double extra_px) {  // a mover: off the ray's image vertically
+    return PointTrack{p, {static_cast<float>(p.x - cam.fx() * 0.05 / z), static_cast<float>(p.y + extra_px)}};
+  };
+  const std::vector<PointTrack> tracks = {shifted(1.5, 0), shifted(1.0, 0), shifted(2.0, 0), dy(1.5, 4.0),
+                                          shifted(1.5, 0)};
+  const DepthInterval one_to_two{1.0, 2.0}, near_only{1.8, 2.0}, open{1.0, std::numeric_limits<double>::infinity()};
+  const std::vector<std::optional<DepthInterval>> intervals = {one_to_two, one_to_two, one_to_two, one_to_two,
+                                                               near_only};
+  const auto r = intervalResiduals(tracks, intervals, core::SE3::Identity(), T_cw_current, cam);
+  ASSERT_EQ(r.size(), 5u);
+  for (int i : {0, 1, 2}) {  // static at any depth of the interval: on the segment
+    ASSERT_TRUE(r[i]);
+    EXPECT_LT(r[i]->norm(), 1e-3) << i;
+  }
+  ASSERT_TRUE(r[3]);  // 4 px across the segment
+  EXPECT_NEAR(r[3]->norm(), 4.0, 1e-3);
+  ASSERT_TRUE(r[4]);  // static at 1.5 m, but the window only allows 1.8-2 m: the distance to the 1.8 m end
+  EXPECT_NEAR(r[4]->norm(), cam.fx() * 0.05 * (1 / 1.5 - 1 / 1.8), 1e-3);
+  // Open to infinity: the segment runs to the vanishing point (no shift), so a point at 10 m is static too.
+  const auto far = intervalResiduals({shifted(10.0, 0)}, {open}, core::SE3::Identity(), T_cw_current, cam);
+  ASSERT_TRUE(far[0]);
+  EXPECT_LT(far[0]->norm(), 1e-3);
+  // No interval, no residual.
+  EXPECT_FALSE(intervalResiduals({shifted(1.5, 0)}, {std::nullopt}, core::SE3::Identity(), T_cw_current, cam)[0]);
 }
 
 }  // namespace
