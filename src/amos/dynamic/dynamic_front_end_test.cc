@@ -336,9 +336,8 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
 TEST(DynamicFrontEnd, FittingOnAllTracksLetsARigidMoverHide) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  options.reprojection.refit_pose = false;       // the epipolar test alone, with the paper's candidates
-  options.reprojection.interval_errors = false;  // (depth-edge tracks would make the box's cluster win its violators)
-  options.epipolar.min_fit_points = 100000;      // never enough tracks outside the candidates: fit on all
+  options.reprojection.refit_pose = false;   // the epipolar test alone
+  options.epipolar.min_fit_points = 100000;  // never enough tracks outside the candidates: fit on all
   const DynamicFrameOutput all = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
   EXPECT_EQ(all.diagnostics.f_fit_points, all.diagnostics.tracks);
   EXPECT_LT(coverage(all.mask, syntheticPair().current.box_mask), 0.2);
