@@ -55,6 +55,7 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
   in.read("Dynamic.Temporal.excludeFromFits", o.temporal.exclude_last_mask_from_fits);
 
   in.read("Dynamic.InitialPose.inlierThreshold", o.initial_pose.inlier_threshold_px);
+  in.read("Dynamic.InitialPose.keyframeForwardBackward", o.initial_pose.keyframe_forward_backward);
 }
 
 void readSegmentationSection(YamlReader& in, dynamic::SegmenterOptions& o) {
