@@ -14,10 +14,8 @@ namespace {
 using Vector10d = Eigen::Matrix<double, 10, 1>;
 using Matrix6x10d = Eigen::Matrix<double, 6, 10>;
 // Thickness (smallest / largest PCA variance) below which a point set counts as flat enough to also try SQPnP,
-// and below which the four-control-point form is numerically singular. 1e-3 (standard deviations ~3 % of the
-// extent): a wall with its texture and clutter in a 5-point RANSAC sample is often thinner than 10 %, where EPnP is
-// still as good, and SQPnP there cost ~4 % of all CPU of a dynamic run (initial pose 5.3 -> 3.9 ms, same ATE).
-constexpr double kTryPlanarRatio = 1e-3;
+// and below which the four-control-point form is numerically singular.
+constexpr double kTryPlanarRatio = 1e-2;
 constexpr double kSingularRatio = 1e-10;
 constexpr int kGaussNewtonIterations = 5;
 
