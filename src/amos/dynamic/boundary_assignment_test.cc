@@ -150,17 +150,31 @@ TEST(SuperpixelRegions, OcclusionEdgesAreDepthStepsAlongTheSharedBorder) {
   EXPECT_EQ(blocked[4], RegionLabel::kStatic);
 }
 
+// 5 x 5 blocks of 10 px; the outer ring is the image border. Cluster 0 = blocks 6, 7, 11, 12, cluster 1 = the rest
+// (bordering cluster 0).
+struct FiveByFiveBlocks {
+  cv::Mat labels = blockLabels(5);
+  std::vector<Superpixel> sp = [] {
+    std::vector<Superpixel> v(25, superpixel(50, 2.0, 1));
+    for (int s : {6, 7, 11, 12}) v[s].cluster = 0;
+    return v;
+  }();
+  std::vector<std::vector<int>> neighbours = superpixelNeighbours(labels, 25);
+  std::vector<bool> border = [] {
+    std::vector<bool> v(25, true);
+    for (int s : {6, 7, 8, 11, 12, 13, 16, 17, 18}) v[s] = false;
+    return v;
+  }();
+  // Centre of block s.
+  static cv::Point2f at(int s) { return cv::Point2f(10.f * (s % 5) + 5, 10.f * (s / 5) + 5); }
+};
+
 TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
-  // 5 x 5 blocks; the outer ring is the image border. Cluster 0 = blocks 6, 7, 11, 12 (dynamic), cluster 1 = the
-  // rest (static, bordering cluster 0). The dynamic cluster moves by (3, 0) px.
-  const cv::Mat labels = blockLabels(5);
-  std::vector<Superpixel> sp(25, superpixel(50, 2.0, 1));
-  for (int s : {6, 7, 11, 12}) sp[s].cluster = 0;
-  const auto neighbours = superpixelNeighbours(labels, 25);
-  std::vector<bool> border(25, true);
-  for (int s : {6, 7, 8, 11, 12, 13, 16, 17, 18}) border[s] = false;
+  // Cluster 0 is dynamic and moves by (3, 0) px; cluster 1 is static.
+  const FiveByFiveBlocks b;
+  const auto& [labels, sp, neighbours, border] = b;
   const std::vector<bool> dynamic_cluster = {true, false};
-  auto at = [](int s) { return cv::Point2f(10.f * (s % 5) + 5, 10.f * (s / 5) + 5); };
+  auto at = &FiveByFiveBlocks::at;
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<TrackEvidence> tracks = {
       {at(6), Eigen::Vector2d(3.0, 0.0), 0.1},   // moves with its dynamic cluster
@@ -199,16 +213,12 @@ TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
 }
 
 TEST(SuperpixelRegions, TracksOutsideTheDynamicClustersSeedOnlyWhenAskedAndInPairs) {
-  // 5 x 5 blocks, nothing dynamic. Block 7 holds two tracks moving by themselves, block 17 one, block 13 two moving
-  // and three still ones.
-  const cv::Mat labels = blockLabels(5);
-  std::vector<Superpixel> sp(25, superpixel(50, 2.0, 1));
-  for (int s : {6, 7, 11, 12}) sp[s].cluster = 0;
-  const auto neighbours = superpixelNeighbours(labels, 25);
-  std::vector<bool> border(25, true);
-  for (int s : {6, 7, 8, 11, 12, 13, 16, 17, 18}) border[s] = false;
+  // Nothing dynamic. Block 7 holds two tracks moving by themselves, block 17 one, block 13 two moving and three
+  // still ones.
+  const FiveByFiveBlocks b;
+  const auto& [labels, sp, neighbours, border] = b;
   const std::vector<bool> dynamic_cluster = {false, false};
-  auto at = [](int s) { return cv::Point2f(10.f * (s % 5) + 5, 10.f * (s / 5) + 5); };
+  auto at = &FiveByFiveBlocks::at;
   const Eigen::Vector2d moving(3.0, 0.0), still(0.1, 0.0);
   const std::vector<TrackEvidence> tracks = {
       {at(7), moving, 0.1},  {at(7), moving, 0.1},  {at(17), moving, 0.1}, {at(13), moving, 0.1},
