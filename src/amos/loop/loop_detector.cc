@@ -52,7 +52,6 @@ std::vector<map::KeyFramePtr> rankCandidates(const map::Map& map, const map::Key
                                              const LoopDetectorOptions& options,
                                              std::unordered_set<map::KeyFrameId>& connected) {
   connected = {current->id()};
-
   double max_neighbour_distance = 0;
   for (const auto& [w, id] : current->orderedConnections()) {
     connected.insert(id);

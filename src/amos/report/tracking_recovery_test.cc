@@ -35,9 +35,8 @@ struct RecoveryRun {
 };
 
 // Frames [blank_from, blank_to) are black (no features: tracking is lost there).
-RecoveryRun run(const std::vector<io::RgbdFrame>& frames, int recovery_frames, std::size_t blank_from,
-                std::size_t blank_to) {
-  const config::Settings settings = config::loadSettings(kTum2);
+RecoveryRun run(const config::Settings& settings, const std::vector<io::RgbdFrame>& frames, int recovery_frames,
+                std::size_t blank_from, std::size_t blank_to) {
   system::SlamOptions options = slamOptionsFromSettings(settings, /*deterministic=*/true);
   options.tracking.recovery_frames = recovery_frames;
   options.tracking.relocalization.min_inliers = 1000000;  // the global relocaliser never accepts a pose
@@ -56,11 +55,12 @@ RecoveryRun run(const std::vector<io::RgbdFrame>& frames, int recovery_frames, s
 
 TEST(TrackingRecovery, LostFramesRecoverNearTheLastPoseWithoutTheRelocaliser) {
   ASSERT_TRUE(std::filesystem::exists(kFr2)) << kFr2;
-  const std::vector<io::RgbdFrame> frames = loadFrames(config::loadSettings(kTum2), 16);
+  const config::Settings settings = config::loadSettings(kTum2);
+  const std::vector<io::RgbdFrame> frames = loadFrames(settings, 16);
   ASSERT_EQ(frames.size(), 16u);
-  const RecoveryRun reference = run(frames, 30, 0, 0);
-  const RecoveryRun with_recovery = run(frames, 30, 10, 13);
-  const RecoveryRun without = run(frames, 0, 10, 13);
+  const RecoveryRun reference = run(settings, frames, 30, 0, 0);
+  const RecoveryRun with_recovery = run(settings, frames, 30, 10, 13);
+  const RecoveryRun without = run(settings, frames, 0, 10, 13);
   for (std::size_t i = 10; i < 13; ++i) {
     EXPECT_EQ(with_recovery.states[i], tracking::TrackingState::kLost) << "blank frame " << i;
     EXPECT_EQ(without.states[i], tracking::TrackingState::kLost) << "blank frame " << i;
