@@ -7,6 +7,8 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
   in.read("Dynamic.mode", mode);
   o.mode = dynamic::parseDynamicMode(mode);
   in.read("Dynamic.judgePriorRegions", o.judge_prior_regions);
+  in.read("Dynamic.priorMaskedExtraction", o.prior_masked_extraction);
+  in.read("Dynamic.priorMaskedExtractionCoverage", o.prior_masked_extraction_coverage);
 
   in.read("Dynamic.Superpixel.count", o.superpixel.num_superpixels);
   in.read("Dynamic.Superpixel.scale", o.superpixel.scale);
@@ -56,6 +58,7 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
 
   in.read("Dynamic.InitialPose.inlierThreshold", o.initial_pose.inlier_threshold_px);
   in.read("Dynamic.InitialPose.keyframeForwardBackward", o.initial_pose.keyframe_forward_backward);
+  in.read("Dynamic.InitialPose.keyframeMaxPoints", o.initial_pose.keyframe_max_points);
 }
 
 void readSegmentationSection(YamlReader& in, dynamic::SegmenterOptions& o) {

@@ -27,6 +27,21 @@ TEST(DynamicSection, ReadsThePoseRefitAndSuperpixelMaskKeys) {
   EXPECT_FALSE(o.boundary.superpixel_mask);
 }
 
+TEST(DynamicSection, ReadsTheMaskedExtractionKeys) {
+  YamlReader in = YamlReader::fromText(
+      "Dynamic.priorMaskedExtraction: 0\n"
+      "Dynamic.priorMaskedExtractionCoverage: 0.25\n"
+      "Dynamic.InitialPose.keyframeMaxPoints: 120\n",
+      "test.yaml");
+  dynamic::DynamicOptions o;
+  ASSERT_TRUE(o.prior_masked_extraction);
+  readDynamicSection(in, o);
+  EXPECT_FALSE(o.prior_masked_extraction);
+  EXPECT_DOUBLE_EQ(o.prior_masked_extraction_coverage, 0.25);
+  EXPECT_EQ(o.initial_pose.keyframe_max_points, 120);
+  EXPECT_NO_THROW(o.check());
+}
+
 TEST(DynamicSection, ShippedConfigsSpellTheDefaults) {
   for (const char* name : {"tum1", "tum2", "tum3", "bonn"}) {
     const Settings s = loadSettings(std::string(AMOS_SOURCE_DIR) + "/configs/" + name + ".yaml");
@@ -48,6 +63,18 @@ TEST(DynamicSection, InvalidValuesNameTheirKey) {
     FAIL() << "a negative threshold passed";
   } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("Dynamic.Reprojection.confirmThreshold"), std::string::npos) << e.what();
+  }
+  for (const char* text : {"Dynamic.priorMaskedExtractionCoverage: 1.5\n", "Dynamic.InitialPose.keyframeMaxPoints: -3\n"}) {
+    YamlReader bad = YamlReader::fromText(text, "bad.yaml");
+    dynamic::DynamicOptions options;
+    readDynamicSection(bad, options);
+    const std::string key = std::string(text).substr(0, std::string(text).find(':'));
+    try {
+      options.check();
+      ADD_FAILURE() << text << " passed";
+    } catch (const core::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -11,6 +11,8 @@ namespace amos::dynamic {
 void InitialPoseOptions::check() const {
   core::require(std::isfinite(inlier_threshold_px) && inlier_threshold_px > 0,
                 fmt::format("Dynamic.InitialPose.inlierThreshold must be positive, got {}", inlier_threshold_px));
+  core::require(keyframe_max_points >= 0,
+                fmt::format("Dynamic.InitialPose.keyframeMaxPoints must be >= 0, got {}", keyframe_max_points));
   pnp.check();
 }
 

@@ -35,6 +35,12 @@ struct InitialPoseOptions {
   // Bonn crowd (LK window 11, 3 runs each): ATE 1.62 / 1.65 / 1.81 cm with 0 against 1.61-2.03 with 1, lost frames
   // 20-37 against 22-25, initial pose 6.4 -> 5.3 ms CPU per frame.
   bool keyframe_forward_backward = false;
+  // Dynamic.InitialPose.keyframeMaxPoints: model 1 tracks at most this many of the reference keyframe's map-point
+  // keypoints (every k-th, which keeps the extractor's spread over the image and the levels; 0 = all). The model
+  // only seeds the tracker's pose, and EPnP RANSAC with a few hundred spread correspondences is as good as with a
+  // thousand, while LK and the RANSAC's inlier counting cost grow with the number. Matters once the keyframes hold
+  // many points (Dynamic.priorMaskedExtraction puts the whole feature budget on the static part of the view).
+  int keyframe_max_points = 300;
   void check() const;
 };
 

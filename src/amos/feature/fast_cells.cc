@@ -54,6 +54,16 @@ std::vector<cv::KeyPoint> detectFastInCells(const cv::Mat& padded, int border, c
     const int c = cellOf(xs, static_cast<int>(kp.pt.x)), r = cellOf(ys, static_cast<int>(kp.pt.y));
     has_corner[static_cast<size_t>(r * cols + c)] = 1;
   }
+  // A cell the mask forbids entirely cannot gain a corner from the lower threshold: no second FAST pass there
+  // (with a mask over the people in view, that is much of the image).
+  if (!mask.empty()) {
+    for (int r = 0; r < rows; ++r) {
+      for (int c = 0; c < cols; ++c) {
+        const cv::Rect cell(xs[c], ys[r], xs[c + 1] - xs[c], ys[r + 1] - ys[r]);
+        if (cv::countNonZero(mask(cell)) == 0) has_corner[static_cast<size_t>(r * cols + c)] = 1;
+      }
+    }
+  }
   // Horizontal runs of empty cells are searched in one FAST call each: cv::FAST has a per-call cost that would
   // otherwise dominate when many small cells fall back.
   for (int r = 0; r < rows; ++r) {

@@ -112,12 +112,16 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
   const tracking::ReferenceKeyFrameView view = slam_.tracker().referenceKeyFrameView();
   for (const auto& [id, keyframe] : keyframe_pyramids_) {
     if (id != view.id) continue;
+    std::vector<std::size_t> with_point;
+    for (std::size_t i = 0; i < view.keypoints.size(); ++i)
+      if (view.has_point[i]) with_point.push_back(i);
+    const auto max_points = static_cast<std::size_t>(options_.initial_pose.keyframe_max_points);
+    const std::size_t stride = max_points > 0 ? (with_point.size() + max_points - 1) / max_points : 1;
     std::vector<cv::Point2f> pixels;
     std::vector<Eigen::Vector3d> points_w;
-    for (std::size_t i = 0; i < view.keypoints.size(); ++i) {
-      if (!view.has_point[i]) continue;
-      pixels.push_back(view.keypoints[i].pt);
-      points_w.push_back(view.points_w[i]);
+    for (std::size_t k = 0; k < with_point.size(); k += std::max<std::size_t>(stride, 1)) {
+      pixels.push_back(view.keypoints[with_point[k]].pt);
+      points_w.push_back(view.points_w[with_point[k]]);
     }
     dynamic::CornerTrackingOptions tracking = options_.tracking;
     tracking.forward_backward_check = options_.initial_pose.keyframe_forward_backward;
@@ -142,49 +146,76 @@ void DynamicPipeline::requestSegmentation(const io::RgbdFrame& frame) {
   submitted_.push_back({frame.index, frame.bgr.data, segmentation_->submit(frame.index, frame.bgr, frame.depth)});
 }
 
-std::future<dynamic::SegmentationResult> DynamicPipeline::takeSegmentation(const io::RgbdFrame& frame) {
+bool DynamicPipeline::masksExtraction() const {
+  return usesSegmentation() && options_.prior_masked_extraction && !options_.judge_prior_regions;
+}
+
+std::shared_future<dynamic::SegmentationResult> DynamicPipeline::takeSegmentation(const io::RgbdFrame& frame) {
   // Results of frames the caller announced but never processed are dropped (the worker still finishes them).
   while (!submitted_.empty() && (submitted_.front().index != frame.index || submitted_.front().image != frame.bgr.data))
     submitted_.pop_front();
   core::require(!submitted_.empty(), "DynamicPipeline: no segmentation was requested for this frame");
-  std::future<dynamic::SegmentationResult> result = std::move(submitted_.front().result);
+  std::shared_future<dynamic::SegmentationResult> result = std::move(submitted_.front().result);
   submitted_.pop_front();
   return result;
 }
 
-PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_partition) const {
+PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_partition,
+                                      std::shared_future<dynamic::SegmentationResult> previous_segmentation) const {
   const double cpu_start = threadCpuMs();
   PreparedFrame prepared;
-  prepared.features = slam_.extract(frame);
+  core::Stopwatch convert;
+  const cv::Mat gray = SlamSystem::toGray(frame);
+  const double convert_ms = convert.elapsedMs();
+  // What does not need the segmentation first, so that a wait for it comes as late as possible.
   if (usesGeometry()) {
     core::Stopwatch watch;
-    prepared.pyramid = dynamic::buildPyramid(prepared.features.gray, options_.tracking);
+    prepared.pyramid = dynamic::buildPyramid(gray, options_.tracking);
     prepared.pyramid_ms = watch.elapsedMs();
     watch.restart();
-    prepared.corners = dynamic::detectCorners(prepared.features.gray, options_.tracking);
+    prepared.corners = dynamic::detectCorners(gray, options_.tracking);
     prepared.corners_ms = watch.elapsedMs();
     if (with_partition)
       prepared.partition =
           dynamic::computeGeometricPartition(frame.bgr, frame.depth, options_.superpixel, options_.cluster);
   }
+  // The previous frame's mask rather than this frame's: waiting for this frame's segmentation would put the
+  // segmenter and the extractor one after the other on every frame. People move a few pixels between frames, well
+  // inside the mask's dilation; keypoints that still land on a person are removed with this frame's mask as always.
+  cv::Mat allowed;
+  if (masksExtraction() && previous_segmentation.valid()) {
+    core::Stopwatch wait;
+    const dynamic::SegmentationResult& segmented = previous_segmentation.get();
+    prepared.segmentation_wait_ms = wait.elapsedMs();
+    const cv::Mat& dynamic = segmented.dilated_mask;
+    if (!dynamic.empty() && cv::countNonZero(dynamic) >= options_.prior_masked_extraction_coverage *
+                                                             static_cast<double>(dynamic.total()))
+      allowed = dynamic == 0;
+  }
+  prepared.features = slam_.extractGray(gray, allowed);
+  prepared.features.extract_ms += convert_ms;
   prepared.cpu_ms = threadCpuMs() - cpu_start;
   return prepared;
 }
 
-void DynamicPipeline::requestPreparation(const io::RgbdFrame& frame) {
+void DynamicPipeline::requestPreparation(const io::RgbdFrame& frame,
+                                         const std::shared_future<dynamic::SegmentationResult>& previous_segmentation) {
   for (const Preparing& p : preparing_)
     if (p.index == frame.index && p.image == frame.bgr.data) return;
   if (!look_ahead_) look_ahead_ = std::make_unique<LookAheadWorker>();
   // The job holds its own references to the images (cv::Mat headers share the pixels), not to the caller's frame.
   // The partition is made even though whether the frame will have a last frame (and use it) is not known yet.
   preparing_.push_back({frame.index, frame.bgr.data,
-                        look_ahead_->submit([this, frame] { return prepare(frame, usesGeometry()); })});
+                        look_ahead_->submit([this, frame, previous_segmentation] {
+                          return prepare(frame, usesGeometry(), previous_segmentation);
+                        })});
 }
 
-PreparedFrame DynamicPipeline::takePreparation(const io::RgbdFrame& frame) {
+PreparedFrame DynamicPipeline::takePreparation(const io::RgbdFrame& frame,
+                                              const std::shared_future<dynamic::SegmentationResult>& previous_segmentation) {
   while (!preparing_.empty() && (preparing_.front().index != frame.index || preparing_.front().image != frame.bgr.data))
     preparing_.pop_front();  // announced but never processed: dropped (the worker still finishes it)
-  if (preparing_.empty()) return prepare(frame, false);
+  if (preparing_.empty()) return prepare(frame, false, previous_segmentation);
   core::Stopwatch wait;
   PreparedFrame prepared = preparing_.front().result.get();
   preparing_.pop_front();
@@ -196,7 +227,7 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
   DynamicFrameOutput out;
   // 1. Segmentation of this frame runs in its own thread (it started during the previous call when that call was
   //    given this frame as look-ahead), then the next frame's ...
-  std::future<dynamic::SegmentationResult> pending;
+  std::shared_future<dynamic::SegmentationResult> pending;
   if (usesSegmentation()) {
     requestSegmentation(frame);
     pending = takeSegmentation(frame);
@@ -204,11 +235,13 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
   }
   // 2. ... while this thread extracts features (or takes them from the look-ahead worker, which then goes on with
   //    the next frame).
-  PreparedFrame prepared = takePreparation(frame);
-  if (next != nullptr) requestPreparation(*next);
+  PreparedFrame prepared = takePreparation(frame, previous_segmentation_);
+  if (next != nullptr) requestPreparation(*next, pending);
+  previous_segmentation_ = pending;
   const ExtractedFeatures& features = prepared.features;
   dynamic::ImagePyramid& current_pyramid = prepared.pyramid;
   times_.add("cpu.prepare", prepared.cpu_ms);
+  if (masksExtraction()) times_.add("dynamic.extraction_segmentation_wait", prepared.segmentation_wait_ms);
   if (!current_pyramid.empty()) {
     times_.add("dynamic.pyramid", prepared.pyramid_ms);
     times_.add("dynamic.corner_detection", prepared.corners_ms);
@@ -223,7 +256,7 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
     if (prepared.partition) input.partition = &*prepared.partition;
     if (pending.valid()) {
       core::Stopwatch wait;
-      dynamic::SegmentationResult segmented = pending.get();
+      const dynamic::SegmentationResult& segmented = pending.get();
       times_.add("dynamic.segmentation_wait", wait.elapsedMs());
       times_.add("dynamic.segmentation", segmented.segment_ms);
       times_.add("cpu.segmentation", segmented.segment_cpu_ms);

@@ -22,6 +22,10 @@
 // thread tracks the current frame, which leaves this thread only the work that needs the last frame or the map
 // (corner tracks, initial pose, judgement, tracking). The preparation is the same pure function with or without
 // look-ahead, so the results do not change either.
+// Masked extraction (Dynamic.priorMaskedExtraction): when people covered at least half of the previous frame, a
+// frame's ORB features are detected outside that frame's dilated person mask, so the feature budget goes to the
+// static part of the view (the preparation then waits for the previous frame's segmentation, which started a
+// frame earlier). Both paths use the previous frame's mask, so this too is the same with or without look-ahead.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -49,6 +53,7 @@ struct PreparedFrame {
   // makes them itself when it needs them).
   std::optional<dynamic::GeometricPartition> partition;
   double pyramid_ms = 0, corners_ms = 0;
+  double segmentation_wait_ms = 0;  // waiting for the previous frame's segmentation before a masked extraction
   double cpu_ms = 0;  // CPU time of the preparing thread
 };
 
@@ -83,13 +88,19 @@ class DynamicPipeline {
   bool usesSegmentation() const;
   // Submits `frame` unless it is already on its way; drops what was submitted for frames that were skipped.
   void requestSegmentation(const io::RgbdFrame& frame);
-  std::future<dynamic::SegmentationResult> takeSegmentation(const io::RgbdFrame& frame);
-  // Everything of `frame` that needs only the frame; with_partition adds the geometric partition.
-  PreparedFrame prepare(const io::RgbdFrame& frame, bool with_partition) const;
+  std::shared_future<dynamic::SegmentationResult> takeSegmentation(const io::RgbdFrame& frame);
+  bool masksExtraction() const;
+  // Everything of `frame` that needs only the frame; with_partition adds the geometric partition. With
+  // masksExtraction(), ORB features are detected outside the dilated prior mask of `previous_segmentation` (the
+  // frame processed before this one; invalid: no mask).
+  PreparedFrame prepare(const io::RgbdFrame& frame, bool with_partition,
+                        std::shared_future<dynamic::SegmentationResult> previous_segmentation) const;
   // Hands `frame` to the look-ahead worker unless it is already there.
-  void requestPreparation(const io::RgbdFrame& frame);
+  void requestPreparation(const io::RgbdFrame& frame,
+                          const std::shared_future<dynamic::SegmentationResult>& previous_segmentation);
   // The prepared frame from the worker when it was requested, else prepared here.
-  PreparedFrame takePreparation(const io::RgbdFrame& frame);
+  PreparedFrame takePreparation(const io::RgbdFrame& frame,
+                                const std::shared_future<dynamic::SegmentationResult>& previous_segmentation);
   bool usesGeometry() const;
   std::optional<core::SE3> initialPose(const dynamic::ImagePyramid& current,
                                        const std::vector<dynamic::PointTrack>& tracks,
@@ -114,9 +125,11 @@ class DynamicPipeline {
   struct Submitted {
     std::size_t index = 0;
     const void* image = nullptr;
-    std::future<dynamic::SegmentationResult> result;
+    std::shared_future<dynamic::SegmentationResult> result;  // shared: the look-ahead worker may wait on it too
   };
   std::deque<Submitted> submitted_;
+  // Segmentation of the frame processed last: its dilated mask steers the next frame's ORB extraction.
+  std::shared_future<dynamic::SegmentationResult> previous_segmentation_;
   // Frames handed to the look-ahead worker (same rules as submitted_).
   struct Preparing {
     std::size_t index = 0;

@@ -163,5 +163,60 @@ TEST(DynamicPipeline, LookAheadSubmitsTheNextFrameEarly) {
   EXPECT_EQ(log->started, (std::set<int>{1, 2, 3, 4, 5}));
 }
 
+// A segmenter that reports one "person" covering the left `fraction` of every image.
+class LeftBandSegmenter : public dynamic::Segmenter {
+ public:
+  explicit LeftBandSegmenter(double fraction) : fraction_(fraction) {}
+  std::vector<dynamic::SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat&) override {
+    dynamic::SegmentedInstance person;
+    person.class_id = 0;
+    person.score = 1.f;
+    person.box = cv::Rect(0, 0, static_cast<int>(fraction_ * bgr.cols), bgr.rows);
+    person.mask = cv::Mat(person.box.size(), CV_8UC1, cv::Scalar(255));
+    return {person};
+  }
+  std::string name() const override { return "left band"; }
+
+ private:
+  double fraction_;
+};
+
+struct MaskedExtractionRun {
+  int kept = 0, removed = 0;  // keypoints of the last frame outside / inside the dynamic mask
+};
+
+MaskedExtractionRun runLeftBand(const std::vector<io::RgbdFrame>& frames, double fraction, bool masked) {
+  SlamSystem slam(bonnOptions());
+  dynamic::DynamicOptions options;
+  options.mode = dynamic::DynamicMode::kPrior;
+  options.prior_masked_extraction = masked;
+  DynamicPipeline pipeline(slam, options,
+                           std::make_unique<dynamic::SegmentationWorker>(std::make_unique<LeftBandSegmenter>(fraction),
+                                                                         dynamic::MaskDilationOptions{}));
+  MaskedExtractionRun run;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const DynamicFrameOutput out = pipeline.process(frames[k], k + 1 < frames.size() ? &frames[k + 1] : nullptr);
+    run.kept = out.slam.keypoints;
+    run.removed = out.slam.removed_dynamic;
+  }
+  pipeline.finish();
+  return run;
+}
+
+// With 70 % of the view masked, the second frame's ORB features are detected outside the first frame's (dilated)
+// mask: none is thrown away and the static part gets the whole budget. With 30 % masked (below
+// priorMaskedExtractionCoverage), or with the option off, extraction ignores the mask and the mask removes them.
+TEST(DynamicPipeline, MaskedExtractionPutsTheFeatureBudgetOutsideLargePriorMasks) {
+  ASSERT_TRUE(std::filesystem::exists(kBonn)) << kBonn;
+  const std::vector<io::RgbdFrame> frames = bonnFrames(2, 0);
+  const MaskedExtractionRun masked = runLeftBand(frames, 0.7, true);
+  const MaskedExtractionRun unmasked = runLeftBand(frames, 0.7, false);
+  EXPECT_EQ(masked.removed, 0);
+  EXPECT_GT(unmasked.removed, 300);
+  EXPECT_GT(masked.kept, 2 * unmasked.kept) << "the budget did not move to the unmasked part";
+  const MaskedExtractionRun small = runLeftBand(frames, 0.3, true);
+  EXPECT_GT(small.removed, 100) << "a mask below the coverage threshold must not steer the extraction";
+}
+
 }  // namespace
 }  // namespace amos::system

@@ -33,12 +33,27 @@ SlamSystem::SlamSystem(const SlamOptions& options)
 
 SlamSystem::~SlamSystem() { finish(); }
 
-ExtractedFeatures SlamSystem::extract(const io::RgbdFrame& frame) const {
+cv::Mat SlamSystem::toGray(const io::RgbdFrame& frame) {
   core::require(frame.bgr.type() == CV_8UC3, "SlamSystem: colour image must be CV_8UC3");
+  cv::Mat gray;
+  cv::cvtColor(frame.bgr, gray, cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+ExtractedFeatures SlamSystem::extract(const io::RgbdFrame& frame, const cv::Mat& allowed) const {
+  core::Stopwatch watch;
+  const cv::Mat gray = toGray(frame);
+  const double convert_ms = watch.elapsedMs();
+  ExtractedFeatures out = extractGray(gray, allowed);
+  out.extract_ms += convert_ms;
+  return out;
+}
+
+ExtractedFeatures SlamSystem::extractGray(const cv::Mat& gray, const cv::Mat& allowed) const {
   core::Stopwatch watch;
   ExtractedFeatures out;
-  cv::cvtColor(frame.bgr, out.gray, cv::COLOR_BGR2GRAY);
-  extractor_.extract(out.gray, out.keypoints, out.descriptors);
+  out.gray = gray;
+  extractor_.extract(out.gray, out.keypoints, out.descriptors, allowed);
   out.extract_ms = watch.elapsedMs();
   return out;
 }
