@@ -47,8 +47,9 @@ struct DynamicOptions {
   // Dynamic.priorMaskedExtractionCoverage: ... but only once the mask covers at least this fraction of the image,
   // i.e. once more than half of the budget would be thrown away. Below that the static part still gets at least
   // half of the features, enough to track, and the unmasked extraction keeps the per-frame cost (a masked one puts
-  // the whole budget on the static part: more points to match, track and adjust). Bonn crowd slice: 18 frames lost
-  // and 23 before the map could start without it, none with it.
+  // the whole budget on the static part: more points to match, track and adjust). Before the map exists the mask
+  // is used at any coverage: the frame alone must then supply Tracking.initMinDepthPoints static points.
+  // Bonn crowd slice: 16-20 frames lost and 23 before the map could start without it, none with it.
   double prior_masked_extraction_coverage = 0.5;
   DepthSlicOptions superpixel;       // Dynamic.Superpixel.*
   ClusteringOptions cluster;         // Dynamic.Cluster.*

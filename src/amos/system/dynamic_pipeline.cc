@@ -161,7 +161,8 @@ std::shared_future<dynamic::SegmentationResult> DynamicPipeline::takeSegmentatio
 }
 
 PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_partition,
-                                      std::shared_future<dynamic::SegmentationResult> previous_segmentation) const {
+                                      std::shared_future<dynamic::SegmentationResult> previous_segmentation,
+                                      bool map_ready) const {
   const double cpu_start = threadCpuMs();
   PreparedFrame prepared;
   core::Stopwatch convert;
@@ -188,9 +189,9 @@ PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_par
     const dynamic::SegmentationResult& segmented = previous_segmentation.get();
     prepared.segmentation_wait_ms = wait.elapsedMs();
     const cv::Mat& dynamic = segmented.dilated_mask;
-    if (!dynamic.empty() && cv::countNonZero(dynamic) >= options_.prior_masked_extraction_coverage *
-                                                             static_cast<double>(dynamic.total()))
-      allowed = dynamic == 0;
+    const bool large = cv::countNonZero(dynamic) >=
+                       options_.prior_masked_extraction_coverage * static_cast<double>(dynamic.total());
+    if (!dynamic.empty() && (large || !map_ready)) allowed = dynamic == 0;
   }
   prepared.features = slam_.extractGray(gray, allowed);
   prepared.features.extract_ms += convert_ms;
@@ -199,23 +200,25 @@ PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_par
 }
 
 void DynamicPipeline::requestPreparation(const io::RgbdFrame& frame,
-                                         const std::shared_future<dynamic::SegmentationResult>& previous_segmentation) {
+                                         const std::shared_future<dynamic::SegmentationResult>& previous_segmentation,
+                                         bool map_ready) {
   for (const Preparing& p : preparing_)
     if (p.index == frame.index && p.image == frame.bgr.data) return;
   if (!look_ahead_) look_ahead_ = std::make_unique<LookAheadWorker>();
   // The job holds its own references to the images (cv::Mat headers share the pixels), not to the caller's frame.
   // The partition is made even though whether the frame will have a last frame (and use it) is not known yet.
   preparing_.push_back({frame.index, frame.bgr.data,
-                        look_ahead_->submit([this, frame, previous_segmentation] {
-                          return prepare(frame, usesGeometry(), previous_segmentation);
+                        look_ahead_->submit([this, frame, previous_segmentation, map_ready] {
+                          return prepare(frame, usesGeometry(), previous_segmentation, map_ready);
                         })});
 }
 
 PreparedFrame DynamicPipeline::takePreparation(const io::RgbdFrame& frame,
-                                              const std::shared_future<dynamic::SegmentationResult>& previous_segmentation) {
+                                              const std::shared_future<dynamic::SegmentationResult>& previous_segmentation,
+                                              bool map_ready) {
   while (!preparing_.empty() && (preparing_.front().index != frame.index || preparing_.front().image != frame.bgr.data))
     preparing_.pop_front();  // announced but never processed: dropped (the worker still finishes it)
-  if (preparing_.empty()) return prepare(frame, false, previous_segmentation);
+  if (preparing_.empty()) return prepare(frame, false, previous_segmentation, map_ready);
   core::Stopwatch wait;
   PreparedFrame prepared = preparing_.front().result.get();
   preparing_.pop_front();
@@ -235,9 +238,12 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
   }
   // 2. ... while this thread extracts features (or takes them from the look-ahead worker, which then goes on with
   //    the next frame).
-  PreparedFrame prepared = takePreparation(frame, previous_segmentation_);
-  if (next != nullptr) requestPreparation(*next, pending);
+  // The map's state after the previous frame: what the look-ahead preparation of the next frame can know.
+  const bool map_ready_one_frame_back = slam_.tracker().state() != tracking::TrackingState::kNotInitialized;
+  PreparedFrame prepared = takePreparation(frame, previous_segmentation_, map_ready_two_frames_back_);
+  if (next != nullptr) requestPreparation(*next, pending, map_ready_one_frame_back);
   previous_segmentation_ = pending;
+  map_ready_two_frames_back_ = map_ready_one_frame_back;
   const ExtractedFeatures& features = prepared.features;
   dynamic::ImagePyramid& current_pyramid = prepared.pyramid;
   times_.add("cpu.prepare", prepared.cpu_ms);

@@ -93,14 +93,17 @@ class DynamicPipeline {
   // Everything of `frame` that needs only the frame; with_partition adds the geometric partition. With
   // masksExtraction(), ORB features are detected outside the dilated prior mask of `previous_segmentation` (the
   // frame processed before this one; invalid: no mask).
+  // `map_ready`: whether the map existed two frames before `frame` (the newest state a look-ahead preparation can
+  // know; the inline path passes the same one, so both give the same features).
   PreparedFrame prepare(const io::RgbdFrame& frame, bool with_partition,
-                        std::shared_future<dynamic::SegmentationResult> previous_segmentation) const;
+                        std::shared_future<dynamic::SegmentationResult> previous_segmentation, bool map_ready) const;
   // Hands `frame` to the look-ahead worker unless it is already there.
   void requestPreparation(const io::RgbdFrame& frame,
-                          const std::shared_future<dynamic::SegmentationResult>& previous_segmentation);
+                          const std::shared_future<dynamic::SegmentationResult>& previous_segmentation, bool map_ready);
   // The prepared frame from the worker when it was requested, else prepared here.
   PreparedFrame takePreparation(const io::RgbdFrame& frame,
-                                const std::shared_future<dynamic::SegmentationResult>& previous_segmentation);
+                                const std::shared_future<dynamic::SegmentationResult>& previous_segmentation,
+                                bool map_ready);
   bool usesGeometry() const;
   std::optional<core::SE3> initialPose(const dynamic::ImagePyramid& current,
                                        const std::vector<dynamic::PointTrack>& tracks,
@@ -130,6 +133,8 @@ class DynamicPipeline {
   std::deque<Submitted> submitted_;
   // Segmentation of the frame processed last: its dilated mask steers the next frame's ORB extraction.
   std::shared_future<dynamic::SegmentationResult> previous_segmentation_;
+  // Whether the map existed after the frame before the previous one (see prepare()).
+  bool map_ready_two_frames_back_ = false;
   // Frames handed to the look-ahead worker (same rules as submitted_).
   struct Preparing {
     std::size_t index = 0;

@@ -183,6 +183,7 @@ class LeftBandSegmenter : public dynamic::Segmenter {
 
 struct MaskedExtractionRun {
   int kept = 0, removed = 0;  // keypoints of the last frame outside / inside the dynamic mask
+  bool map_from_first_frame = false;
 };
 
 MaskedExtractionRun runLeftBand(const std::vector<io::RgbdFrame>& frames, double fraction, bool masked) {
@@ -198,24 +199,39 @@ MaskedExtractionRun runLeftBand(const std::vector<io::RgbdFrame>& frames, double
     const DynamicFrameOutput out = pipeline.process(frames[k], k + 1 < frames.size() ? &frames[k + 1] : nullptr);
     run.kept = out.slam.keypoints;
     run.removed = out.slam.removed_dynamic;
+    if (k == 0) run.map_from_first_frame = out.slam.track.initialized_map;
   }
   pipeline.finish();
   return run;
 }
 
-// With 70 % of the view masked, the second frame's ORB features are detected outside the first frame's (dilated)
+// With 70 % of the view masked, the last frame's ORB features are detected outside the previous frame's (dilated)
 // mask: none is thrown away and the static part gets the whole budget. With 30 % masked (below
-// priorMaskedExtractionCoverage), or with the option off, extraction ignores the mask and the mask removes them.
+// priorMaskedExtractionCoverage) and a map in place, or with the option off, extraction ignores the mask and the
+// mask removes them.
 TEST(DynamicPipeline, MaskedExtractionPutsTheFeatureBudgetOutsideLargePriorMasks) {
   ASSERT_TRUE(std::filesystem::exists(kBonn)) << kBonn;
-  const std::vector<io::RgbdFrame> frames = bonnFrames(2, 0);
+  const std::vector<io::RgbdFrame> frames = bonnFrames(4, 0);
   const MaskedExtractionRun masked = runLeftBand(frames, 0.7, true);
   const MaskedExtractionRun unmasked = runLeftBand(frames, 0.7, false);
   EXPECT_EQ(masked.removed, 0);
   EXPECT_GT(unmasked.removed, 300);
   EXPECT_GT(masked.kept, 2 * unmasked.kept) << "the budget did not move to the unmasked part";
   const MaskedExtractionRun small = runLeftBand(frames, 0.3, true);
+  ASSERT_TRUE(small.map_from_first_frame);
   EXPECT_GT(small.removed, 100) << "a mask below the coverage threshold must not steer the extraction";
+}
+
+// Before the map exists the mask steers the extraction at any coverage: the frame alone must supply the points to
+// start the map. Here the first two frames have no depth, so no map exists before the third frame is prepared.
+TEST(DynamicPipeline, MaskedExtractionBeforeTheMapIgnoresTheCoverage) {
+  ASSERT_TRUE(std::filesystem::exists(kBonn)) << kBonn;
+  std::vector<io::RgbdFrame> frames = bonnFrames(3, 0);
+  for (std::size_t k = 0; k < 2; ++k) frames[k].depth = cv::Mat(frames[k].depth.size(), CV_32F, cv::Scalar(0));
+  const MaskedExtractionRun small = runLeftBand(frames, 0.3, true);
+  EXPECT_FALSE(small.map_from_first_frame);
+  EXPECT_EQ(small.removed, 0);
+  EXPECT_GT(small.kept, 0);
 }
 
 }  // namespace
