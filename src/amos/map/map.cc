@@ -190,7 +190,17 @@ void Map::updateConnections(const KeyFramePtr& kf) {
   }
   kf->setConnections(kept);
   if (!kf->hasFirstConnection() && kf->id() != first_kf_) {
-    const KeyFrameId parent = kf->orderedConnections().front().second;
+    // Spanning-tree parent: the most covisible *older* keyframe. Tracking inserts keyframes while mapping still
+    // works on earlier ones, so a newer keyframe may already share the most points; taking it could make two
+    // keyframes each other's parent, and the parent chain of a removed keyframe (keyFramePose) would never end.
+    // Parents older than their children keep the tree acyclic by construction.
+    KeyFrameId parent = first_kf_;
+    for (const auto& [w, id] : kf->orderedConnections()) {
+      if (id < kf->id()) {
+        parent = id;
+        break;
+      }
+    }
     kf->setParent(parent);
     if (const KeyFramePtr pk = keyFrame(parent)) pk->addChild(kf->id());
     kf->markFirstConnectionDone();
@@ -256,14 +266,19 @@ bool Map::knowsKeyFrame(KeyFrameId id) const { return keyframes_.count(id) || re
 core::SE3 Map::keyFramePose(KeyFrameId id) const {
   core::SE3 T = core::SE3::Identity();
   // Walk up removed keyframes (bounded by their number) until a live one.
+  const KeyFrameId asked = id;
   for (std::size_t guard = 0; guard <= removed_.size(); ++guard) {
     if (const KeyFramePtr kf = keyFrame(id)) return T * kf->T_cw();
     const auto it = removed_.find(id);
-    if (it == removed_.end()) break;
+    if (it == removed_.end()) {
+      throw core::Error("Map::keyFramePose: unknown keyframe " + std::to_string(id) +
+                        (id == asked ? std::string() : " (parent chain of keyframe " + std::to_string(asked) + ")"));
+    }
     T = T * it->second.T_cp;
     id = it->second.parent;
   }
-  throw core::Error("Map::keyFramePose: unknown keyframe " + std::to_string(id));
+  throw core::Error("Map::keyFramePose: the parent chain of removed keyframe " + std::to_string(asked) +
+                    " does not reach a live keyframe (a cycle)");
 }
 
 std::vector<MapPointId> Map::dynamicPointCandidates(int min_hits, double min_ratio) const {

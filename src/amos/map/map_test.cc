@@ -150,6 +150,41 @@ TEST(Map, RemovedKeyFrameFollowsItsParent) {
   EXPECT_FALSE(s.kfs[0]->isBad());
 }
 
+// Tracking inserts keyframes while mapping works on older ones: kf1 gets its first connections only after kf2 exists
+// and shares more points with kf2 than with kf0. Its parent must still be the older kf0; with kf2 as parent (kf2's
+// parent being kf1) removing both left a parent chain that never reached a live keyframe, and writing the
+// trajectory failed at the end of a long run.
+TEST(Map, ParentsAreOlderSoRemovedChainsEnd) {
+  Map map;
+  std::vector<KeyFramePtr> kfs;
+  for (int k = 0; k < 4; ++k) {
+    Frame f = syntheticFrame(k, 60, shifted(0.1 * k), 20 + k);
+    kfs.push_back(std::make_shared<KeyFrame>(map.newKeyFrameId(), f));
+    map.addKeyFrame(kfs.back());
+  }
+  std::vector<MapPointPtr> points;
+  for (int i = 0; i < 20; ++i) {  // 20 points of kf0, seen by kf1 and kf3
+    points.push_back(map.createMapPoint(Eigen::Vector3d(0.01 * i, 0, 2), kfs[0], i, 0));
+    map.addObservation(points.back(), kfs[1], i);
+    map.addObservation(points.back(), kfs[3], i);
+  }
+  for (int i = 20; i < 60; ++i) {  // 40 points of kf1, seen by kf2
+    points.push_back(map.createMapPoint(Eigen::Vector3d(0.01 * i, 0.1, 2), kfs[1], i, 1));
+    map.addObservation(points.back(), kfs[2], i);
+  }
+  map.updateConnections(kfs[0]);
+  map.updateConnections(kfs[2]);  // kf2 first: its best covisible is kf1 (40), older -> parent kf1
+  map.updateConnections(kfs[1]);  // kf1's best covisible is kf2 (40 > 20), but kf2 is newer -> parent kf0
+  map.updateConnections(kfs[3]);
+  EXPECT_EQ(kfs[2]->parent(), kfs[1]->id());
+  EXPECT_EQ(kfs[1]->parent(), kfs[0]->id());
+  const core::SE3 pose1 = kfs[1]->T_cw(), pose2 = kfs[2]->T_cw();
+  map.setKeyFrameBad(kfs[1]);
+  map.setKeyFrameBad(kfs[2]);
+  EXPECT_TRUE(map.keyFramePose(kfs[1]->id()).isApprox(pose1, 1e-12));
+  EXPECT_TRUE(map.keyFramePose(kfs[2]->id()).isApprox(pose2, 1e-12));
+}
+
 TEST(Map, DynamicPointCandidates) {
   ThreeKeyFrames s;
   build(s);
