@@ -33,6 +33,16 @@ std::string toString(PoseModel model) {
   return "unknown";
 }
 
+std::vector<std::size_t> everyKth(const std::vector<std::size_t>& items, int max_count) {
+  if (max_count <= 0 || items.size() <= static_cast<std::size_t>(max_count)) return items;
+  const std::size_t max = static_cast<std::size_t>(max_count);
+  const std::size_t stride = (items.size() + max - 1) / max;
+  std::vector<std::size_t> out;
+  out.reserve(max);
+  for (std::size_t k = 0; k < items.size(); k += stride) out.push_back(items[k]);
+  return out;
+}
+
 PoseCorrespondences keyframeCorrespondences(const FramePairPyramids& keyframe_to_current,
                                             const std::vector<cv::Point2f>& keyframe_pixels,
                                             const std::vector<Eigen::Vector3d>& keyframe_points_w,

@@ -71,6 +71,11 @@ struct InitialPoseResult {
   int common_size = 0;
 };
 
+// At most max_count of `items`, every k-th (k = ceil(size / max_count)), in their order; max_count 0 = all. Model 1
+// thins the reference keyframe's points this way (InitialPoseOptions::keyframe_max_points): the extractor's order
+// runs through the levels and over the image, so every k-th keeps the spread.
+std::vector<std::size_t> everyKth(const std::vector<std::size_t>& items, int max_count);
+
 // Model 1 correspondences: reference keyframe keypoints (raw pixels) with their world points, tracked by LK from
 // the keyframe image into the current image; returns the world points with the undistorted current pixels.
 PoseCorrespondences keyframeCorrespondences(const FramePairPyramids& keyframe_to_current,

@@ -37,6 +37,18 @@ PoseCorrespondences observe(const core::SE3& T_cw, const core::PinholeCamera& ca
 
 double poseError(const core::SE3& a, const core::SE3& b) { return core::translationNorm(a.inverse() * b); }
 
+TEST(InitialPoseModels, EveryKthThinsToAtMostTheMaximumInOrder) {
+  std::vector<std::size_t> items(1000);
+  for (std::size_t i = 0; i < items.size(); ++i) items[i] = 3 * i;
+  const std::vector<std::size_t> thinned = everyKth(items, 300);  // stride 4: 250 items
+  ASSERT_EQ(thinned.size(), 250u);
+  for (std::size_t k = 0; k < thinned.size(); ++k) EXPECT_EQ(thinned[k], items[4 * k]);
+  EXPECT_EQ(everyKth(items, 0), items);     // 0 = all
+  EXPECT_EQ(everyKth(items, 1000), items);  // not more than there are
+  EXPECT_EQ(everyKth(items, 1).size(), 1u);
+  EXPECT_TRUE(everyKth({}, 300).empty());
+}
+
 TEST(InitialPoseModels, ConstantVelocityRepeatsTheLastMotion) {
   const core::SE3 motion = pose(0.01, -0.02, 0.03, 0.01, 0.02, -0.005);
   const core::SE3 T0 = pose(0.3, 0.1, -0.2, 0.1, 0.2, 0.3);

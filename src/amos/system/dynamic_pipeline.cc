@@ -115,13 +115,11 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
     std::vector<std::size_t> with_point;
     for (std::size_t i = 0; i < view.keypoints.size(); ++i)
       if (view.has_point[i]) with_point.push_back(i);
-    const auto max_points = static_cast<std::size_t>(options_.initial_pose.keyframe_max_points);
-    const std::size_t stride = max_points > 0 ? (with_point.size() + max_points - 1) / max_points : 1;
     std::vector<cv::Point2f> pixels;
     std::vector<Eigen::Vector3d> points_w;
-    for (std::size_t k = 0; k < with_point.size(); k += std::max<std::size_t>(stride, 1)) {
-      pixels.push_back(view.keypoints[with_point[k]].pt);
-      points_w.push_back(view.points_w[with_point[k]]);
+    for (const std::size_t i : dynamic::everyKth(with_point, options_.initial_pose.keyframe_max_points)) {
+      pixels.push_back(view.keypoints[i].pt);
+      points_w.push_back(view.points_w[i]);
     }
     dynamic::CornerTrackingOptions tracking = options_.tracking;
     tracking.forward_backward_check = options_.initial_pose.keyframe_forward_backward;
