@@ -187,9 +187,11 @@ PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_par
     const dynamic::SegmentationResult& segmented = previous_segmentation.get();
     prepared.segmentation_wait_ms = wait.elapsedMs();
     const cv::Mat& dynamic = segmented.dilated_mask;
-    const bool large = cv::countNonZero(dynamic) >=
-                       options_.prior_masked_extraction_coverage * static_cast<double>(dynamic.total());
-    if (!dynamic.empty() && (large || !map_ready)) allowed = dynamic == 0;
+    if (!dynamic.empty()) {
+      const bool large = cv::countNonZero(dynamic) >=
+                         options_.prior_masked_extraction_coverage * static_cast<double>(dynamic.total());
+      if (large || !map_ready) allowed = dynamic == 0;
+    }
   }
   prepared.features = slam_.extractGray(gray, allowed);
   prepared.features.extract_ms += convert_ms;
