@@ -135,7 +135,6 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
 
   // Stage 1b (III-C, Eq. 5-6): cluster scores from reprojection errors under the initial pose.
   const auto points_w = backProjectTracks(out.tracks, in.last_depth, in.T_cw_last, camera_, options_.reprojection);
-  out.reprojection_error_px = reprojectionErrors(out.tracks, points_w, in.T_cw_initial, camera_);
   // Tracks without a trusted depth (on a depth edge, among holes) are where the corners of a mover's outline are,
   // and on a person with dark clothes nearly all of them: each gets the smallest error any depth of its
   // neighbourhood allows (intervalResiduals), a lower bound that a static point under the right pose keeps near 0.
@@ -146,14 +145,16 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     for (std::size_t i = 0; i < intervals.size(); ++i)
       if (points_w[i]) intervals[i].reset();
   }
-  auto withIntervals = [&](std::vector<std::optional<double>> errors_px, const core::SE3& T_cw) {
-    if (intervals.empty()) return errors_px;
+  // Residuals under a pose: from the back-projected point, else the interval's lower bound.
+  auto residualsUnder = [&](const core::SE3& T_cw) {
+    auto residuals = reprojectionResiduals(out.tracks, points_w, T_cw, camera_);
+    if (intervals.empty()) return residuals;
     const auto lower = intervalResiduals(out.tracks, intervals, in.T_cw_last, T_cw, camera_);
-    for (std::size_t i = 0; i < errors_px.size(); ++i)
-      if (!errors_px[i] && lower[i]) errors_px[i] = lower[i]->norm();
-    return errors_px;
+    for (std::size_t i = 0; i < residuals.size(); ++i)
+      if (!residuals[i]) residuals[i] = lower[i];
+    return residuals;
   };
-  out.reprojection_error_px = withIntervals(std::move(out.reprojection_error_px), in.T_cw_initial);
+  out.reprojection_error_px = residualNorms(residualsUnder(in.T_cw_initial));
   const auto& errors = out.reprojection_error_px;
   std::vector<int> cluster_of_track(out.tracks.size());
   for (std::size_t i = 0; i < out.tracks.size(); ++i) {
@@ -202,16 +203,9 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   diag.pose_refit_inliers = refit.inliers;
   diag.pose_refit_sigma_px = refit.sigma_px;
   out.T_cw_judged = refit.T_cw;
-  auto residuals = reprojectionResiduals(out.tracks, points_w, refit.T_cw, camera_);
-  if (!intervals.empty()) {
-    const auto lower = intervalResiduals(out.tracks, intervals, in.T_cw_last, refit.T_cw, camera_);
-    for (std::size_t i = 0; i < residuals.size(); ++i)
-      if (!residuals[i]) residuals[i] = lower[i];
-  }
+  const auto residuals = residualsUnder(refit.T_cw);
   if (refit.ok) {
-    std::vector<std::optional<double>> refit_errors(residuals.size());
-    for (std::size_t i = 0; i < residuals.size(); ++i)
-      if (residuals[i]) refit_errors[i] = residuals[i]->norm();
+    const std::vector<std::optional<double>> refit_errors = residualNorms(residuals);
     ReprojectionOptions confirm = options_.reprojection;
     confirm.candidate_threshold_px = confirmThreshold(refit, options_.reprojection);
     diag.confirm_threshold_px = confirm.candidate_threshold_px;

@@ -97,14 +97,17 @@ std::vector<std::optional<Eigen::Vector2d>> reprojectionResiduals(
   return residuals;
 }
 
-std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTrack>& tracks,
-                                                      const std::vector<std::optional<Eigen::Vector3d>>& points_w,
-                                                      const core::SE3& T_cw_current, const core::PinholeCamera& camera) {
-  const auto residuals = reprojectionResiduals(tracks, points_w, T_cw_current, camera);
+std::vector<std::optional<double>> residualNorms(const std::vector<std::optional<Eigen::Vector2d>>& residuals) {
   std::vector<std::optional<double>> errors(residuals.size());
   for (std::size_t i = 0; i < residuals.size(); ++i)
     if (residuals[i]) errors[i] = residuals[i]->norm();
   return errors;
+}
+
+std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTrack>& tracks,
+                                                      const std::vector<std::optional<Eigen::Vector3d>>& points_w,
+                                                      const core::SE3& T_cw_current, const core::PinholeCamera& camera) {
+  return residualNorms(reprojectionResiduals(tracks, points_w, T_cw_current, camera));
 }
 
 std::vector<std::optional<DepthInterval>> trackDepthIntervals(const std::vector<PointTrack>& tracks,

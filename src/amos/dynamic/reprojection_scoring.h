@@ -81,6 +81,9 @@ std::vector<std::optional<Eigen::Vector3d>> backProjectTracks(const std::vector<
                                                               const core::PinholeCamera& camera,
                                                               const ReprojectionOptions& options);
 
+// Lengths of residual vectors [px] (empty stays empty).
+std::vector<std::optional<double>> residualNorms(const std::vector<std::optional<Eigen::Vector2d>>& residuals);
+
 // Reprojection error [px] of each world point against the track's current pixel under T_cw_current; empty when
 // the point has none or lies behind the camera.
 std::vector<std::optional<double>> reprojectionErrors(const std::vector<PointTrack>& tracks,
