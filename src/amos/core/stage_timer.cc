@@ -1,10 +1,18 @@
 #include "amos/core/stage_timer.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
 namespace amos::core {
+
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
 
 void StageTimes::add(const std::string& stage, double ms) {
   std::lock_guard<std::mutex> lock(mutex_);

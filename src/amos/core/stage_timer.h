@@ -21,6 +21,10 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_;
 };
 
+// CPU time consumed by the calling thread [ms]. Unlike wall time it does not grow when other threads or processes
+// share the cores (the "cpu.*" stages of the dynamic pipeline).
+double threadCpuMs();
+
 struct StageSummary {
   std::size_t count = 0;
   double median_ms = 0, p95_ms = 0, mean_ms = 0, max_ms = 0;

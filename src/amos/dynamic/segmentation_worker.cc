@@ -1,7 +1,5 @@
 #include "amos/dynamic/segmentation_worker.h"
 
-#include <time.h>
-
 #include <exception>
 
 #include "amos/core/error.h"
@@ -9,25 +7,17 @@
 
 namespace amos::dynamic {
 
-namespace {
-double threadCpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
-}  // namespace
-
 SegmentationResult segmentFrame(Segmenter& segmenter, const MaskDilationOptions& dilation, std::uint64_t frame_id,
                                 const cv::Mat& bgr, const cv::Mat& depth) {
   core::Stopwatch watch;
-  const double cpu_start = threadCpuMs();
+  const double cpu_start = core::threadCpuMs();
   SegmentationResult result;
   result.frame_id = frame_id;
   result.instances = segmenter.segment(bgr, depth);
   result.mask = paintInstances(result.instances, bgr.size());
   result.dilated_mask = dilateMask(result.mask, dilation);
   result.segment_ms = watch.elapsedMs();
-  result.segment_cpu_ms = threadCpuMs() - cpu_start;
+  result.segment_cpu_ms = core::threadCpuMs() - cpu_start;
   return result;
 }
 

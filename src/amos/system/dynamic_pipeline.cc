@@ -1,7 +1,6 @@
 #include "amos/system/dynamic_pipeline.h"
 
 #include <opencv2/calib3d.hpp>
-#include <time.h>
 
 #include <functional>
 #include <thread>
@@ -34,14 +33,9 @@ std::vector<cv::Point2f> distortPixels(const std::vector<cv::Point2f>& undistort
   return raw;
 }
 
-// CPU time of the calling thread [ms]. The per-stage CPU costs ("cpu.*" stages) do not grow when other processes
-// share the cores, unlike the wall times; OpenCV runs single-threaded here (Segmentation.threads), so a stage's
-// OpenCV work is in its thread's time.
-double threadCpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
+// The per-stage CPU costs ("cpu.*" stages) use core::threadCpuMs: OpenCV runs single-threaded here
+// (Segmentation.threads), so a stage's OpenCV work is in its thread's time.
+using core::threadCpuMs;
 
 }  // namespace
 
