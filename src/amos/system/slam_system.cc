@@ -40,11 +40,11 @@ cv::Mat SlamSystem::toGray(const io::RgbdFrame& frame) {
   return gray;
 }
 
-ExtractedFeatures SlamSystem::extract(const io::RgbdFrame& frame, const cv::Mat& allowed) const {
+ExtractedFeatures SlamSystem::extract(const io::RgbdFrame& frame) const {
   core::Stopwatch watch;
   const cv::Mat gray = toGray(frame);
   const double convert_ms = watch.elapsedMs();
-  ExtractedFeatures out = extractGray(gray, allowed);
+  ExtractedFeatures out = extractGray(gray);
   out.extract_ms += convert_ms;
   return out;
 }

@@ -76,10 +76,9 @@ class SlamSystem {
 
   FrameOutput processFrame(const io::RgbdFrame& frame, const FrameExtras& extras = {});
   // The two halves of processFrame(): extraction needs only the image; track() takes the rest.
-  // `allowed` (optional, CV_8U, image size, 0 = do not detect there) keeps keypoints out of known dynamic regions,
-  // so that the feature budget goes to the rest of the image.
-  ExtractedFeatures extract(const io::RgbdFrame& frame, const cv::Mat& allowed = cv::Mat()) const;
-  // extract() on a frame already converted to grey (CV_8U).
+  ExtractedFeatures extract(const io::RgbdFrame& frame) const;
+  // extract() on a frame already converted to grey (CV_8U). `allowed` (optional, CV_8U, image size, 0 = do not
+  // detect there) keeps keypoints out of known dynamic regions, so that the feature budget goes to the rest.
   ExtractedFeatures extractGray(const cv::Mat& gray, const cv::Mat& allowed = cv::Mat()) const;
   static cv::Mat toGray(const io::RgbdFrame& frame);
   FrameOutput track(const io::RgbdFrame& frame, const ExtractedFeatures& features, const FrameExtras& extras = {});
