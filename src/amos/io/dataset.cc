@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <exception>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
@@ -138,6 +140,7 @@ struct SequenceReader::Impl {
   ReaderOptions options;
   using Item = std::variant<RgbdFrame, std::exception_ptr>;
   core::BoundedQueue<Item> queue;
+  std::atomic<std::size_t> delivered{0};
   std::thread worker;
 
   Impl(SequenceIndex idx, ReaderOptions opts)
@@ -172,10 +175,14 @@ std::optional<RgbdFrame> SequenceReader::next() {
   auto item = impl_->queue.pop();
   if (!item) return std::nullopt;
   if (auto* error = std::get_if<std::exception_ptr>(&*item)) std::rethrow_exception(*error);
-  return std::get<RgbdFrame>(std::move(*item));
+  RgbdFrame frame = std::get<RgbdFrame>(std::move(*item));
+  frame.arrival = std::chrono::steady_clock::now();
+  impl_->delivered.fetch_add(1, std::memory_order_relaxed);
+  return frame;
 }
 
 std::size_t SequenceReader::size() const { return impl_->index.frames.size(); }
+SourceStats SequenceReader::stats() const { return {impl_->delivered.load(std::memory_order_relaxed), 0}; }
 const SequenceIndex& SequenceReader::index() const { return impl_->index; }
 
 }  // namespace amos::io

@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "amos/io/associate.h"
+#include "amos/io/frame_source.h"
+#include "amos/io/rgbd_frame.h"
 
 namespace amos::io {
 
@@ -31,15 +33,6 @@ struct SequenceIndex {
 // them; malformed lines throw core::Error naming file and line; an empty result throws.
 SequenceIndex indexSequence(const std::string& dir, double max_dt = 0.02);
 
-
-struct RgbdFrame {
-  std::size_t index = 0;  // position in the sequence
-  double timestamp = 0;   // of the RGB image
-  cv::Mat bgr;            // CV_8UC3
-  cv::Mat depth;          // CV_32F metres, 0 where the sensor gave no depth
-  std::string rgb_file;
-};
-
 struct ReaderOptions {
   double depth_factor = 5000.0;  // DepthMapFactor: raw 16-bit value / factor = metres
   int width = 640, height = 480; // expected image size (Camera.width/height)
@@ -50,16 +43,20 @@ struct ReaderOptions {
 // an 8-bit depth image or a depth image without a single valid pixel.
 RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index);
 
-class SequenceReader {
+// Reads a folder as fast as the consumer takes the frames (the default source), decoding `prefetch` frames ahead
+// in its own thread. Delivers on demand: nothing is ever dropped, and poll() is next().
+class SequenceReader : public FrameSource {
  public:
   SequenceReader(SequenceIndex index, ReaderOptions options);
-  ~SequenceReader();
+  ~SequenceReader() override;
   SequenceReader(const SequenceReader&) = delete;
   SequenceReader& operator=(const SequenceReader&) = delete;
 
   // Next frame in order, or nullopt at the end. Rethrows a load error of that frame in the caller's thread.
-  std::optional<RgbdFrame> next();
-  std::size_t size() const;
+  std::optional<RgbdFrame> next() override;
+  std::optional<RgbdFrame> poll() override { return next(); }
+  std::size_t size() const override;
+  SourceStats stats() const override;
   const SequenceIndex& index() const;
 
  private:

@@ -73,6 +73,27 @@ TEST_F(TinySequence, AssociatesListsAndSkipsMissingFile) {
   EXPECT_EQ(count, 2);
 }
 
+// As a FrameSource the folder reader delivers on demand: poll() is next(), nothing is dropped, and every frame
+// is stamped when it is handed over.
+TEST_F(TinySequence, ReaderIsAFrameSourceThatNeverDrops) {
+  writeImages("1.000000");
+  writeImages("1.033000");
+  writeFile("rgb.txt", "1.000000 rgb/1.000000.png\n1.033000 rgb/1.033000.png\n");
+  writeFile("depth.txt", "1.000000 depth/1.000000.png\n1.033000 depth/1.033000.png\n");
+  SequenceReader reader(indexSequence(dir_.string()), smallOptions());
+  FrameSource& source = reader;
+  EXPECT_EQ(source.size(), 2u);
+  const auto before = std::chrono::steady_clock::now();
+  const auto first = source.poll();
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->index, 0u);
+  EXPECT_GE(first->arrival, before);
+  EXPECT_EQ(source.next()->index, 1u);
+  EXPECT_FALSE(source.poll());
+  EXPECT_EQ(source.stats().delivered, 2u);
+  EXPECT_EQ(source.stats().dropped, 0u);
+}
+
 TEST_F(TinySequence, MalformedLineNamesFileAndLine) {
   writeFile("rgb.txt", "# header\n1.0 rgb/a.png\nnot-a-time rgb/b.png\n");
   writeFile("depth.txt", "1.0 depth/a.png\n");
