@@ -7,6 +7,7 @@ PACKAGES=(
   libeigen3-dev libopencv-dev libopencv-contrib-dev libceres-dev libpng-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev ccache
+  libopenni2-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
