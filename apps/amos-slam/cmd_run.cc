@@ -1,18 +1,25 @@
-// amos-slam run: SLAM over one RGB-D sequence. Writes trajectory.txt, keyframes.txt, map.ply and stats.json into
-// --output (with --save-masks also masks/ and overlays/) and prints ATE / RPE when the sequence has ground truth
-// and the dynamic mask's pixel precision / recall / IoU when it has ground-truth mover masks. All work is in
-// amos::report / amos::system.
+// amos-slam run: SLAM over one RGB-D sequence, read as fast as possible, replayed at its recorded rate
+// (--realtime) or live from a camera (--camera openni2[:URI]; Ctrl-C ends the session), optionally recorded
+// (--record DIR). Writes trajectory.txt, keyframes.txt, map.ply and stats.json into --output (with --save-masks
+// also masks/ and overlays/) and prints where the frames came from (delivered / processed / dropped, latency),
+// ATE / RPE when the sequence has ground truth and the dynamic mask's pixel precision / recall / IoU when it has
+// ground-truth mover masks. All work is in amos::report / amos::system.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "amos/config/settings.h"
+#include "amos/core/error.h"
+#include "amos/core/stage_timer.h"
 #include "amos/report/run_report.h"
 #include "amos/report/sequence_run.h"
 #include "commands.h"
@@ -21,10 +28,31 @@ namespace amos::app {
 namespace {
 
 struct RunArgs {
-  std::string sequence, config, output, mode = "full", models;
-  bool deterministic = false, save_masks = false;
+  std::string sequence, config, output, mode = "full", models, camera, record;
+  bool deterministic = false, save_masks = false, realtime = false;
   std::size_t max_frames = 0, overlays = 8;
 };
+
+// Ctrl-C during a live session: the run ends after the current frame and writes its outputs; a second Ctrl-C
+// kills the program as usual.
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void onInterrupt(int) {
+  g_interrupted.store(true);
+  std::signal(SIGINT, SIG_DFL);
+}
+
+void printSource(const report::SourceReport& src) {
+  std::cout << fmt::format("source {}: delivered {}  processed {}  dropped {}", src.kind, src.delivered,
+                           src.processed, src.dropped);
+  if (!src.latency_ms.empty()) {
+    std::cout << fmt::format(";  latency arrival -> pose median {:.1f} ms  p95 {:.1f} ms",
+                             core::percentile(src.latency_ms, 0.5), core::percentile(src.latency_ms, 0.95));
+  }
+  if (!src.recorded_to.empty()) std::cout << ";  recorded to " << src.recorded_to;
+  std::cout << "\n";
+}
 
 void printSummary(const report::SequenceRunResult& r, const std::string& output) {
   const system::SlamStats s = r.slam->stats();
@@ -38,6 +66,7 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
   std::cout << fmt::format("median ms per frame: extract {:.1f}  track {:.1f}  total {:.1f};  wall {:.2f} s = {:.1f} fps\n",
                            median("frame.extract"), median("frame.track"), median("frame.total"), r.info.wall_time_s,
                            r.info.wall_time_s > 0 ? s.frames / r.info.wall_time_s : 0.0);
+  if (r.info.source) printSource(*r.info.source);
   if (r.info.evaluation) {
     const auto& e = *r.info.evaluation;
     std::cout << fmt::format("ATE RMSE {:.4f} m ({} poses)", e.ate_rmse_m, e.ate_pairs);
@@ -59,10 +88,17 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
 }
 
 void runSlam(const RunArgs& args, int& exit_code) {
+  core::require(!args.sequence.empty() || !args.camera.empty(),
+                "run: give --sequence DIR (a recorded sequence) or --camera openni2[:URI] (a live camera)");
   const config::Settings settings = config::loadSettings(args.config);
   const bool tty = isatty(fileno(stderr)) != 0;
   report::SequenceRunOptions options;
+  options.source = !args.camera.empty() ? report::FrameSourceKind::kCamera
+                   : args.realtime      ? report::FrameSourceKind::kRealtime
+                                        : report::FrameSourceKind::kFolder;
   options.sequence_dir = args.sequence;
+  options.camera = args.camera;
+  options.record_dir = args.record;
   options.config_label = args.config;
   options.mode = args.mode;
   options.deterministic = args.deterministic;
@@ -70,20 +106,36 @@ void runSlam(const RunArgs& args, int& exit_code) {
   options.models_dir = args.models;
   if (args.save_masks) options.masks_output_dir = args.output;
   options.overlay_count = args.overlays;
-  options.on_frame = [tty](const report::SequenceProgress& p) {
+  bool line_open = false;  // a progress line without its newline on the terminal
+  options.on_frame = [tty, &line_open](const report::SequenceProgress& p) {
     const auto& t = p.output->track;
+    const std::string position = p.total > 0 ? fmt::format("{}/{}", p.frame, p.total) : std::to_string(p.frame);
     const std::string line =
-        fmt::format("frame {}/{}  {}  inliers {}  {:.1f} ms  {:.1f} fps", p.frame, p.total,
-                    tracking::toString(t.state), t.inliers, p.output->total_ms,
-                    p.elapsed_s > 0 ? p.frame / p.elapsed_s : 0.0);
+        fmt::format("frame {}  {}  inliers {}  {:.1f} ms  {:.1f} fps", position, tracking::toString(t.state),
+                    t.inliers, p.output->total_ms, p.elapsed_s > 0 ? p.processed / p.elapsed_s : 0.0);
     if (tty) {
       std::fprintf(stderr, "\r%-78s", line.c_str());
-      if (p.frame == p.total) std::fprintf(stderr, "\n");
-    } else if (p.frame % 100 == 0 || p.frame == p.total) {
+      line_open = true;
+    } else if (p.processed % 100 == 0 || p.frame == p.total) {
       spdlog::info("{}", line);
     }
   };
-  const report::SequenceRunResult result = report::runSequence(settings, options);
+  if (options.source == report::FrameSourceKind::kCamera) {
+    g_interrupted.store(false);
+    options.stop = &g_interrupted;
+    std::signal(SIGINT, onInterrupt);
+    spdlog::info("live session: Ctrl-C ends it and writes the outputs");
+  }
+  report::SequenceRunResult result;
+  try {
+    result = report::runSequence(settings, options);
+  } catch (...) {
+    if (line_open) std::fprintf(stderr, "\n");
+    std::signal(SIGINT, SIG_DFL);
+    throw;
+  }
+  if (line_open) std::fprintf(stderr, "\n");
+  std::signal(SIGINT, SIG_DFL);
   report::writeRunOutputs(args.output, *result.slam, result.info);
   printSummary(result, args.output);
   exit_code = 0;
@@ -93,10 +145,22 @@ void runSlam(const RunArgs& args, int& exit_code) {
 
 void addRunCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RunArgs>();
-  auto* cmd = app.add_subcommand("run", "Run RGB-D SLAM over a TUM/Bonn-layout sequence");
-  cmd->add_option("--sequence", args->sequence, "Sequence folder (rgb/, depth/, rgb.txt, depth.txt)")
-      ->required()
-      ->check(CLI::ExistingDirectory);
+  auto* cmd = app.add_subcommand("run", "Run RGB-D SLAM over a TUM/Bonn-layout sequence or a live camera");
+  auto* sequence = cmd->add_option("--sequence", args->sequence, "Sequence folder (rgb/, depth/, rgb.txt, depth.txt)")
+                       ->check(CLI::ExistingDirectory);
+  auto* realtime = cmd->add_flag("--realtime", args->realtime,
+                                 "Replay --sequence at its recorded time stamps: frames that arrive while SLAM is "
+                                 "busy replace the waiting one and are counted as dropped (default: every frame, "
+                                 "as fast as possible)");
+  auto* camera = cmd->add_option("--camera", args->camera,
+                                 "Live camera instead of --sequence: openni2 (the first device) or openni2:URI; "
+                                 "Ctrl-C ends the session (no evaluation)");
+  realtime->needs(sequence);
+  camera->excludes(sequence);
+  camera->excludes(realtime);
+  cmd->add_option("--record", args->record,
+                  "Also write every processed frame to this folder in TUM layout (rgb/, depth/ at the config's "
+                  "DepthMapFactor, rgb.txt, depth.txt), to replay and evaluate later");
   cmd->add_option("--config", args->config, "Settings file (configs/*.yaml)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--output", args->output, "Output folder (created if needed)")->required();
   cmd->add_option("--mode", args->mode, "Dynamic front end: none (plain SLAM) | prior (person masks) | geometry (superpixel clusters + epipolar) | full (both, default)")

@@ -1,5 +1,6 @@
 #include "amos/report/run_report.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,20 @@
 #include "amos/io/trajectory.h"
 
 namespace amos::report {
+
+nlohmann::json toJson(const SourceReport& source) {
+  nlohmann::json j = {{"kind", source.kind},
+                      {"delivered", source.delivered},
+                      {"processed", source.processed},
+                      {"dropped", source.dropped}};
+  if (!source.latency_ms.empty()) {
+    j["latency_ms"] = {{"median", core::percentile(source.latency_ms, 0.5)},
+                       {"p95", core::percentile(source.latency_ms, 0.95)},
+                       {"max", *std::max_element(source.latency_ms.begin(), source.latency_ms.end())}};
+  }
+  if (!source.recorded_to.empty()) j["recorded_to"] = source.recorded_to;
+  return j;
+}
 
 nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& times, const RunInfo& info) {
   nlohmann::json j;
@@ -52,6 +67,7 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
   if (info.mask_outputs_s > 0) j["mask_outputs_s"] = info.mask_outputs_s;
   if (info.evaluation) j["evaluation"] = eval::toJson(*info.evaluation);
   if (info.mask_accuracy) j["mask_accuracy"] = eval::toJson(*info.mask_accuracy);
+  if (info.source) j["source"] = toJson(*info.source);
   return j;
 }
 

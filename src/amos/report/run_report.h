@@ -5,7 +5,8 @@
 //   map.ply         the map points (ASCII PLY, x y z)
 //   stats.json      frame counts, map size, median / p95 ms per stage and per frame, wall time, frames per second,
 //                   ATE / RPE when the sequence has ground truth, and the dynamic mask's pixel precision / recall /
-//                   IoU when it has ground-truth mover masks
+//                   IoU when it has ground-truth mover masks, and where the frames came from ("source": kind,
+//                   frames delivered / processed / dropped, latency from a frame's arrival to its pose)
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -17,6 +18,15 @@
 #include "amos/system/slam_system.h"
 
 namespace amos::report {
+
+// Where a run's frames came from and how the SLAM loop kept up with them (see io/frame_source.h).
+struct SourceReport {
+  std::string kind;  // folder | realtime | openni2
+  std::size_t delivered = 0, processed = 0, dropped = 0;
+  // Per processed frame: from the moment it became available to the moment process() returned its pose, in ms.
+  std::vector<double> latency_ms;
+  std::string recorded_to;  // --record folder ("" = none)
+};
 
 struct RunInfo {
   std::string sequence, config, mode;
@@ -32,7 +42,10 @@ struct RunInfo {
   std::optional<eval::MaskAccuracy> mask_accuracy;
   // Time spent on --save-masks outputs and mask scoring (not part of wall_time_s).
   double mask_outputs_s = 0;
+  std::optional<SourceReport> source;  // absent when the caller did not read frames from a FrameSource
 };
+
+nlohmann::json toJson(const SourceReport& source);
 
 nlohmann::json statsJson(const system::SlamStats& stats, const core::StageTimes& times, const RunInfo& info);
 void writeMapPly(const std::string& path, const std::vector<Eigen::Vector3d>& points);

@@ -1,8 +1,11 @@
 #include "amos/report/sequence_run.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
@@ -13,7 +16,13 @@
 #include "amos/eval/ground_truth_masks.h"
 #include "amos/eval/mask_metrics.h"
 #include "amos/io/dataset.h"
+#include "amos/io/frame_source.h"
+#include "amos/io/realtime_replay.h"
+#include "amos/io/sequence_recorder.h"
 #include "amos/report/mask_outputs.h"
+#ifdef AMOS_HAVE_OPENNI2
+#include "amos/camera/openni2_source.h"
+#endif
 
 namespace amos::report {
 
@@ -54,40 +63,127 @@ std::unique_ptr<system::DynamicPipeline> makeDynamicPipeline(const config::Setti
 
 }  // namespace
 
+std::string sourceKindName(FrameSourceKind kind, const std::string& camera) {
+  switch (kind) {
+    case FrameSourceKind::kFolder: return "folder";
+    case FrameSourceKind::kRealtime: return "realtime";
+    case FrameSourceKind::kCamera: return parseCameraSpec(camera).driver;
+  }
+  return "?";
+}
+
+CameraSpec parseCameraSpec(const std::string& spec) {
+  CameraSpec c;
+  const auto colon = spec.find(':');
+  c.driver = spec.substr(0, colon);
+  if (colon != std::string::npos) c.uri = spec.substr(colon + 1);
+  core::require(c.driver == "openni2",
+                fmt::format("--camera '{}': unknown camera driver '{}' (known: openni2[:URI])", spec, c.driver));
+  return c;
+}
+
+namespace {
+
+std::unique_ptr<io::FrameSource> openCamera(const config::Settings& settings, const std::string& spec) {
+  const CameraSpec camera = parseCameraSpec(spec);
+#ifdef AMOS_HAVE_OPENNI2
+  camera::OpenNI2Options o;
+  o.uri = camera.uri;
+  o.width = settings.camera.width;
+  o.height = settings.camera.height;
+  o.fps = static_cast<int>(std::lround(settings.fps));
+  return std::make_unique<camera::OpenNI2Source>(o);
+#else
+  (void)settings;
+  throw core::Error(fmt::format("--camera {}: this build has no OpenNI2 support (install libopenni2-dev and "
+                                "configure with -DAMOS_WITH_OPENNI2=ON)",
+                                spec));
+#endif
+}
+
+double msSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
 SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options) {
   SequenceRunResult result;
-  io::SequenceIndex index = io::indexSequence(options.sequence_dir);
-  if (options.max_frames > 0 && index.frames.size() > options.max_frames) index.frames.resize(options.max_frames);
-  const std::string gt_file = index.groundtruth_file;
+  const bool live = options.source == FrameSourceKind::kCamera;
+  std::optional<io::SequenceIndex> index;
+  if (!live) {
+    index = io::indexSequence(options.sequence_dir);
+    if (options.max_frames > 0 && index->frames.size() > options.max_frames) index->frames.resize(options.max_frames);
+  } else {
+    parseCameraSpec(options.camera);  // a wrong --camera is an error before any model is loaded
+  }
+  const std::string gt_file = index ? index->groundtruth_file : std::string();
   result.slam = std::make_unique<system::SlamSystem>(slamOptionsFromSettings(settings, options.deterministic));
   result.pipeline = makeDynamicPipeline(settings, options, *result.slam);
-  const std::optional<eval::GroundTruthMasks> truth_masks = eval::GroundTruthMasks::find(options.sequence_dir);
-  io::SequenceReader reader(std::move(index), settings.readerOptions());
+  std::optional<eval::GroundTruthMasks> truth_masks;
+  if (!live) truth_masks = eval::GroundTruthMasks::find(options.sequence_dir);
+  std::optional<io::SequenceRecorder> recorder;
+  if (!options.record_dir.empty()) recorder.emplace(options.record_dir, settings.depth_factor);
+  // Created last, just before the loop: a paced or live source starts its clock at once.
+  std::unique_ptr<io::FrameSource> source;
+  switch (options.source) {
+    case FrameSourceKind::kFolder:
+      source = std::make_unique<io::SequenceReader>(std::move(*index), settings.readerOptions());
+      break;
+    case FrameSourceKind::kRealtime:
+      source = std::make_unique<io::RealtimeReplay>(std::move(*index), settings.readerOptions());
+      break;
+    case FrameSourceKind::kCamera:
+      source = openCamera(settings, options.camera);
+      break;
+  }
+  const bool paced = options.source != FrameSourceKind::kFolder;
   std::optional<MaskOutputWriter> mask_writer;
   if (!options.masks_output_dir.empty())
-    mask_writer.emplace(options.masks_output_dir, reader.size(), options.overlay_count);
+    mask_writer.emplace(options.masks_output_dir, source->size(), options.overlay_count);
+  SourceReport source_report;
+  source_report.kind = sourceKindName(options.source, options.camera);
+  source_report.recorded_to = options.record_dir;
   eval::MaskAccuracyAccumulator mask_accuracy;
   core::Stopwatch wall;
   double outputs_ms = 0;  // mask scoring and writing, kept out of the run's wall time
   std::size_t n = 0;
-  // One frame of look-ahead: the pipeline starts segmenting frame k+1 while it tracks frame k.
-  std::optional<io::RgbdFrame> frame = reader.next();
-  for (; frame; ++n) {
-    std::optional<io::RgbdFrame> next = reader.next();
+  auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
+  // One frame of look-ahead: the pipeline starts segmenting frame k+1 while it tracks frame k. A paced source
+  // offers only the frame already waiting; the pipeline then waits for the next one after this frame.
+  std::optional<io::RgbdFrame> frame = source->next();
+  while (frame && !stopped()) {
+    std::optional<io::RgbdFrame> next = paced ? source->poll() : source->next();
     const system::DynamicFrameOutput out = result.pipeline->process(*frame, next ? &*next : nullptr);
+    source_report.latency_ms.push_back(msSince(frame->arrival));
+    ++n;
+    if (recorder) recorder->add(*frame);
     core::Stopwatch outputs;
     cv::Mat truth;
     if (truth_masks && (mask_writer || !out.dynamic_mask.empty())) {
       if (const auto k = truth_masks->frameAt(frame->timestamp)) truth = truth_masks->moverMask(*k);
     }
     if (!truth.empty() && !out.dynamic_mask.empty()) mask_accuracy.add(out.dynamic_mask, truth);
-    if (mask_writer) mask_writer->add(n, frame->rgb_file, frame->bgr, out.dynamic_mask, out.prior_mask, truth);
+    if (mask_writer)
+      mask_writer->add(frame->index, frame->rgb_file, frame->bgr, out.dynamic_mask, out.prior_mask, truth);
     outputs_ms += outputs.elapsedMs();
     if (options.on_frame)
-      options.on_frame({n + 1, reader.size(), &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
-    frame = std::move(next);
+      options.on_frame({frame->index + 1, source->size(), n, &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
+    if (options.max_frames > 0 && n >= options.max_frames) break;  // a live source has no end of its own
+    if (next || !paced) {
+      frame = std::move(next);
+    } else {
+      frame = source->next();
+    }
   }
   result.pipeline->finish();
+  if (recorder) recorder->finish();
+  const io::SourceStats stats = source->stats();
+  source_report.delivered = stats.delivered;
+  source_report.dropped = stats.dropped;
+  source_report.processed = n;
+  source.reset();  // a live device is closed here
+  result.info.source = std::move(source_report);
   if (result.pipeline->mode() != dynamic::DynamicMode::kNone) {
     result.info.front_end_times = &result.pipeline->times();
     result.info.removed_fractions = result.pipeline->removedFractions();
@@ -95,7 +191,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   if (!mask_accuracy.empty()) result.info.mask_accuracy = mask_accuracy.summary();
   result.info.mask_outputs_s = outputs_ms / 1000.0;
   result.info.wall_time_s = (wall.elapsedMs() - outputs_ms) / 1000.0;
-  result.info.sequence = options.sequence_dir;
+  result.info.sequence = live ? options.camera : options.sequence_dir;
   result.info.config = options.config_label;
   result.info.mode = options.mode;
   result.info.deterministic = options.deterministic;

@@ -3,6 +3,15 @@
 // tests and the benchmarks. Settings come from the config module; ground truth, when the sequence has it, is
 // evaluated with the eval module (Bonn marker poses converted to camera poses); ground-truth mover masks, when the
 // sequence has them (synthetic sequences: masks.txt, masks/, instances.json), score the front end's dynamic mask.
+//
+// Frames come from an io::FrameSource chosen by SequenceRunOptions::source: the folder read as fast as the
+// pipeline takes it (the default), the folder replayed at its recorded rate (realtime), or a live camera. With
+// the folder the pipeline always gets the next frame as look-ahead (process(frame, next)); with a paced or live
+// source it gets only a frame that is already waiting (poll()), never one it would have to wait for, and a frame
+// that arrives while the pipeline is busy replaces the waiting one (the source counts it as dropped). The
+// trajectory holds the processed frames; RunInfo::source says how many were delivered, processed and dropped and
+// how long each processed frame took from its arrival to its pose.
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -21,13 +30,34 @@ namespace amos::report {
 system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bool deterministic);
 
 struct SequenceProgress {
-  std::size_t frame = 0, total = 0;
+  std::size_t frame = 0, total = 0;  // frame: 1-based position of the processed frame in the stream; total 0 = live
+  std::size_t processed = 0;         // frames processed so far, this one included
   const system::FrameOutput* output = nullptr;
   double elapsed_s = 0;
 };
 
+enum class FrameSourceKind {
+  kFolder,    // sequence_dir as fast as possible (io::SequenceReader)
+  kRealtime,  // sequence_dir at its recorded time stamps (io::RealtimeReplay)
+  kCamera,    // a live camera named by `camera` (sequence_dir unused; no evaluation)
+};
+
+// "folder" | "realtime" | the camera's driver name ("openni2").
+std::string sourceKindName(FrameSourceKind kind, const std::string& camera);
+
+struct CameraSpec {
+  std::string driver;  // "openni2"
+  std::string uri;     // "" = any device
+};
+// Parses `--camera DRIVER[:URI]` (the URI is everything after the first colon); throws core::Error for a driver
+// this program does not know.
+CameraSpec parseCameraSpec(const std::string& spec);
+
 struct SequenceRunOptions {
+  FrameSourceKind source = FrameSourceKind::kFolder;
   std::string sequence_dir;
+  std::string camera;          // --camera: "openni2" or "openni2:URI" (FrameSourceKind::kCamera)
+  std::string record_dir;      // --record: write every processed frame there in TUM layout ("" = do not)
   std::string config_label;    // recorded in stats.json
   std::string mode = "none";   // dynamic front end: none | prior | geometry | full (the CLI defaults to full)
   std::string models_dir;      // --models: segmentation model folder (see dynamic/model_locator.h)
@@ -38,6 +68,8 @@ struct SequenceRunOptions {
   std::string masks_output_dir;
   std::size_t overlay_count = 8;
   std::function<void(const SequenceProgress&)> on_frame;  // called after every frame (progress display)
+  // When set, the run ends after the frame being processed once it reads true (a live session's Ctrl-C).
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct SequenceRunResult {
