@@ -9,6 +9,12 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
   in.read("Dynamic.judgePriorRegions", o.judge_prior_regions);
   in.read("Dynamic.priorMaskedExtraction", o.prior_masked_extraction);
   in.read("Dynamic.priorMaskedExtractionCoverage", o.prior_masked_extraction_coverage);
+  in.read("Dynamic.Prior.interval", o.prior.interval);
+  in.read("Dynamic.Prior.lag", o.prior.lag);
+  in.read("Dynamic.Prior.minTracks", o.prior.min_tracks);
+  in.read("Dynamic.Prior.holdMissed", o.prior.hold_missed);
+  in.read("Dynamic.Prior.samplesPerInstance", o.prior.samples_per_instance);
+  in.read("Dynamic.Prior.auditPredictions", o.prior.audit_predictions);
 
   in.read("Dynamic.Superpixel.count", o.superpixel.num_superpixels);
   in.read("Dynamic.Superpixel.scale", o.superpixel.scale);

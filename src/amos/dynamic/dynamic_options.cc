@@ -36,6 +36,7 @@ void DynamicOptions::check() const {
   epipolar.check();
   boundary.check();
   initial_pose.check();
+  prior.check();
   core::require(prior_masked_extraction_coverage >= 0 && prior_masked_extraction_coverage <= 1,
                 fmt::format("Dynamic.priorMaskedExtractionCoverage must be in [0, 1], got {}",
                             prior_masked_extraction_coverage));

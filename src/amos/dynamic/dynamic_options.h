@@ -10,6 +10,7 @@
 #include "amos/dynamic/epipolar_check.h"
 #include "amos/dynamic/geometric_clustering.h"
 #include "amos/dynamic/initial_pose_models.h"
+#include "amos/dynamic/prior_propagation.h"
 #include "amos/dynamic/reprojection_scoring.h"
 
 namespace amos::dynamic {
@@ -59,6 +60,7 @@ struct DynamicOptions {
   BoundaryOptions boundary;          // Dynamic.Boundary.*
   TemporalOptions temporal;          // Dynamic.Temporal.*
   InitialPoseOptions initial_pose;   // Dynamic.InitialPose.* (used by tracking, III-D)
+  PriorScheduleOptions prior;        // Dynamic.Prior.*: how often the person segmentation runs
   void check() const;
 };
 

@@ -55,6 +55,7 @@ class SegmentationWorker {
   void close();
 
   const Segmenter& segmenter() const { return *segmenter_; }
+  const MaskDilationOptions& dilation() const { return dilation_; }
 
  private:
   struct Job {

@@ -1,8 +1,11 @@
 #include "amos/system/dynamic_pipeline.h"
 
 #include <opencv2/calib3d.hpp>
+#include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <functional>
+#include <string>
 #include <thread>
 #include <utility>
 
@@ -10,6 +13,7 @@
 #include "amos/core/error.h"
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/reprojection_scoring.h"
+#include "amos/dynamic/segment_masks.h"
 
 namespace amos::system {
 
@@ -36,6 +40,15 @@ std::vector<cv::Point2f> distortPixels(const std::vector<cv::Point2f>& undistort
 // The per-stage CPU costs ("cpu.*" stages) use core::threadCpuMs: OpenCV runs single-threaded here
 // (Segmentation.threads), so a stage's OpenCV work is in its thread's time.
 using core::threadCpuMs;
+
+PriorAudit auditPrediction(const cv::Mat& carried, const cv::Mat& carried_dilated,
+                           const dynamic::SegmentationResult& computed) {
+  PriorAudit a;
+  a.iou = dynamic::maskIoU(carried, computed.mask);
+  const int truth = cv::countNonZero(computed.mask);
+  a.covered = truth == 0 ? 1.0 : cv::countNonZero(computed.mask & carried_dilated) / static_cast<double>(truth);
+  return a;
+}
 
 }  // namespace
 
@@ -132,28 +145,60 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
   return result.T_cw;
 }
 
-void DynamicPipeline::requestSegmentation(const io::RgbdFrame& frame) {
+void DynamicPipeline::requestSegmentation(const io::RgbdFrame& frame, std::size_t counter) {
+  for (auto it = submitted_.begin(); it != submitted_.end(); ++it) {
+    if (it->counter != counter) continue;
+    if (it->image == frame.bgr.data) return;
+    submitted_.erase(it);  // announced as the next frame, but another one came (its result is never used)
+    break;
+  }
+  Submitted s{counter, frame.bgr.data, segmentation_->submit(frame.index, frame.bgr, frame.depth)};
+  const auto at = std::find_if(submitted_.begin(), submitted_.end(),
+                               [&](const Submitted& other) { return other.counter > counter; });
+  submitted_.insert(at, std::move(s));
+}
+
+std::shared_future<dynamic::SegmentationResult> DynamicPipeline::segmentationOf(std::size_t counter) const {
   for (const Submitted& s : submitted_)
-    if (s.index == frame.index && s.image == frame.bgr.data) return;
-  submitted_.push_back({frame.index, frame.bgr.data, segmentation_->submit(frame.index, frame.bgr, frame.depth)});
+    if (s.counter == counter) return s.result;
+  return {};
+}
+
+std::pair<cv::Mat, cv::Mat> DynamicPipeline::priorMasks(std::size_t counter, dynamic::FrameFlow flow) {
+  const std::size_t base = options_.prior.baseFor(counter);
+  std::shared_future<dynamic::SegmentationResult> pending = segmentationOf(base);
+  core::require(pending.valid(), "DynamicPipeline: the segmentation of frame " + std::to_string(base) +
+                                     " that frame " + std::to_string(counter) + " needs was never requested");
+  const bool fresh = !propagator_ || propagator_base_ != base;
+  if (fresh) {
+    core::Stopwatch wait;
+    const dynamic::SegmentationResult& segmented = pending.get();
+    times_.add("dynamic.segmentation_wait", wait.elapsedMs());
+    times_.add("dynamic.segmentation", segmented.segment_ms);
+    times_.add("cpu.segmentation", segmented.segment_cpu_ms);
+    if (!propagator_) propagator_.emplace(segmented.mask.size(), segmentation_->dilation(), options_.prior);
+    propagator_->reset(segmented.instances);
+    propagator_base_ = base;
+    for (const auto& [c, old_flow] : flows_)  // a segmentation `lag` frames old: carried over the frames since
+      if (c > base && c < counter) propagator_->step(old_flow);
+  }
+  if (counter > base) propagator_->step(flow);
+  flows_.emplace_back(counter, std::move(flow));
+  const std::size_t keep = static_cast<std::size_t>(options_.prior.interval + options_.prior.lag);
+  while (flows_.size() > keep) flows_.pop_front();
+  if (counter == base) {  // this frame's own segmentation: exactly what the network gave (the paper's way)
+    const dynamic::SegmentationResult& segmented = pending.get();
+    return {segmented.mask, segmented.dilated_mask};
+  }
+  return {propagator_->mask(), propagator_->dilatedMask()};
 }
 
 bool DynamicPipeline::masksExtraction() const {
   return usesSegmentation() && options_.prior_masked_extraction && !options_.judge_prior_regions;
 }
 
-std::shared_future<dynamic::SegmentationResult> DynamicPipeline::takeSegmentation(const io::RgbdFrame& frame) {
-  // Results of frames the caller announced but never processed are dropped (the worker still finishes them).
-  while (!submitted_.empty() && (submitted_.front().index != frame.index || submitted_.front().image != frame.bgr.data))
-    submitted_.pop_front();
-  core::require(!submitted_.empty(), "DynamicPipeline: no segmentation was requested for this frame");
-  std::shared_future<dynamic::SegmentationResult> result = std::move(submitted_.front().result);
-  submitted_.pop_front();
-  return result;
-}
-
 PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_partition,
-                                      std::shared_future<dynamic::SegmentationResult> previous_segmentation,
+                                      std::shared_future<cv::Mat> previous_mask,
                                       bool map_ready) const {
   const double cpu_start = threadCpuMs();
   PreparedFrame prepared;
@@ -176,11 +221,10 @@ PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_par
   // segmenter and the extractor one after the other on every frame. People move a few pixels between frames, well
   // inside the mask's dilation; keypoints that still land on a person are removed with this frame's mask as always.
   cv::Mat allowed;
-  if (masksExtraction() && previous_segmentation.valid()) {
+  if (masksExtraction() && previous_mask.valid()) {
     core::Stopwatch wait;
-    const dynamic::SegmentationResult& segmented = previous_segmentation.get();
+    const cv::Mat& dynamic = previous_mask.get();
     prepared.segmentation_wait_ms = wait.elapsedMs();
-    const cv::Mat& dynamic = segmented.dilated_mask;
     if (!dynamic.empty()) {
       const bool large = cv::countNonZero(dynamic) >=
                          options_.prior_masked_extraction_coverage * static_cast<double>(dynamic.total());
@@ -194,7 +238,7 @@ PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_par
 }
 
 void DynamicPipeline::requestPreparation(const io::RgbdFrame& frame,
-                                         const std::shared_future<dynamic::SegmentationResult>& previous_segmentation,
+                                         const std::shared_future<cv::Mat>& previous_mask,
                                          bool map_ready) {
   for (const Preparing& p : preparing_)
     if (p.index == frame.index && p.image == frame.bgr.data) return;
@@ -202,17 +246,17 @@ void DynamicPipeline::requestPreparation(const io::RgbdFrame& frame,
   // The job holds its own references to the images (cv::Mat headers share the pixels), not to the caller's frame.
   // The partition is made even though whether the frame will have a last frame (and use it) is not known yet.
   preparing_.push_back({frame.index, frame.bgr.data,
-                        look_ahead_->submit([this, frame, previous_segmentation, map_ready] {
-                          return prepare(frame, usesGeometry(), previous_segmentation, map_ready);
+                        look_ahead_->submit([this, frame, previous_mask, map_ready] {
+                          return prepare(frame, usesGeometry(), previous_mask, map_ready);
                         })});
 }
 
 PreparedFrame DynamicPipeline::takePreparation(const io::RgbdFrame& frame,
-                                              const std::shared_future<dynamic::SegmentationResult>& previous_segmentation,
+                                              const std::shared_future<cv::Mat>& previous_mask,
                                               bool map_ready) {
   while (!preparing_.empty() && (preparing_.front().index != frame.index || preparing_.front().image != frame.bgr.data))
     preparing_.pop_front();  // announced but never processed: dropped (the worker still finishes it)
-  if (preparing_.empty()) return prepare(frame, false, previous_segmentation, map_ready);
+  if (preparing_.empty()) return prepare(frame, false, previous_mask, map_ready);
   core::Stopwatch wait;
   PreparedFrame prepared = preparing_.front().result.get();
   preparing_.pop_front();
@@ -222,21 +266,26 @@ PreparedFrame DynamicPipeline::takePreparation(const io::RgbdFrame& frame,
 
 DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io::RgbdFrame* next) {
   DynamicFrameOutput out;
-  // 1. Segmentation of this frame runs in its own thread (it started during the previous call when that call was
-  //    given this frame as look-ahead), then the next frame's ...
-  std::shared_future<dynamic::SegmentationResult> pending;
+  // 1. The segmentations that this and the next frame schedule run in their own thread (this frame's started
+  //    during the previous call when that call was given this frame as look-ahead) ...
+  const std::size_t counter = processed_++;
+  // This frame's dilated prior mask, for the next frame's ORB extraction: promised now, set once it is known.
+  std::promise<cv::Mat> mask_for_next;
+  std::shared_future<cv::Mat> this_mask = mask_for_next.get_future().share();
   if (usesSegmentation()) {
-    requestSegmentation(frame);
-    pending = takeSegmentation(frame);
-    if (next != nullptr) requestSegmentation(*next);
+    const bool audit = options_.prior.audit_predictions;
+    if (audit || options_.prior.isScheduled(counter)) requestSegmentation(frame, counter);
+    if (next != nullptr && (audit || options_.prior.isScheduled(counter + 1))) requestSegmentation(*next, counter + 1);
+  } else {
+    mask_for_next.set_value(cv::Mat());
   }
   // 2. ... while this thread extracts features (or takes them from the look-ahead worker, which then goes on with
   //    the next frame).
   // The map's state after the previous frame: what the look-ahead preparation of the next frame can know.
   const bool map_ready_one_frame_back = slam_.tracker().state() != tracking::TrackingState::kNotInitialized;
-  PreparedFrame prepared = takePreparation(frame, previous_segmentation_, map_ready_two_frames_back_);
-  if (next != nullptr) requestPreparation(*next, pending, map_ready_one_frame_back);
-  previous_segmentation_ = pending;
+  PreparedFrame prepared = takePreparation(frame, previous_mask_, map_ready_two_frames_back_);
+  if (next != nullptr) requestPreparation(*next, this_mask, map_ready_one_frame_back);
+  previous_mask_ = this_mask;
   map_ready_two_frames_back_ = map_ready_one_frame_back;
   const ExtractedFeatures& features = prepared.features;
   dynamic::ImagePyramid& current_pyramid = prepared.pyramid;
@@ -254,15 +303,6 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
     input.bgr = frame.bgr;
     input.depth = frame.depth;
     if (prepared.partition) input.partition = &*prepared.partition;
-    if (pending.valid()) {
-      core::Stopwatch wait;
-      const dynamic::SegmentationResult& segmented = pending.get();
-      times_.add("dynamic.segmentation_wait", wait.elapsedMs());
-      times_.add("dynamic.segmentation", segmented.segment_ms);
-      times_.add("cpu.segmentation", segmented.segment_cpu_ms);
-      input.prior_mask = segmented.dilated_mask;
-      out.prior_mask = segmented.mask;
-    }
     std::vector<dynamic::PointTrack> tracks;
     if (last_) {
       input.last_gray = last_->gray;
@@ -287,6 +327,23 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
         input.tracks = &tracks;
       }
     }
+    if (usesSegmentation()) {
+      // 3a. Person masks: this frame's segmentation, or an earlier one carried here by the tracks.
+      dynamic::FrameFlow flow{tracks};
+      if (propagator_ && last_ && !current_pyramid.empty()) {
+        core::Stopwatch watch;
+        const std::vector<dynamic::PointTrack> inside = dynamic::trackPoints(
+            {last_->pyramid, current_pyramid}, propagator_->samplePoints(last_->gray), options_.tracking);
+        flow.tracks.insert(flow.tracks.end(), inside.begin(), inside.end());
+        times_.add("dynamic.prior_tracks", watch.elapsedMs());
+      }
+      auto [mask, dilated] = priorMasks(counter, std::move(flow));
+      if (options_.prior.audit_predictions && options_.prior.baseFor(counter) != counter)
+        prior_audit_.push_back(auditPrediction(mask, dilated, segmentationOf(counter).get()));
+      mask_for_next.set_value(dilated);
+      input.prior_mask = std::move(dilated);
+      out.prior_mask = std::move(mask);
+    }
     core::Stopwatch watch;
     const double cpu = threadCpuMs();
     const dynamic::DynamicFrameOutput judged = front_end_.process(input);
@@ -305,6 +362,10 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
   if (extracted > 0) out.removed_fraction = static_cast<double>(out.slam.removed_dynamic) / extracted;
   removed_fractions_.push_back(out.removed_fraction);
 
+  // Segmentations that no frame to come needs any more.
+  const std::size_t oldest_needed = options_.prior.baseFor(counter);
+  while (!submitted_.empty() && submitted_.front().counter < oldest_needed) submitted_.pop_front();
+
   const tracking::TrackResult& track = out.slam.track;
   if (track.state == tracking::TrackingState::kOk) {
     last_ = LastFrame{features.gray, frame.depth, out.dynamic_mask, current_pyramid, std::move(prepared.corners),
@@ -317,6 +378,20 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
 }
 
 void DynamicPipeline::finish() {
+  if (!prior_audit_.empty()) {
+    std::vector<double> iou, covered;
+    for (const PriorAudit& a : prior_audit_) {
+      iou.push_back(a.iou);
+      covered.push_back(a.covered);
+    }
+    std::sort(iou.begin(), iou.end());
+    std::sort(covered.begin(), covered.end());
+    spdlog::info("carried-over person masks against the network's own on {} frames: IoU median {:.3f}, 5th "
+                 "percentile {:.3f}; share of the network's mask inside the dilated carried mask: median {:.3f}, 5th "
+                 "percentile {:.3f}",
+                 iou.size(), iou[iou.size() / 2], iou[iou.size() / 20], covered[covered.size() / 2],
+                 covered[covered.size() / 20]);
+  }
   if (segmentation_) segmentation_->close();
   slam_.finish();
 }

@@ -22,10 +22,16 @@
 // thread tracks the current frame, which leaves this thread only the work that needs the last frame or the map
 // (corner tracks, initial pose, judgement, tracking). The preparation is the same pure function with or without
 // look-ahead, so the results do not change either.
-// Masked extraction (Dynamic.priorMaskedExtraction): when people covered at least half of the previous frame, a
-// frame's ORB features are detected outside that frame's dilated person mask, so the feature budget goes to the
-// static part of the view (the preparation then waits for the previous frame's segmentation, which started a
-// frame earlier). Both paths use the previous frame's mask, so this too is the same with or without look-ahead.
+// Masked extraction (Dynamic.priorMaskedExtraction): when people covered at least half of the view, a frame's ORB
+// features are detected outside the dilated person mask of the segmentation that served the previous frame, so
+// the feature budget goes to the static part of the view (the preparation then waits for that segmentation, which
+// started at least a frame earlier). Both paths use the same mask, so this too is the same with or without
+// look-ahead.
+//
+// Segmentation schedule (Dynamic.Prior.*): the network segments every interval-th processed frame, and frame k
+// uses the segmentation of frame baseFor(k) (at least `lag` frames old) carried to frame k by the motion of the
+// LK tracks inside each person (dynamic::PriorMaskPropagator). The schedule is a function of the frame count
+// alone, so runs stay deterministic. interval 1, lag 0 is the paper's every-frame segmentation.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -39,6 +45,7 @@
 #include "amos/core/stage_timer.h"
 #include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/prior_propagation.h"
 #include "amos/dynamic/segmentation_worker.h"
 #include "amos/system/slam_system.h"
 
@@ -53,8 +60,14 @@ struct PreparedFrame {
   // makes them itself when it needs them).
   std::optional<dynamic::GeometricPartition> partition;
   double pyramid_ms = 0, corners_ms = 0;
-  double segmentation_wait_ms = 0;  // waiting for the previous frame's segmentation before a masked extraction
+  double segmentation_wait_ms = 0;  // waiting for the previous frame's prior mask before a masked extraction
   double cpu_ms = 0;  // CPU time of the preparing thread
+};
+
+// A carried-over person mask against the network's own mask of the same frame (Dynamic.Prior.auditPredictions).
+struct PriorAudit {
+  double iou = 1;      // undilated carried mask vs the network's mask (two empty masks: 1)
+  double covered = 1;  // share of the network's mask inside the dilated carried mask: what removal needs
 };
 
 struct DynamicFrameOutput {
@@ -83,26 +96,33 @@ class DynamicPipeline {
   const core::StageTimes& times() const { return times_; }
   // Fraction of the extracted keypoints that the dynamic mask removed, one value per processed frame.
   const std::vector<double>& removedFractions() const { return removed_fractions_; }
+  // With Dynamic.Prior.auditPredictions: per frame whose person mask was carried over from an earlier
+  // segmentation, how it compares with the network's own mask of the frame (empty otherwise).
+  const std::vector<PriorAudit>& priorAudit() const { return prior_audit_; }
 
  private:
   bool usesSegmentation() const;
-  // Submits `frame` unless it is already on its way; drops what was submitted for frames that were skipped.
-  void requestSegmentation(const io::RgbdFrame& frame);
-  std::shared_future<dynamic::SegmentationResult> takeSegmentation(const io::RgbdFrame& frame);
+  // Submits `frame` (processed frame number `counter`) unless it is already on its way.
+  void requestSegmentation(const io::RgbdFrame& frame, std::size_t counter);
+  // The segmentation submitted for processed frame `counter` (invalid when there is none).
+  std::shared_future<dynamic::SegmentationResult> segmentationOf(std::size_t counter) const;
+  // This frame's prior masks (undilated, dilated): the base segmentation carried to this frame by `flow`.
+  std::pair<cv::Mat, cv::Mat> priorMasks(std::size_t counter, dynamic::FrameFlow flow);
   bool masksExtraction() const;
   // Everything of `frame` that needs only the frame; with_partition adds the geometric partition. With
-  // masksExtraction(), ORB features are detected outside the dilated prior mask of `previous_segmentation` (the
+  // masksExtraction(), ORB features are detected outside `previous_mask`, the dilated prior mask of the frame
+  // processed before this one (a future: the look-ahead preparation waits for it; invalid = no mask) (the
   // frame processed before this one; invalid: no mask).
   // `map_ready`: whether the map existed two frames before `frame` (the newest state a look-ahead preparation can
   // know; the inline path passes the same one, so both give the same features).
   PreparedFrame prepare(const io::RgbdFrame& frame, bool with_partition,
-                        std::shared_future<dynamic::SegmentationResult> previous_segmentation, bool map_ready) const;
+                        std::shared_future<cv::Mat> previous_mask, bool map_ready) const;
   // Hands `frame` to the look-ahead worker unless it is already there.
   void requestPreparation(const io::RgbdFrame& frame,
-                          const std::shared_future<dynamic::SegmentationResult>& previous_segmentation, bool map_ready);
+                          const std::shared_future<cv::Mat>& previous_mask, bool map_ready);
   // The prepared frame from the worker when it was requested, else prepared here.
   PreparedFrame takePreparation(const io::RgbdFrame& frame,
-                                const std::shared_future<dynamic::SegmentationResult>& previous_segmentation,
+                                const std::shared_future<cv::Mat>& previous_mask,
                                 bool map_ready);
   bool usesGeometry() const;
   std::optional<core::SE3> initialPose(const dynamic::ImagePyramid& current,
@@ -122,19 +142,26 @@ class DynamicPipeline {
   dynamic::DynamicOptions options_;
   dynamic::DynamicFrontEnd front_end_;
   std::unique_ptr<dynamic::SegmentationWorker> segmentation_;
-  // Frames submitted to the worker whose results process() has not taken yet, in submission order (at most two:
-  // this frame and the look-ahead one). A frame is known by its index and its image buffer, so frames that all
-  // carry index 0 (built by hand) are not mistaken for one another.
+  // Segmentations submitted to the worker, by processed-frame number, oldest first; dropped once no frame to come
+  // uses them. A frame is also known by its image buffer, so a look-ahead frame that the caller announced but did
+  // not process is not mistaken for the one that came instead.
   struct Submitted {
-    std::size_t index = 0;
+    std::size_t counter = 0;
     const void* image = nullptr;
     std::shared_future<dynamic::SegmentationResult> result;  // shared: the look-ahead worker may wait on it too
   };
   std::deque<Submitted> submitted_;
-  // Segmentation of the frame processed last: its dilated mask steers the next frame's ORB extraction.
-  std::shared_future<dynamic::SegmentationResult> previous_segmentation_;
+  std::size_t processed_ = 0;  // frames processed so far = the number of the frame being processed
+  // The dilated prior mask of the frame processed last, which steers the next frame's ORB extraction.
+  std::shared_future<cv::Mat> previous_mask_;
   // Whether the map existed after the frame before the previous one (see prepare()).
   bool map_ready_two_frames_back_ = false;
+  // The person masks between segmentations, the frame whose segmentation they started from, and the recent
+  // frames' tracks (to carry a segmentation that arrives late up to the current frame).
+  std::optional<dynamic::PriorMaskPropagator> propagator_;
+  std::size_t propagator_base_ = 0;
+  std::deque<std::pair<std::size_t, dynamic::FrameFlow>> flows_;
+  std::vector<PriorAudit> prior_audit_;
   // Frames handed to the look-ahead worker (same rules as submitted_).
   struct Preparing {
     std::size_t index = 0;

@@ -139,6 +139,8 @@ TEST(DynamicPipeline, LookAheadSubmitsTheNextFrameEarly) {
   SlamSystem slam(bonnOptions());
   dynamic::DynamicOptions options;
   options.mode = dynamic::DynamicMode::kPrior;
+  options.prior.interval = 1;  // the paper's schedule: every frame segmented
+  options.prior.lag = 0;
   DynamicPipeline pipeline(slam, options,
                            std::make_unique<dynamic::SegmentationWorker>(std::make_unique<RecordingSegmenter>(log),
                                                                          dynamic::MaskDilationOptions{}));
@@ -161,6 +163,33 @@ TEST(DynamicPipeline, LookAheadSubmitsTheNextFrameEarly) {
   std::unique_lock<std::mutex> lock(log->mutex);
   log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.size() == 5; });
   EXPECT_EQ(log->started, (std::set<int>{1, 2, 3, 4, 5}));
+}
+
+// Dynamic.Prior.interval 3: the network sees processed frames 0, 3, 6, ... only (announced ones early, through the
+// look-ahead), whatever their sequence index.
+TEST(DynamicPipeline, SegmentsEveryIntervalthFrame) {
+  auto log = std::make_shared<RecordingSegmenter::Log>();
+  SlamSystem slam(bonnOptions());
+  dynamic::DynamicOptions options;
+  options.mode = dynamic::DynamicMode::kPrior;
+  options.prior.interval = 3;
+  options.prior.lag = 2;
+  DynamicPipeline pipeline(slam, options,
+                           std::make_unique<dynamic::SegmentationWorker>(std::make_unique<RecordingSegmenter>(log),
+                                                                         dynamic::MaskDilationOptions{}));
+  std::vector<io::RgbdFrame> frames;
+  for (std::size_t code = 10; code < 18; ++code) frames.push_back(codedFrame(code));
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    pipeline.process(frames[k], k + 1 < frames.size() ? &frames[k + 1] : nullptr);
+    if (k == 2) {  // frame 3 was announced as the look-ahead of frame 2: on its way before process(frame 3)
+      std::unique_lock<std::mutex> lock(log->mutex);
+      EXPECT_TRUE(log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.count(13) > 0; }));
+    }
+  }
+  pipeline.finish();
+  std::unique_lock<std::mutex> lock(log->mutex);
+  log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.size() >= 3; });
+  EXPECT_EQ(log->started, (std::set<int>{10, 13, 16}));
 }
 
 // A segmenter that reports one "person" covering the left `fraction` of every image.

@@ -1,0 +1,146 @@
+#include "amos/dynamic/prior_propagation.h"
+
+#include <fmt/format.h>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "amos/core/error.h"
+#include "amos/dynamic/segment_masks.h"
+
+namespace amos::dynamic {
+
+void PriorScheduleOptions::check() const {
+  core::require(interval >= 1, fmt::format("Dynamic.Prior.interval must be >= 1, got {}", interval));
+  core::require(lag >= 0, fmt::format("Dynamic.Prior.lag must be >= 0, got {}", lag));
+  core::require(lag <= interval,
+                fmt::format("Dynamic.Prior.lag ({}) must not exceed Dynamic.Prior.interval ({}): a segmentation would "
+                            "then be needed before the one of the frame it replaces is used",
+                            lag, interval));
+  core::require(samples_per_instance >= 0,
+                fmt::format("Dynamic.Prior.samplesPerInstance must be >= 0, got {}", samples_per_instance));
+  core::require(hold_missed >= 0, fmt::format("Dynamic.Prior.holdMissed must be >= 0, got {}", hold_missed));
+  core::require(min_tracks >= 1, fmt::format("Dynamic.Prior.minTracks must be >= 1, got {}", min_tracks));
+}
+
+std::size_t PriorScheduleOptions::baseFor(std::size_t frame) const {
+  const std::size_t l = static_cast<std::size_t>(lag), n = static_cast<std::size_t>(interval);
+  if (frame < l) return 0;
+  return (frame - l) / n * n;
+}
+
+namespace {
+
+float median(std::vector<float>& v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+cv::Point offsetPixels(const cv::Point2f& offset) {
+  return {static_cast<int>(std::lround(offset.x)), static_cast<int>(std::lround(offset.y))};
+}
+
+}  // namespace
+
+PriorMaskPropagator::PriorMaskPropagator(cv::Size image_size, MaskDilationOptions dilation,
+                                         PriorScheduleOptions options)
+    : size_(image_size), dilation_(std::move(dilation)), options_(options) {
+  dilation_.check();
+  options_.check();
+}
+
+void PriorMaskPropagator::reset(const std::vector<SegmentedInstance>& instances) {
+  // Carried instances that no new one overlaps: missed by the network this time (kept a while) or gone.
+  std::vector<Moving> held;
+  for (Moving& m : instances_) {
+    if (m.missed >= options_.hold_missed) continue;
+    const cv::Rect moved = m.instance.box + offsetPixels(m.offset);
+    const bool found = std::any_of(instances.begin(), instances.end(), [&](const SegmentedInstance& s) {
+      const double overlap = (moved & s.box).area();
+      return overlap > 0.3 * std::min(moved.area(), s.box.area());
+    });
+    if (found) continue;
+    ++m.missed;
+    held.push_back(std::move(m));
+  }
+  instances_.clear();
+  age_ = 0;
+  const cv::Mat kernel = dilationKernel(dilation_);
+  const int half = kernel.empty() ? 0 : kernel.cols / 2;
+  for (const SegmentedInstance& instance : instances) {
+    if (instance.mask.empty() || instance.box.empty()) continue;
+    Moving m;
+    m.instance = instance;
+    m.dilated_box = cv::Rect(instance.box.x - half, instance.box.y - half, instance.box.width + 2 * half,
+                             instance.box.height + 2 * half);
+    // Dilating each instance on its own gives the dilation of the union (dilation distributes over union).
+    cv::copyMakeBorder(instance.mask, m.dilated, half, half, half, half, cv::BORDER_CONSTANT, cv::Scalar(0));
+    if (!kernel.empty())
+      cv::dilate(m.dilated, m.dilated, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+    instances_.push_back(std::move(m));
+  }
+  for (Moving& m : held) instances_.push_back(std::move(m));
+}
+
+bool PriorMaskPropagator::inside(const Moving& m, const cv::Point2f& p) const {
+  const cv::Point shift = offsetPixels(m.offset);
+  const int x = static_cast<int>(std::floor(p.x)) - shift.x - m.instance.box.x;
+  const int y = static_cast<int>(std::floor(p.y)) - shift.y - m.instance.box.y;
+  if (x < 0 || y < 0 || x >= m.instance.box.width || y >= m.instance.box.height) return false;
+  return m.instance.mask.at<std::uint8_t>(y, x) != 0;
+}
+
+std::vector<cv::Point2f> PriorMaskPropagator::samplePoints(const cv::Mat& gray) const {
+  core::require(gray.type() == CV_8UC1 && gray.size() == size_, "PriorMaskPropagator::samplePoints: CV_8UC1 image "
+                                                                "of the propagator's size expected");
+  std::vector<cv::Point2f> points;
+  if (options_.samples_per_instance == 0) return points;
+  const cv::Rect image(cv::Point(0, 0), size_);
+  // Minimum distance 5 px: dense enough for a 30 x 60 px far person, the LK windows still mostly distinct.
+  constexpr double kQuality = 0.01, kMinDistance = 5.0;
+  std::vector<cv::Point2f> corners;
+  for (const Moving& m : instances_) {
+    const cv::Rect moved = m.instance.box + offsetPixels(m.offset);
+    const cv::Rect roi = moved & image;
+    if (roi.width < 8 || roi.height < 8) continue;
+    const cv::Mat mask = m.instance.mask(cv::Rect(roi.tl() - moved.tl(), roi.size()));
+    cv::goodFeaturesToTrack(gray(roi), corners, options_.samples_per_instance, kQuality, kMinDistance, mask);
+    for (const cv::Point2f& c : corners) points.push_back(c + cv::Point2f(roi.tl()));
+  }
+  return points;
+}
+
+void PriorMaskPropagator::step(const FrameFlow& flow) {
+  ++age_;
+  std::vector<float> dx, dy;
+  for (Moving& m : instances_) {
+    dx.clear();
+    dy.clear();
+    for (const PointTrack& t : flow.tracks) {
+      if (!inside(m, t.last)) continue;
+      dx.push_back(t.current.x - t.last.x);
+      dy.push_back(t.current.y - t.last.y);
+    }
+    if (static_cast<int>(dx.size()) >= options_.min_tracks) m.velocity = {median(dx), median(dy)};
+    m.offset += m.velocity;
+  }
+}
+
+cv::Mat PriorMaskPropagator::paint(bool dilated) const {
+  std::vector<SegmentedInstance> moved;
+  moved.reserve(instances_.size());
+  for (const Moving& m : instances_) {
+    SegmentedInstance s;
+    s.box = (dilated ? m.dilated_box : m.instance.box) + offsetPixels(m.offset);
+    s.mask = dilated ? m.dilated : m.instance.mask;
+    moved.push_back(std::move(s));
+  }
+  return paintInstances(moved, size_);
+}
+
+cv::Mat PriorMaskPropagator::mask() const { return paint(false); }
+cv::Mat PriorMaskPropagator::dilatedMask() const { return paint(true); }
+
+}  // namespace amos::dynamic
