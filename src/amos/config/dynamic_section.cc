@@ -13,7 +13,6 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
   in.read("Dynamic.Prior.lag", o.prior.lag);
   in.read("Dynamic.Prior.minTracks", o.prior.min_tracks);
   in.read("Dynamic.Prior.holdMissed", o.prior.hold_missed);
-  in.read("Dynamic.Prior.samplesPerInstance", o.prior.samples_per_instance);
   in.read("Dynamic.Prior.auditPredictions", o.prior.audit_predictions);
 
   in.read("Dynamic.Superpixel.count", o.superpixel.num_superpixels);

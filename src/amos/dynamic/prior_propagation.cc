@@ -18,8 +18,6 @@ void PriorScheduleOptions::check() const {
                 fmt::format("Dynamic.Prior.lag ({}) must not exceed Dynamic.Prior.interval ({}): a segmentation would "
                             "then be needed before the one of the frame it replaces is used",
                             lag, interval));
-  core::require(samples_per_instance >= 0,
-                fmt::format("Dynamic.Prior.samplesPerInstance must be >= 0, got {}", samples_per_instance));
   core::require(hold_missed >= 0, fmt::format("Dynamic.Prior.holdMissed must be >= 0, got {}", hold_missed));
   core::require(min_tracks >= 1, fmt::format("Dynamic.Prior.minTracks must be >= 1, got {}", min_tracks));
 }
@@ -90,26 +88,6 @@ bool PriorMaskPropagator::inside(const Moving& m, const cv::Point2f& p) const {
   const int y = static_cast<int>(std::floor(p.y)) - shift.y - m.instance.box.y;
   if (x < 0 || y < 0 || x >= m.instance.box.width || y >= m.instance.box.height) return false;
   return m.instance.mask.at<std::uint8_t>(y, x) != 0;
-}
-
-std::vector<cv::Point2f> PriorMaskPropagator::samplePoints(const cv::Mat& gray) const {
-  core::require(gray.type() == CV_8UC1 && gray.size() == size_, "PriorMaskPropagator::samplePoints: CV_8UC1 image "
-                                                                "of the propagator's size expected");
-  std::vector<cv::Point2f> points;
-  if (options_.samples_per_instance == 0) return points;
-  const cv::Rect image(cv::Point(0, 0), size_);
-  // Minimum distance 5 px: dense enough for a 30 x 60 px far person, the LK windows still mostly distinct.
-  constexpr double kQuality = 0.01, kMinDistance = 5.0;
-  std::vector<cv::Point2f> corners;
-  for (const Moving& m : instances_) {
-    const cv::Rect moved = m.instance.box + offsetPixels(m.offset);
-    const cv::Rect roi = moved & image;
-    if (roi.width < 8 || roi.height < 8) continue;
-    const cv::Mat mask = m.instance.mask(cv::Rect(roi.tl() - moved.tl(), roi.size()));
-    cv::goodFeaturesToTrack(gray(roi), corners, options_.samples_per_instance, kQuality, kMinDistance, mask);
-    for (const cv::Point2f& c : corners) points.push_back(c + cv::Point2f(roi.tl()));
-  }
-  return points;
 }
 
 void PriorMaskPropagator::step(const FrameFlow& flow) {

@@ -33,11 +33,6 @@ struct PriorScheduleOptions {
   // Dynamic.Prior.minTracks: tracks inside an instance needed to measure its motion; with fewer, the instance
   // keeps its last motion (people do not stop within a frame). 3: a median of three is robust to one bad track.
   int min_tracks = 3;
-  // Dynamic.Prior.samplesPerInstance: corners detected inside each carried instance (in the previous frame) and
-  // tracked into this one, on top of the frame's own corner tracks: those are spread over the whole image (500,
-  // >= 10 px apart) and a person on plain clothes gets few of them. 30 gives the median 10+ tracks to choose from
-  // after the forward-backward check, for ~1 ms of LK.
-  int samples_per_instance = 30;
   // Dynamic.Prior.holdMissed: segmentations an instance is kept (and carried on) for when the network no longer
   // finds it: detectors flicker on people who are small, cut by the border or partly hidden, and a person missed
   // by one segmentation would otherwise leave the mask for interval frames. 1 = one period (3 frames at the
@@ -66,9 +61,6 @@ class PriorMaskPropagator {
   // Starts again from a fresh segmentation of an earlier (or this) frame; instances carried so far that overlap
   // none of the new ones are kept for PriorScheduleOptions::hold_missed segmentations.
   void reset(const std::vector<SegmentedInstance>& instances);
-  // Points of the previous frame `gray` worth tracking to measure the instances' motion: Shi-Tomasi corners inside
-  // each instance as it was carried to that frame.
-  std::vector<cv::Point2f> samplePoints(const cv::Mat& gray) const;
   // Moves every instance by the motion of the tracks that start inside it.
   void step(const FrameFlow& flow);
 

@@ -5,6 +5,7 @@
 #include <shared_mutex>
 
 #include "amos/core/error.h"
+#include "amos/core/stage_timer.h"
 #include "amos/mapping/local_bundle_adjustment.h"
 
 namespace amos::mapping {
@@ -102,6 +103,7 @@ void LocalMapper::run() {
 
 void LocalMapper::process(Job job) {
   core::Stopwatch total, watch;
+  const double cpu_start = core::threadCpuMs();
   const map::KeyFramePtr& kf = job.kf;
   LocalMappingStats delta;
   std::size_t job_new_points = 0;
@@ -173,6 +175,8 @@ void LocalMapper::process(Job job) {
     if (times_) times_->add("mapping.after_keyframe", watch.elapsedMs());
   }
   if (times_) times_->add("mapping.keyframe_total", total.elapsedMs());
+  // CPU of the mapping thread on this keyframe, loop closing's hook included (the wall times above grow with load).
+  if (times_) times_->add("cpu.mapping", core::threadCpuMs() - cpu_start);
   std::lock_guard lock(mutex_);
   ++stats_.keyframes_processed;
   stats_.keyframes_culled += delta.keyframes_culled;

@@ -329,15 +329,7 @@ DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io
     }
     if (usesSegmentation()) {
       // 3a. Person masks: this frame's segmentation, or an earlier one carried here by the tracks.
-      dynamic::FrameFlow flow{tracks};
-      if (propagator_ && last_ && !current_pyramid.empty()) {
-        core::Stopwatch watch;
-        const std::vector<dynamic::PointTrack> inside = dynamic::trackPoints(
-            {last_->pyramid, current_pyramid}, propagator_->samplePoints(last_->gray), options_.tracking);
-        flow.tracks.insert(flow.tracks.end(), inside.begin(), inside.end());
-        times_.add("dynamic.prior_tracks", watch.elapsedMs());
-      }
-      auto [mask, dilated] = priorMasks(counter, std::move(flow));
+      auto [mask, dilated] = priorMasks(counter, dynamic::FrameFlow{tracks});
       if (options_.prior.audit_predictions && options_.prior.baseFor(counter) != counter)
         prior_audit_.push_back(auditPrediction(mask, dilated, segmentationOf(counter).get()));
       mask_for_next.set_value(dilated);
