@@ -88,6 +88,7 @@ void readMappingSection(YamlReader& in, mapping::LocalMappingOptions& o, map::Co
   in.read("LocalBA.enabled", o.local_ba);
   in.read("LocalBA.iterationsRobust", o.ba.iterations_robust);
   in.read("LocalBA.iterationsRefine", o.ba.iterations_refine);
+  in.read("LocalBA.maxKeyFrames", o.ba.max_keyframes);
   in.read("LocalBA.chi2Mono", o.ba.chi2_mono);
   in.read("LocalBA.chi2Stereo", o.ba.chi2_stereo);
   in.read("LocalBA.threads", o.ba.num_threads);

@@ -17,6 +17,7 @@ void BundleAdjustmentOptions::check() const {
   core::require(iterations_refine >= 0, "LocalBA.iterationsRefine must be >= 0");
   core::require(chi2_mono > 0 && chi2_stereo > 0, "LocalBA.chi2Mono/chi2Stereo must be > 0");
   core::require(num_threads >= 1, "LocalBA.threads must be >= 1");
+  core::require(max_keyframes >= 0, "LocalBA.maxKeyFrames must be >= 0");
 }
 
 namespace {

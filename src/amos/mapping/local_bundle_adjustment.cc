@@ -28,7 +28,8 @@ LocalBaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& key
       problem.keyframes.push_back({kf->T_cw(), fixed || kf->id() == map.firstKeyFrameId()});
     };
     addKf(keyframe, false);
-    for (const auto& [w, id] : keyframe->orderedConnections()) {
+    for (const auto& [w, id] : keyframe->orderedConnections()) {  // most covisible first
+      if (options.max_keyframes > 0 && static_cast<int>(kfs.size()) > options.max_keyframes) break;
       const map::KeyFramePtr kf = map.keyFrame(id);
       if (kf && !kf->isBad()) addKf(kf, false);
     }
