@@ -6,9 +6,8 @@
 //   extractOrb(gray, ...);                               // runs while the frame is segmented
 //   SegmentationResult masks = pending.get();            // blocks until this frame's masks are ready
 //
-// Frames travel through a bounded queue to the worker thread; each result comes back through a std::future
-// (condition variable inside, no polling). Frames are segmented in submission order. A segmenter exception is
-// rethrown by the future's get() in the caller's thread.
+// Frames are segmented one after the other, in submission order, by a core::SerialExecutor; each result comes
+// back through a std::future. A segmenter exception is rethrown by the future's get() in the caller's thread.
 //
 // Thread safety: submit() and close() may be called from any thread. The worker keeps a reference to the
 // submitted images (cv::Mat is shared, not copied): do not write into them until the result has arrived.
@@ -18,10 +17,9 @@
 #include <cstdint>
 #include <future>
 #include <memory>
-#include <thread>
 #include <vector>
 
-#include "amos/core/bounded_queue.h"
+#include "amos/core/serial_executor.h"
 #include "amos/core/stage_timer.h"
 #include "amos/dynamic/segmenter.h"
 #include "amos/dynamic/segmenter_options.h"
@@ -58,19 +56,9 @@ class SegmentationWorker {
   const MaskDilationOptions& dilation() const { return dilation_; }
 
  private:
-  struct Job {
-    std::uint64_t frame_id = 0;
-    cv::Mat bgr, depth;
-    std::promise<SegmentationResult> promise;
-    core::Stopwatch since_submit;
-  };
-
-  void run();
-
   std::unique_ptr<Segmenter> segmenter_;
   MaskDilationOptions dilation_;
-  core::BoundedQueue<Job> queue_;
-  std::thread thread_;  // last: started once everything it uses exists
+  core::SerialExecutor executor_;  // last: its thread stops before the segmenter goes away
 };
 
 // Segments one frame synchronously the way the worker does (instances, union mask, dilated mask). For tools and

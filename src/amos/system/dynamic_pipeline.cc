@@ -9,7 +9,7 @@
 #include <thread>
 #include <utility>
 
-#include "amos/core/bounded_queue.h"
+#include "amos/core/serial_executor.h"
 #include "amos/core/error.h"
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/reprojection_scoring.h"
@@ -51,35 +51,6 @@ PriorAudit auditPrediction(const cv::Mat& carried, const cv::Mat& carried_dilate
 }
 
 }  // namespace
-
-// One thread running preparation jobs in submission order; results come back through futures (an exception of a job
-// is rethrown by its future's get()).
-class DynamicPipeline::LookAheadWorker {
- public:
-  LookAheadWorker() : jobs_(kQueuedJobs), thread_([this] { run(); }) {}
-  ~LookAheadWorker() {
-    jobs_.close();  // jobs already queued still run: their futures are never left without a value
-    thread_.join();
-  }
-  LookAheadWorker(const LookAheadWorker&) = delete;
-  LookAheadWorker& operator=(const LookAheadWorker&) = delete;
-
-  std::future<PreparedFrame> submit(std::function<PreparedFrame()> job) {
-    std::packaged_task<PreparedFrame()> task(std::move(job));
-    std::future<PreparedFrame> result = task.get_future();
-    core::require(jobs_.push(std::move(task)), "DynamicPipeline: look-ahead worker closed");
-    return result;
-  }
-
- private:
-  // The current and the next frame are the most in flight; room for a few announced-but-skipped ones.
-  static constexpr std::size_t kQueuedJobs = 4;
-  void run() {
-    while (std::optional<std::packaged_task<PreparedFrame()>> job = jobs_.pop()) (*job)();
-  }
-  core::BoundedQueue<std::packaged_task<PreparedFrame()>> jobs_;
-  std::thread thread_;  // last: started once the queue exists
-};
 
 DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions& options,
                                  std::unique_ptr<dynamic::SegmentationWorker> segmentation)
@@ -242,7 +213,8 @@ void DynamicPipeline::requestPreparation(const io::RgbdFrame& frame,
                                          bool map_ready) {
   for (const Preparing& p : preparing_)
     if (p.index == frame.index && p.image == frame.bgr.data) return;
-  if (!look_ahead_) look_ahead_ = std::make_unique<LookAheadWorker>();
+  // The current and the next frame are the most in flight; room for a few announced-but-skipped ones.
+  if (!look_ahead_) look_ahead_ = std::make_unique<core::SerialExecutor>(4);
   // The job holds its own references to the images (cv::Mat headers share the pixels), not to the caller's frame.
   // The partition is made even though whether the frame will have a last frame (and use it) is not known yet.
   preparing_.push_back({frame.index, frame.bgr.data,

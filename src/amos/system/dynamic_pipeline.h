@@ -42,6 +42,7 @@
 #include <utility>
 #include <vector>
 
+#include "amos/core/serial_executor.h"
 #include "amos/core/stage_timer.h"
 #include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/dynamic_front_end.h"
@@ -176,8 +177,7 @@ class DynamicPipeline {
   std::vector<double> removed_fractions_;
   // The thread that prepares look-ahead frames (created on the first look-ahead frame). Last member: it is stopped
   // and joined first, before anything its jobs use goes away.
-  class LookAheadWorker;
-  std::unique_ptr<LookAheadWorker> look_ahead_;
+  std::unique_ptr<core::SerialExecutor> look_ahead_;
 };
 
 }  // namespace amos::system
