@@ -1,10 +1,12 @@
 // amos-slam: command-line front end. See README.md for the subcommands.
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
+#include <csignal>
 #include <exception>
 #include <iostream>
 
@@ -19,6 +21,11 @@ int main(int argc, char** argv) {
   mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024);
   mallopt(M_TRIM_THRESHOLD, 512 * 1024 * 1024);
 #endif
+  // A reader that goes away (`amos-slam run ... | head -1`) must not kill a run before it writes its outputs: writes
+  // to a closed pipe fail with EPIPE instead of raising SIGPIPE.
+  std::signal(SIGPIPE, SIG_IGN);
+  // Log messages (progress, warnings) go to stderr; stdout carries only the results (summaries, eval figures).
+  spdlog::set_default_logger(spdlog::stderr_color_mt("amos"));
   CLI::App app{"Amos-SLAM: RGB-D SLAM for scenes with moving people and objects"};
   app.require_subcommand(1);
   bool verbose = false;
