@@ -184,10 +184,10 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   source_report.processed = n;
   source.reset();  // a live device is closed here
   result.info.source = std::move(source_report);
-  if (result.pipeline->mode() != dynamic::DynamicMode::kNone) {
-    result.info.front_end_times = &result.pipeline->times();
+  // The pipeline's own stages (ORB extraction and tracking CPU in every mode, the front end's in the others).
+  result.info.front_end_times = &result.pipeline->times();
+  if (result.pipeline->mode() != dynamic::DynamicMode::kNone)
     result.info.removed_fractions = result.pipeline->removedFractions();
-  }
   if (!mask_accuracy.empty()) result.info.mask_accuracy = mask_accuracy.summary();
   result.info.mask_outputs_s = outputs_ms / 1000.0;
   result.info.wall_time_s = (wall.elapsedMs() - outputs_ms) / 1000.0;
