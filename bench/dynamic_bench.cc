@@ -20,8 +20,8 @@
 
 #include "amos/config/settings.h"
 #include "amos/dynamic/dynamic_front_end.h"
-#include "amos/dynamic/model_locator.h"
-#include "amos/dynamic/segmenter_factory.h"
+#include "amos/segmentation/model_locator.h"
+#include "amos/segmentation/segmenter_factory.h"
 #include "amos/dynamic/superpixel_metrics.h"
 #include "amos/eval/bonn_ground_truth.h"
 #include "amos/eval/evaluate.h"
@@ -337,11 +337,11 @@ void BM_BonnFullSequence(benchmark::State& state) {
     system::SlamSystem slam(report::slamOptionsFromSettings(settings, deterministic));
     dynamic::DynamicOptions options = settings.dynamic;
     options.mode = DynamicMode::kFull;
-    dynamic::ModelSources sources;
-    sources.environment = dynamic::processEnvironment();
+    segmentation::ModelSources sources;
+    sources.environment = segmentation::processEnvironment();
     sources.default_dirs = std::vector<std::string>{"./models", std::string(AMOS_SHARED_DIR) + "/models"};
-    auto worker = std::make_unique<dynamic::SegmentationWorker>(
-        dynamic::createSegmenter(settings.segmentation, sources, dynamic::builtinSegmenterFactory()),
+    auto worker = std::make_unique<segmentation::SegmentationWorker>(
+        segmentation::createSegmenter(settings.segmentation, sources, segmentation::builtinSegmenterFactory()),
         settings.segmentation.dilation);
     system::DynamicPipeline pipeline(slam, options, std::move(worker));
     io::SequenceIndex index = io::indexSequence(sequence);

@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "amos/core/stage_timer.h"
-#include "amos/dynamic/segment_masks.h"
-#include "amos/dynamic/segmentation_worker.h"
-#include "amos/dynamic/segmenter_factory.h"
+#include "amos/segmentation/segment_masks.h"
+#include "amos/segmentation/segmentation_worker.h"
+#include "amos/segmentation/segmenter_factory.h"
 #include "amos/feature/orb_extractor.h"
 #include "amos/io/dataset.h"
 
@@ -55,23 +55,23 @@ const std::vector<BenchFrame>& benchFrames() {
   return frames;
 }
 
-std::unique_ptr<dynamic::Segmenter> makeSegmenter(dynamic::SegmenterOptions options) {
-  dynamic::ModelSources sources;
-  sources.environment = dynamic::processEnvironment();
+std::unique_ptr<segmentation::Segmenter> makeSegmenter(segmentation::SegmenterOptions options) {
+  segmentation::ModelSources sources;
+  sources.environment = segmentation::processEnvironment();
   sources.default_dirs = {"./models", "../shared/models", std::string(AMOS_SHARED_DIR) + "/models"};
-  return dynamic::createSegmenter(options, sources, dynamic::builtinSegmenterFactory());
+  return segmentation::createSegmenter(options, sources, segmentation::builtinSegmenterFactory());
 }
 
-std::unique_ptr<dynamic::Segmenter> makeSegmenter(int input_size, int threads) {
-  dynamic::SegmenterOptions options;
+std::unique_ptr<segmentation::Segmenter> makeSegmenter(int input_size, int threads) {
+  segmentation::SegmenterOptions options;
   options.input_size = input_size;
   options.threads = threads;
   return makeSegmenter(options);
 }
 
 // The export's own shapes: square 320 detector input (letterboxed frame), person crops at 256x256.
-dynamic::SegmenterOptions exportShapes() {
-  dynamic::SegmenterOptions options;
+segmentation::SegmenterOptions exportShapes() {
+  segmentation::SegmenterOptions options;
   options.input_shape = "square";
   options.mask_input_size = 256;
   return options;
@@ -83,7 +83,9 @@ const std::vector<cv::Mat>& referenceMasks() {
     cv::setNumThreads(1);
     auto segmenter = makeSegmenter(exportShapes());
     std::vector<cv::Mat> out;
-    for (const auto& frame : benchFrames()) out.push_back(dynamic::segmentFrame(*segmenter, {}, 0, frame.bgr).mask);
+    for (const auto& frame : benchFrames()) {
+      out.push_back(segmentation::segmentFrame(*segmenter, {}, 0, frame.bgr).mask);
+    }
     return out;
   }();
   return masks;
@@ -102,12 +104,12 @@ void BM_Segment(benchmark::State& state) {
   const auto& frames = benchFrames();
   cv::setNumThreads(static_cast<int>(state.range(1)));
   auto segmenter = makeSegmenter(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  const dynamic::MaskDilationOptions dilation;
+  const segmentation::MaskDilationOptions dilation;
   std::vector<double> frame_ms;
   std::size_t i = 0, instances = 0;
   for (auto _ : state) {
     core::Stopwatch watch;
-    const auto result = dynamic::segmentFrame(*segmenter, dilation, i, frames[i % frames.size()].bgr);
+    const auto result = segmentation::segmentFrame(*segmenter, dilation, i, frames[i % frames.size()].bgr);
     frame_ms.push_back(watch.elapsedMs());
     instances += result.instances.size();
     ++i;
@@ -123,7 +125,7 @@ void BM_SegmentShapes(benchmark::State& state) {
   const auto& frames = benchFrames();
   const auto& reference = referenceMasks();
   cv::setNumThreads(1);
-  dynamic::SegmenterOptions options = exportShapes();
+  segmentation::SegmenterOptions options = exportShapes();
   options.input_shape = state.range(0) == 0 ? "square" : "frame";
   options.mask_input_size = static_cast<int>(state.range(1));
   auto segmenter = makeSegmenter(options);
@@ -133,9 +135,9 @@ void BM_SegmentShapes(benchmark::State& state) {
   for (auto _ : state) {
     core::Stopwatch watch;
     const std::size_t k = i % frames.size();
-    const auto result = dynamic::segmentFrame(*segmenter, {}, i, frames[k].bgr);
+    const auto result = segmentation::segmentFrame(*segmenter, {}, i, frames[k].bgr);
     frame_ms.push_back(watch.elapsedMs());
-    iou[k] = dynamic::maskIoU(result.mask, reference[k]);
+    iou[k] = segmentation::maskIoU(result.mask, reference[k]);
     ++i;
   }
   const double cpu_ms = 1000.0 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
@@ -153,8 +155,8 @@ void BM_SegmentShapes(benchmark::State& state) {
 void BM_DilateMask(benchmark::State& state) {
   const auto& masks = referenceMasks();
   cv::setNumThreads(1);
-  const dynamic::MaskDilationOptions options;
-  const cv::Mat kernel = dynamic::dilationKernel(options);
+  const segmentation::MaskDilationOptions options;
+  const cv::Mat kernel = segmentation::dilationKernel(options);
   std::size_t i = 0;
   for (auto _ : state) {
     const cv::Mat& mask = masks[i++ % masks.size()];
@@ -168,7 +170,7 @@ void BM_DilateMask(benchmark::State& state) {
       if (!box.empty())
         cv::dilate(mask(roi), target, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
     } else {
-      grown = dynamic::dilateMask(mask, options);
+      grown = segmentation::dilateMask(mask, options);
     }
     benchmark::DoNotOptimize(grown.data);
   }
@@ -200,13 +202,13 @@ void BM_SegmentThenOrb(benchmark::State& state) {
   cv::setNumThreads(static_cast<int>(state.range(1)));
   auto segmenter = makeSegmenter(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   const auto orb = makeOrb();
-  const dynamic::MaskDilationOptions dilation;
+  const segmentation::MaskDilationOptions dilation;
   std::vector<double> frame_ms;
   std::size_t i = 0;
   for (auto _ : state) {
     core::Stopwatch watch;
     const auto& frame = frames[i % frames.size()];
-    const auto result = dynamic::segmentFrame(*segmenter, dilation, i, frame.bgr);
+    const auto result = segmentation::segmentFrame(*segmenter, dilation, i, frame.bgr);
     std::vector<cv::KeyPoint> keypoints;
     cv::Mat descriptors;
     orb.extract(frame.gray, keypoints, descriptors);
@@ -222,7 +224,7 @@ void BM_SegmentThenOrb(benchmark::State& state) {
 void BM_SegmentOverlappedWithOrb(benchmark::State& state) {
   const auto& frames = benchFrames();
   cv::setNumThreads(static_cast<int>(state.range(1)));
-  dynamic::SegmentationWorker worker(
+  segmentation::SegmentationWorker worker(
       makeSegmenter(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))), {}, 2);
   const auto orb = makeOrb();
   std::vector<double> frame_ms;

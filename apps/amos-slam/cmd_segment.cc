@@ -17,10 +17,10 @@
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
-#include "amos/dynamic/segment_masks.h"
-#include "amos/dynamic/segmentation_worker.h"
-#include "amos/dynamic/segmenter_classes.h"
-#include "amos/dynamic/segmenter_factory.h"
+#include "amos/segmentation/segment_masks.h"
+#include "amos/segmentation/segmentation_worker.h"
+#include "amos/segmentation/segmenter_classes.h"
+#include "amos/segmentation/segmenter_factory.h"
 #include "amos/io/dataset.h"
 #include "commands.h"
 
@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 
 struct SegmentArgs {
   std::string sequence, models, output, settings;
-  dynamic::SegmenterOptions segmenter;
+  segmentation::SegmenterOptions segmenter;
   std::string classes = "person";
   double depth_factor = 5000.0;
   std::size_t limit = 0, every = 1, sheet_frames = 12;
@@ -107,13 +107,13 @@ int runSegment(SegmentArgs args) {
   args.segmenter.classes = splitList(args.classes);
   const bool needs_depth = std::any_of(args.segmenter.classes.begin(), args.segmenter.classes.end(),
                                        [](const std::string& c) { return c != "person"; });
-  dynamic::ModelSources sources;
+  segmentation::ModelSources sources;
   sources.cli_dir = args.models;
   if (!args.settings.empty()) sources.settings_dir = config::loadSettings(args.settings).segmentation.models_dir;
-  sources.environment = dynamic::processEnvironment();
+  sources.environment = segmentation::processEnvironment();
 
   // Models are loaded and checked before any frame is read.
-  auto segmenter = dynamic::createSegmenter(args.segmenter, sources, dynamic::builtinSegmenterFactory());
+  auto segmenter = segmentation::createSegmenter(args.segmenter, sources, segmentation::builtinSegmenterFactory());
   std::vector<InputFrame> frames = listFrames(args.sequence);
   if (args.every > 1) {
     std::vector<InputFrame> kept;
@@ -134,11 +134,11 @@ int runSegment(SegmentArgs args) {
   std::vector<cv::Mat> sheet_tiles;
   std::vector<std::string> sheet_captions;
 
-  dynamic::SegmentationWorker worker(std::move(segmenter), args.segmenter.dilation, 2);
+  segmentation::SegmentationWorker worker(std::move(segmenter), args.segmenter.dilation, 2);
   struct Pending {
     std::size_t index;
     cv::Mat bgr;
-    std::future<dynamic::SegmentationResult> result;
+    std::future<segmentation::SegmentationResult> result;
   };
   std::deque<Pending> pending;
   core::StageTimes times;
@@ -150,7 +150,7 @@ int runSegment(SegmentArgs args) {
   auto finishOldest = [&] {
     Pending p = std::move(pending.front());
     pending.pop_front();
-    const dynamic::SegmentationResult r = p.result.get();
+    const segmentation::SegmentationResult r = p.result.get();
     times.add("segment", r.segment_ms);
     instances += r.instances.size();
     frames_with_objects += r.instances.empty() ? 0 : 1;
@@ -159,7 +159,7 @@ int runSegment(SegmentArgs args) {
                   fmt::format("cannot write {}", (out / "masks" / name).string()));
     const bool on_sheet = std::find(sheet_indices.begin(), sheet_indices.end(), p.index) != sheet_indices.end();
     if (args.overlays || on_sheet) {
-      const cv::Mat overlay = dynamic::drawOverlay(p.bgr, r.instances);
+      const cv::Mat overlay = segmentation::drawOverlay(p.bgr, r.instances);
       if (args.overlays) cv::imwrite((out / "overlays" / name).string(), overlay);
       if (on_sheet) {
         sheet_tiles.push_back(overlay);
@@ -191,7 +191,7 @@ int runSegment(SegmentArgs args) {
 
   if (!sheet_tiles.empty()) {
     const fs::path sheet = out / "contact_sheet.png";
-    cv::imwrite(sheet.string(), dynamic::contactSheet(sheet_tiles, sheet_captions, 4, 320));
+    cv::imwrite(sheet.string(), segmentation::contactSheet(sheet_tiles, sheet_captions, 4, 320));
     spdlog::info("segment: contact sheet of {} frames in {}", sheet_tiles.size(), sheet.string());
   }
   const auto summary = times.summary()["segment"];

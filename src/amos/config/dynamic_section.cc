@@ -66,7 +66,7 @@ void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
   in.read("Dynamic.InitialPose.keyframeMaxPoints", o.initial_pose.keyframe_max_points);
 }
 
-void readSegmentationSection(YamlReader& in, dynamic::SegmenterOptions& o) {
+void readSegmentationSection(YamlReader& in, segmentation::SegmenterOptions& o) {
   in.read("Segmentation.backend", o.backend);
   in.read("Segmentation.models_dir", o.models_dir);
   in.read("Segmentation.input_size", o.input_size);

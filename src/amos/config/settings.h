@@ -7,7 +7,7 @@
 
 #include "amos/core/camera.h"
 #include "amos/dynamic/dynamic_options.h"
-#include "amos/dynamic/segmenter_options.h"
+#include "amos/segmentation/segmenter_options.h"
 #include "amos/feature/orb_extractor.h"
 #include "amos/io/dataset.h"
 #include "amos/loop/loop_closer.h"
@@ -40,7 +40,7 @@ struct Settings {
   loop::LoopClosingOptions loop;           // Loop.*
 
   dynamic::DynamicOptions dynamic;         // Dynamic.* (the paper's two-stage front end)
-  dynamic::SegmenterOptions segmentation;  // Segmentation.* (prior dynamic objects)
+  segmentation::SegmenterOptions segmentation;  // Segmentation.* (prior dynamic objects)
 
   // Reader options that follow from these settings (image size, depth factor).
   io::ReaderOptions readerOptions() const;

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "amos/core/error.h"
-#include "amos/dynamic/segment_masks.h"
+#include "amos/segmentation/segment_masks.h"
 
 namespace amos::dynamic {
 
@@ -42,20 +42,20 @@ cv::Point offsetPixels(const cv::Point2f& offset) {
 
 }  // namespace
 
-PriorMaskPropagator::PriorMaskPropagator(cv::Size image_size, MaskDilationOptions dilation,
+PriorMaskPropagator::PriorMaskPropagator(cv::Size image_size, segmentation::MaskDilationOptions dilation,
                                          PriorScheduleOptions options)
     : size_(image_size), dilation_(std::move(dilation)), options_(options) {
   dilation_.check();
   options_.check();
 }
 
-void PriorMaskPropagator::reset(const std::vector<SegmentedInstance>& instances) {
+void PriorMaskPropagator::reset(const std::vector<segmentation::SegmentedInstance>& instances) {
   // Carried instances that no new one overlaps: missed by the network this time (kept a while) or gone.
   std::vector<Moving> held;
   for (Moving& m : instances_) {
     if (m.missed >= options_.hold_missed) continue;
     const cv::Rect moved = m.instance.box + offsetPixels(m.offset);
-    const bool found = std::any_of(instances.begin(), instances.end(), [&](const SegmentedInstance& s) {
+    const bool found = std::any_of(instances.begin(), instances.end(), [&](const auto& s) {
       const double overlap = (moved & s.box).area();
       return overlap > 0.3 * std::min(moved.area(), s.box.area());
     });
@@ -65,9 +65,9 @@ void PriorMaskPropagator::reset(const std::vector<SegmentedInstance>& instances)
   }
   instances_.clear();
   age_ = 0;
-  const cv::Mat kernel = dilationKernel(dilation_);
+  const cv::Mat kernel = segmentation::dilationKernel(dilation_);
   const int half = kernel.empty() ? 0 : kernel.cols / 2;
-  for (const SegmentedInstance& instance : instances) {
+  for (const segmentation::SegmentedInstance& instance : instances) {
     if (instance.mask.empty() || instance.box.empty()) continue;
     Moving m;
     m.instance = instance;
@@ -107,15 +107,15 @@ void PriorMaskPropagator::step(const FrameFlow& flow) {
 }
 
 cv::Mat PriorMaskPropagator::paint(bool dilated) const {
-  std::vector<SegmentedInstance> moved;
+  std::vector<segmentation::SegmentedInstance> moved;
   moved.reserve(instances_.size());
   for (const Moving& m : instances_) {
-    SegmentedInstance s;
+    segmentation::SegmentedInstance s;
     s.box = (dilated ? m.dilated_box : m.instance.box) + offsetPixels(m.offset);
     s.mask = dilated ? m.dilated : m.instance.mask;
     moved.push_back(std::move(s));
   }
-  return paintInstances(moved, size_);
+  return segmentation::paintInstances(moved, size_);
 }
 
 cv::Mat PriorMaskPropagator::mask() const { return paint(false); }

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "amos/dynamic/corner_tracking.h"
-#include "amos/dynamic/segmenter.h"
-#include "amos/dynamic/segmenter_options.h"
+#include "amos/segmentation/segmenter.h"
+#include "amos/segmentation/segmenter_options.h"
 
 namespace amos::dynamic {
 
@@ -56,11 +56,11 @@ struct FrameFlow {
 
 class PriorMaskPropagator {
  public:
-  PriorMaskPropagator(cv::Size image_size, MaskDilationOptions dilation, PriorScheduleOptions options);
+  PriorMaskPropagator(cv::Size image_size, segmentation::MaskDilationOptions dilation, PriorScheduleOptions options);
 
   // Starts again from a fresh segmentation of an earlier (or this) frame; instances carried so far that overlap
   // none of the new ones are kept for PriorScheduleOptions::hold_missed segmentations.
-  void reset(const std::vector<SegmentedInstance>& instances);
+  void reset(const std::vector<segmentation::SegmentedInstance>& instances);
   // Moves every instance by the motion of the tracks that start inside it.
   void step(const FrameFlow& flow);
 
@@ -73,18 +73,18 @@ class PriorMaskPropagator {
 
  private:
   struct Moving {
-    SegmentedInstance instance;  // as segmented
-    cv::Mat dilated;             // instance.mask grown by the dilation, in `dilated_box`
-    cv::Rect dilated_box;        // instance.box grown by the kernel's half size on each side
-    cv::Point2f offset{0, 0};    // accumulated motion since segmentation [px]
-    cv::Point2f velocity{0, 0};  // last measured motion per frame [px]
-    int missed = 0;              // segmentations since the network last found it
+    segmentation::SegmentedInstance instance;  // as segmented
+    cv::Mat dilated;                           // instance.mask grown by the dilation, in `dilated_box`
+    cv::Rect dilated_box;                      // instance.box grown by the kernel's half size on each side
+    cv::Point2f offset{0, 0};                  // accumulated motion since segmentation [px]
+    cv::Point2f velocity{0, 0};                // last measured motion per frame [px]
+    int missed = 0;                            // segmentations since the network last found it
   };
   bool inside(const Moving& m, const cv::Point2f& p) const;
   cv::Mat paint(bool dilated) const;
 
   cv::Size size_;
-  MaskDilationOptions dilation_;
+  segmentation::MaskDilationOptions dilation_;
   PriorScheduleOptions options_;
   std::vector<Moving> instances_;
   int age_ = 0;

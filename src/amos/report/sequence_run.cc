@@ -9,8 +9,8 @@
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
-#include "amos/dynamic/model_locator.h"
-#include "amos/dynamic/segmenter_factory.h"
+#include "amos/segmentation/model_locator.h"
+#include "amos/segmentation/segmenter_factory.h"
 #include "amos/eval/bonn_ground_truth.h"
 #include "amos/eval/evaluate.h"
 #include "amos/eval/ground_truth_masks.h"
@@ -49,14 +49,15 @@ std::unique_ptr<system::DynamicPipeline> makeDynamicPipeline(const config::Setti
                                                              system::SlamSystem& slam) {
   dynamic::DynamicOptions dynamic_options = settings.dynamic;
   dynamic_options.mode = dynamic::parseDynamicMode(options.mode);
-  std::unique_ptr<dynamic::SegmentationWorker> worker;
+  std::unique_ptr<segmentation::SegmentationWorker> worker;
   if (dynamic_options.mode == dynamic::DynamicMode::kPrior || dynamic_options.mode == dynamic::DynamicMode::kFull) {
-    dynamic::ModelSources sources;
+    segmentation::ModelSources sources;
     sources.cli_dir = options.models_dir;
     sources.settings_dir = settings.segmentation.models_dir;
-    sources.environment = dynamic::processEnvironment();
-    auto segmenter = dynamic::createSegmenter(settings.segmentation, sources, dynamic::builtinSegmenterFactory());
-    worker = std::make_unique<dynamic::SegmentationWorker>(std::move(segmenter), settings.segmentation.dilation);
+    sources.environment = segmentation::processEnvironment();
+    auto segmenter =
+        segmentation::createSegmenter(settings.segmentation, sources, segmentation::builtinSegmenterFactory());
+    worker = std::make_unique<segmentation::SegmentationWorker>(std::move(segmenter), settings.segmentation.dilation);
   }
   return std::make_unique<system::DynamicPipeline>(slam, dynamic_options, std::move(worker));
 }

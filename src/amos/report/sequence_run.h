@@ -60,7 +60,7 @@ struct SequenceRunOptions {
   std::string record_dir;      // --record: write every processed frame there in TUM layout ("" = do not)
   std::string config_label;    // recorded in stats.json
   std::string mode = "none";   // dynamic front end: none | prior | geometry | full (the CLI defaults to full)
-  std::string models_dir;      // --models: segmentation model folder (see dynamic/model_locator.h)
+  std::string models_dir;      // --models: segmentation model folder (see segmentation/model_locator.h)
   bool deterministic = false;
   std::size_t max_frames = 0;  // 0 = all
   // --save-masks: write every frame's final dynamic mask to <masks_output_dir>/masks/ and overlays of

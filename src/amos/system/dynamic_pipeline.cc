@@ -13,7 +13,7 @@
 #include "amos/core/error.h"
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/reprojection_scoring.h"
-#include "amos/dynamic/segment_masks.h"
+#include "amos/segmentation/segment_masks.h"
 
 namespace amos::system {
 
@@ -42,9 +42,9 @@ std::vector<cv::Point2f> distortPixels(const std::vector<cv::Point2f>& undistort
 using core::threadCpuMs;
 
 PriorAudit auditPrediction(const cv::Mat& carried, const cv::Mat& carried_dilated,
-                           const dynamic::SegmentationResult& computed) {
+                           const segmentation::SegmentationResult& computed) {
   PriorAudit a;
-  a.iou = dynamic::maskIoU(carried, computed.mask);
+  a.iou = segmentation::maskIoU(carried, computed.mask);
   const int truth = cv::countNonZero(computed.mask);
   a.covered = truth == 0 ? 1.0 : cv::countNonZero(computed.mask & carried_dilated) / static_cast<double>(truth);
   return a;
@@ -53,7 +53,7 @@ PriorAudit auditPrediction(const cv::Mat& carried, const cv::Mat& carried_dilate
 }  // namespace
 
 DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions& options,
-                                 std::unique_ptr<dynamic::SegmentationWorker> segmentation)
+                                 std::unique_ptr<segmentation::SegmentationWorker> segmentation)
     : slam_(slam),
       options_(options),
       front_end_(slam.sensor()->camera(), options),
@@ -129,7 +129,7 @@ void DynamicPipeline::requestSegmentation(const io::RgbdFrame& frame, std::size_
   submitted_.insert(at, std::move(s));
 }
 
-std::shared_future<dynamic::SegmentationResult> DynamicPipeline::segmentationOf(std::size_t counter) const {
+std::shared_future<segmentation::SegmentationResult> DynamicPipeline::segmentationOf(std::size_t counter) const {
   for (const Submitted& s : submitted_)
     if (s.counter == counter) return s.result;
   return {};
@@ -137,13 +137,13 @@ std::shared_future<dynamic::SegmentationResult> DynamicPipeline::segmentationOf(
 
 std::pair<cv::Mat, cv::Mat> DynamicPipeline::priorMasks(std::size_t counter, dynamic::FrameFlow flow) {
   const std::size_t base = options_.prior.baseFor(counter);
-  std::shared_future<dynamic::SegmentationResult> pending = segmentationOf(base);
+  std::shared_future<segmentation::SegmentationResult> pending = segmentationOf(base);
   core::require(pending.valid(), "DynamicPipeline: the segmentation of frame " + std::to_string(base) +
                                      " that frame " + std::to_string(counter) + " needs was never requested");
   const bool fresh = !propagator_ || propagator_base_ != base;
   if (fresh) {
     core::Stopwatch wait;
-    const dynamic::SegmentationResult& segmented = pending.get();
+    const segmentation::SegmentationResult& segmented = pending.get();
     times_.add("dynamic.segmentation_wait", wait.elapsedMs());
     times_.add("dynamic.segmentation", segmented.segment_ms);
     times_.add("cpu.segmentation", segmented.segment_cpu_ms);
@@ -158,7 +158,7 @@ std::pair<cv::Mat, cv::Mat> DynamicPipeline::priorMasks(std::size_t counter, dyn
   const std::size_t keep = static_cast<std::size_t>(options_.prior.interval + options_.prior.lag);
   while (flows_.size() > keep) flows_.pop_front();
   if (counter == base) {  // this frame's own segmentation: exactly what the network gave (the paper's way)
-    const dynamic::SegmentationResult& segmented = pending.get();
+    const segmentation::SegmentationResult& segmented = pending.get();
     return {segmented.mask, segmented.dilated_mask};
   }
   return {propagator_->mask(), propagator_->dilatedMask()};

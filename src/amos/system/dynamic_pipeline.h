@@ -47,7 +47,7 @@
 #include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/dynamic_front_end.h"
 #include "amos/dynamic/prior_propagation.h"
-#include "amos/dynamic/segmentation_worker.h"
+#include "amos/segmentation/segmentation_worker.h"
 #include "amos/system/slam_system.h"
 
 namespace amos::system {
@@ -83,7 +83,7 @@ class DynamicPipeline {
  public:
   // `segmentation` is required for modes prior and full and ignored (may be null) otherwise.
   DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions& options,
-                  std::unique_ptr<dynamic::SegmentationWorker> segmentation);
+                  std::unique_ptr<segmentation::SegmentationWorker> segmentation);
   ~DynamicPipeline();
 
   // `next`: the frame that the following process() call will get, when the caller already has it (may be null).
@@ -106,7 +106,7 @@ class DynamicPipeline {
   // Submits `frame` (processed frame number `counter`) unless it is already on its way.
   void requestSegmentation(const io::RgbdFrame& frame, std::size_t counter);
   // The segmentation submitted for processed frame `counter` (invalid when there is none).
-  std::shared_future<dynamic::SegmentationResult> segmentationOf(std::size_t counter) const;
+  std::shared_future<segmentation::SegmentationResult> segmentationOf(std::size_t counter) const;
   // This frame's prior masks (undilated, dilated): the base segmentation carried to this frame by `flow`.
   std::pair<cv::Mat, cv::Mat> priorMasks(std::size_t counter, dynamic::FrameFlow flow);
   bool masksExtraction() const;
@@ -142,14 +142,14 @@ class DynamicPipeline {
   SlamSystem& slam_;
   dynamic::DynamicOptions options_;
   dynamic::DynamicFrontEnd front_end_;
-  std::unique_ptr<dynamic::SegmentationWorker> segmentation_;
+  std::unique_ptr<segmentation::SegmentationWorker> segmentation_;
   // Segmentations submitted to the worker, by processed-frame number, oldest first; dropped once no frame to come
   // uses them. A frame is also known by its image buffer, so a look-ahead frame that the caller announced but did
   // not process is not mistaken for the one that came instead.
   struct Submitted {
     std::size_t counter = 0;
     const void* image = nullptr;
-    std::shared_future<dynamic::SegmentationResult> result;  // shared: the look-ahead worker may wait on it too
+    std::shared_future<segmentation::SegmentationResult> result;  // shared: the look-ahead worker may wait on it too
   };
   std::deque<Submitted> submitted_;
   std::size_t processed_ = 0;  // frames processed so far = the number of the frame being processed

@@ -11,8 +11,8 @@
 #include <opencv2/core/utility.hpp>
 #include <set>
 
-#include "amos/dynamic/model_locator.h"
-#include "amos/dynamic/segmenter_factory.h"
+#include "amos/segmentation/model_locator.h"
+#include "amos/segmentation/segmenter_factory.h"
 #include "amos/io/dataset.h"
 
 namespace amos::system {
@@ -41,12 +41,13 @@ std::vector<io::RgbdFrame> bonnFrames(std::size_t count, std::size_t first) {
   return frames;
 }
 
-std::unique_ptr<dynamic::SegmentationWorker> realSegmentation() {
-  dynamic::ModelSources sources;
+std::unique_ptr<segmentation::SegmentationWorker> realSegmentation() {
+  segmentation::ModelSources sources;
   sources.cli_dir = std::string(AMOS_SHARED_DIR) + "/models";
   sources.default_dirs.clear();
-  auto segmenter = dynamic::createSegmenter(dynamic::SegmenterOptions{}, sources, dynamic::builtinSegmenterFactory());
-  return std::make_unique<dynamic::SegmentationWorker>(std::move(segmenter), dynamic::MaskDilationOptions{});
+  auto segmenter =
+      segmentation::createSegmenter(segmentation::SegmenterOptions{}, sources, segmentation::builtinSegmenterFactory());
+  return std::make_unique<segmentation::SegmentationWorker>(std::move(segmenter), segmentation::MaskDilationOptions{});
 }
 
 struct RunRecord {
@@ -101,7 +102,7 @@ TEST(DynamicPipeline, LookAheadGivesTheSameMasksAndPoses) {
 
 // A segmenter that records which frames (by the code in pixel (0, 0)) it has started, so a test can wait until a
 // given frame reaches it. Its masks are empty.
-class RecordingSegmenter : public dynamic::Segmenter {
+class RecordingSegmenter : public segmentation::Segmenter {
  public:
   struct Log {
     std::mutex mutex;
@@ -109,7 +110,7 @@ class RecordingSegmenter : public dynamic::Segmenter {
     std::set<int> started;
   };
   explicit RecordingSegmenter(std::shared_ptr<Log> log) : log_(std::move(log)) {}
-  std::vector<dynamic::SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat&) override {
+  std::vector<segmentation::SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat&) override {
     {
       std::lock_guard<std::mutex> lock(log_->mutex);
       log_->started.insert(bgr.at<cv::Vec3b>(0, 0)[0]);
@@ -142,8 +143,8 @@ TEST(DynamicPipeline, LookAheadSubmitsTheNextFrameEarly) {
   options.prior.interval = 1;  // the paper's schedule: every frame segmented
   options.prior.lag = 0;
   DynamicPipeline pipeline(slam, options,
-                           std::make_unique<dynamic::SegmentationWorker>(std::make_unique<RecordingSegmenter>(log),
-                                                                         dynamic::MaskDilationOptions{}));
+                           std::make_unique<segmentation::SegmentationWorker>(
+                               std::make_unique<RecordingSegmenter>(log), segmentation::MaskDilationOptions{}));
   const io::RgbdFrame f1 = codedFrame(1), f2 = codedFrame(2), f3 = codedFrame(3), f5 = codedFrame(5);
   pipeline.process(f1, &f2);
   {
@@ -175,8 +176,8 @@ TEST(DynamicPipeline, SegmentsEveryIntervalthFrame) {
   options.prior.interval = 3;
   options.prior.lag = 2;
   DynamicPipeline pipeline(slam, options,
-                           std::make_unique<dynamic::SegmentationWorker>(std::make_unique<RecordingSegmenter>(log),
-                                                                         dynamic::MaskDilationOptions{}));
+                           std::make_unique<segmentation::SegmentationWorker>(
+                               std::make_unique<RecordingSegmenter>(log), segmentation::MaskDilationOptions{}));
   std::vector<io::RgbdFrame> frames;
   for (std::size_t code = 10; code < 18; ++code) frames.push_back(codedFrame(code));
   for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -193,11 +194,11 @@ TEST(DynamicPipeline, SegmentsEveryIntervalthFrame) {
 }
 
 // A segmenter that reports one "person" covering the left `fraction` of every image.
-class LeftBandSegmenter : public dynamic::Segmenter {
+class LeftBandSegmenter : public segmentation::Segmenter {
  public:
   explicit LeftBandSegmenter(double fraction) : fraction_(fraction) {}
-  std::vector<dynamic::SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat&) override {
-    dynamic::SegmentedInstance person;
+  std::vector<segmentation::SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat&) override {
+    segmentation::SegmentedInstance person;
     person.class_id = 0;
     person.score = 1.f;
     person.box = cv::Rect(0, 0, static_cast<int>(fraction_ * bgr.cols), bgr.rows);
@@ -221,8 +222,8 @@ MaskedExtractionRun runLeftBand(const std::vector<io::RgbdFrame>& frames, double
   options.mode = dynamic::DynamicMode::kPrior;
   options.prior_masked_extraction = masked;
   DynamicPipeline pipeline(slam, options,
-                           std::make_unique<dynamic::SegmentationWorker>(std::make_unique<LeftBandSegmenter>(fraction),
-                                                                         dynamic::MaskDilationOptions{}));
+                           std::make_unique<segmentation::SegmentationWorker>(
+                               std::make_unique<LeftBandSegmenter>(fraction), segmentation::MaskDilationOptions{}));
   MaskedExtractionRun run;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const DynamicFrameOutput out = pipeline.process(frames[k], k + 1 < frames.size() ? &frames[k + 1] : nullptr);

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 // Structuring element used to grow the masks before they remove keypoints (paper Sec. III-C: "morphological
 // expansion of the target mask"; the authors' code uses a 31x31 ellipse).
@@ -64,4 +64,4 @@ struct SegmenterOptions {
   void check() const;
 };
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

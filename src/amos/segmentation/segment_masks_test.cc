@@ -1,4 +1,4 @@
-#include "amos/dynamic/segment_masks.h"
+#include "amos/segmentation/segment_masks.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 TEST(SegmentMasks, PaintInstancesUnitesBoxMasks) {
@@ -139,4 +139,4 @@ TEST(SegmentMasks, ContactSheetTilesImages) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,4 +1,4 @@
-#include "amos/dynamic/segmenter_dnn.h"
+#include "amos/segmentation/segmenter_dnn.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -11,15 +11,15 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
-#include "amos/dynamic/model_locator.h"
-#include "amos/dynamic/nanodet_decoder.h"
-#include "amos/dynamic/nanodet_import_dnn.h"
-#include "amos/dynamic/segment_depth_mask.h"
-#include "amos/dynamic/segment_masks.h"
-#include "amos/dynamic/segmenter_classes.h"
-#include "amos/dynamic/segmenter_factory.h"
+#include "amos/segmentation/model_locator.h"
+#include "amos/segmentation/nanodet_decoder.h"
+#include "amos/segmentation/nanodet_import_dnn.h"
+#include "amos/segmentation/segment_depth_mask.h"
+#include "amos/segmentation/segment_masks.h"
+#include "amos/segmentation/segmenter_classes.h"
+#include "amos/segmentation/segmenter_factory.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 constexpr int kSelfieSize = 256;
@@ -203,4 +203,4 @@ void addDnnSegmenterBackends(SegmenterFactory& factory) {
                                  nanodetSelfieModelFiles, makeNanoDetSelfieSegmenter});
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

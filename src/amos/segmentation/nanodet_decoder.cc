@@ -1,4 +1,4 @@
-#include "amos/dynamic/nanodet_decoder.h"
+#include "amos/segmentation/nanodet_decoder.h"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 const int kStrides[] = {8, 16, 32};
@@ -175,4 +175,4 @@ cv::Rect2f unletterboxBox(const cv::Rect2f& box, const Letterbox& lb, cv::Size i
   return {x0, y0, x1 - x0, y1 - y0};
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 using EnvironmentLookup = std::function<std::optional<std::string>(const std::string& name)>;
 using FileExists = std::function<bool(const std::string& path)>;
@@ -41,4 +41,4 @@ EnvironmentLookup processEnvironment();
 // dir + "/" + file (no separator doubling).
 std::string joinPath(const std::string& dir, const std::string& file);
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

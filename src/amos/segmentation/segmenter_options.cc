@@ -1,11 +1,11 @@
-#include "amos/dynamic/segmenter_options.h"
+#include "amos/segmentation/segmenter_options.h"
 
 #include <fmt/format.h>
 
 #include "amos/core/error.h"
-#include "amos/dynamic/segmenter_classes.h"
+#include "amos/segmentation/segmenter_classes.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 using core::require;
 
@@ -45,4 +45,4 @@ void SegmenterOptions::check() const {
   dilation.check();
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 // The 80 COCO class names, index = class id (0 = "person"), spelt as in the models' coco.names.
 const std::vector<std::string>& cocoClassNames();
@@ -20,4 +20,4 @@ std::string cocoClassName(int class_id);
 // default: the paper masks people only; everything else is left to the geometric stage.
 std::vector<std::string> movableCocoClasses();
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "amos/dynamic/segmenter.h"
-#include "amos/dynamic/segmenter_options.h"
+#include "amos/segmentation/segmenter.h"
+#include "amos/segmentation/segmenter_options.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 class SegmenterFactory;
 
@@ -29,4 +29,4 @@ std::unique_ptr<Segmenter> makeNanoDetSelfieSegmenter(const SegmenterOptions& op
 // Registers "nanodet_selfie".
 void addDnnSegmenterBackends(SegmenterFactory& factory);
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

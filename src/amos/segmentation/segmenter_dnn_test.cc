@@ -1,5 +1,5 @@
 // Tests of the OpenCV-dnn backend on the shared models and the reference masks of the paper's YOLACT pipeline.
-#include "amos/dynamic/segmenter_dnn.h"
+#include "amos/segmentation/segmenter_dnn.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,11 +9,11 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "amos/core/error.h"
-#include "amos/dynamic/segment_masks.h"
-#include "amos/dynamic/segmentation_worker.h"
-#include "amos/dynamic/segmenter_factory.h"
+#include "amos/segmentation/segment_masks.h"
+#include "amos/segmentation/segmentation_worker.h"
+#include "amos/segmentation/segmenter_factory.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 namespace fs = std::filesystem;
@@ -110,4 +110,4 @@ TEST(SegmenterDnn, CorruptModelIsAClearStartUpError) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,4 +1,4 @@
-#include "amos/dynamic/segmenter_factory.h"
+#include "amos/segmentation/segmenter_factory.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -8,7 +8,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 // What a user-supplied backend looks like: it declares its model files and loads them in create().
@@ -86,4 +86,4 @@ TEST(SegmenterFactory, BuiltinBackendsFollowTheBuildOption) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

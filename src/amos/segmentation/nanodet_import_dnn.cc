@@ -1,4 +1,4 @@
-#include "amos/dynamic/nanodet_import_dnn.h"
+#include "amos/segmentation/nanodet_import_dnn.h"
 
 #include <fmt/format.h>
 
@@ -10,7 +10,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 // Number of innermost axes that `order` leaves in place.
@@ -201,4 +201,4 @@ NanoDetImport loadNanoDet(const std::string& path, int export_side, cv::Size inp
   return result;
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

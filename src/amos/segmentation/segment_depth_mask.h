@@ -4,11 +4,11 @@
 // most likely to be the object, not the background around it).
 #include <opencv2/core.hpp>
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 // depth: CV_32F metres (0 = no depth), may be empty. Returns a box-sized CV_8UC1 0/255 mask: pixels with depth
 // within `tolerance` metres of the object depth, small holes closed. The whole box when depth is empty or the
 // centre has too little valid depth to tell (better to drop a few static keypoints than keep dynamic ones).
 cv::Mat boxDepthMask(const cv::Mat& depth, const cv::Rect& box, float tolerance);
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

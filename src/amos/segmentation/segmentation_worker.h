@@ -21,10 +21,10 @@
 
 #include "amos/core/serial_executor.h"
 #include "amos/core/stage_timer.h"
-#include "amos/dynamic/segmenter.h"
-#include "amos/dynamic/segmenter_options.h"
+#include "amos/segmentation/segmenter.h"
+#include "amos/segmentation/segmenter_options.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 struct SegmentationResult {
   std::uint64_t frame_id = 0;
@@ -66,4 +66,4 @@ class SegmentationWorker {
 SegmentationResult segmentFrame(Segmenter& segmenter, const MaskDilationOptions& dilation, std::uint64_t frame_id,
                                 const cv::Mat& bgr, const cv::Mat& depth = cv::Mat());
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,11 +1,11 @@
-#include "amos/dynamic/segmentation_worker.h"
+#include "amos/segmentation/segmentation_worker.h"
 
 #include <exception>
 
 #include "amos/core/error.h"
-#include "amos/dynamic/segment_masks.h"
+#include "amos/segmentation/segment_masks.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 SegmentationResult segmentFrame(Segmenter& segmenter, const MaskDilationOptions& dilation, std::uint64_t frame_id,
                                 const cv::Mat& bgr, const cv::Mat& depth) {
@@ -47,4 +47,4 @@ std::future<SegmentationResult> SegmentationWorker::submit(std::uint64_t frame_i
   }
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

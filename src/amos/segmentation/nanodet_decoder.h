@@ -8,7 +8,7 @@
 
 #include <vector>
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 // One head: scores is N x num_classes, distributions is N x 4*(reg_max+1), both CV_32F; row r is cell
 // (i, j) = (r / cols, r % cols) of the (input/stride) x (input/stride) grid.
@@ -67,4 +67,4 @@ cv::Mat applyLetterbox(const cv::Mat& bgr, const Letterbox& letterbox);
 // Maps a box from input pixels back to image pixels, clipped to the image.
 cv::Rect2f unletterboxBox(const cv::Rect2f& box, const Letterbox& letterbox, cv::Size image_size);
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

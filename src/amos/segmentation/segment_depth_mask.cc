@@ -1,4 +1,4 @@
-#include "amos/dynamic/segment_depth_mask.h"
+#include "amos/segmentation/segment_depth_mask.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 cv::Mat boxDepthMask(const cv::Mat& depth, const cv::Rect& box, float tolerance) {
   core::require(!box.empty(), "boxDepthMask: empty box");
@@ -42,4 +42,4 @@ cv::Mat boxDepthMask(const cv::Mat& depth, const cv::Rect& box, float tolerance)
   return mask;
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,10 +1,10 @@
-#include "amos/dynamic/segmenter_classes.h"
+#include "amos/segmentation/segmenter_classes.h"
 
 #include <fmt/format.h>
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 const std::vector<std::string>& cocoClassNames() {
   static const std::vector<std::string> names = {
@@ -40,4 +40,4 @@ std::vector<std::string> movableCocoClasses() {
           "horse",  "sheep",   "cow",  "backpack",  "umbrella", "handbag", "suitcase", "sports ball", "chair"};
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,4 +1,4 @@
-#include "amos/dynamic/model_locator.h"
+#include "amos/segmentation/model_locator.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -8,7 +8,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 std::vector<std::string> missingFiles(const std::string& dir, const std::vector<std::string>& files,
@@ -75,4 +75,4 @@ EnvironmentLookup processEnvironment() {
   };
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

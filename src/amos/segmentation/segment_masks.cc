@@ -1,4 +1,4 @@
-#include "amos/dynamic/segment_masks.h"
+#include "amos/segmentation/segment_masks.h"
 
 #include <fmt/format.h>
 
@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "amos/core/error.h"
-#include "amos/dynamic/segmenter_classes.h"
+#include "amos/segmentation/segmenter_classes.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 cv::Mat paintInstances(const std::vector<SegmentedInstance>& instances, cv::Size size) {
   cv::Mat frame(size, CV_8UC1, cv::Scalar(0));
@@ -220,4 +220,4 @@ cv::Mat contactSheet(const std::vector<cv::Mat>& images, const std::vector<std::
   return sheet;
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,4 +1,4 @@
-#include "amos/dynamic/model_locator.h"
+#include "amos/segmentation/model_locator.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 const std::vector<std::string> kFiles = {"det.onnx", "mask.onnx"};
@@ -99,4 +99,4 @@ TEST(ModelLocator, JoinPath) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

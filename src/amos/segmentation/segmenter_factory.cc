@@ -1,4 +1,4 @@
-#include "amos/dynamic/segmenter_factory.h"
+#include "amos/segmentation/segmenter_factory.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -6,10 +6,10 @@
 
 #include "amos/core/error.h"
 #ifdef AMOS_WITH_DNN
-#include "amos/dynamic/segmenter_dnn.h"
+#include "amos/segmentation/segmenter_dnn.h"
 #endif
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 void SegmenterFactory::add(const std::string& name, SegmenterBackend backend) {
   core::require(!name.empty(), "segmenter backend without a name");
@@ -61,4 +61,4 @@ std::unique_ptr<Segmenter> createSegmenter(SegmenterOptions options, const Model
   return factory.create(options);
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "amos/dynamic/model_locator.h"
-#include "amos/dynamic/segmenter.h"
-#include "amos/dynamic/segmenter_options.h"
+#include "amos/segmentation/model_locator.h"
+#include "amos/segmentation/segmenter.h"
+#include "amos/segmentation/segmenter_options.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 struct SegmenterBackend {
   std::string description;
@@ -47,4 +47,4 @@ SegmenterFactory builtinSegmenterFactory();
 std::unique_ptr<Segmenter> createSegmenter(SegmenterOptions options, const ModelSources& sources,
                                            const SegmenterFactory& factory);
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,13 +1,13 @@
-#include "amos/dynamic/segmenter_options.h"
+#include "amos/segmentation/segmenter_options.h"
 
 #include <gtest/gtest.h>
 
 #include <functional>
 
 #include "amos/core/error.h"
-#include "amos/dynamic/segmenter_classes.h"
+#include "amos/segmentation/segmenter_classes.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 // The message of the error check() throws after `change`, or "" when it does not throw.
@@ -73,4 +73,4 @@ TEST(SegmenterClasses, CocoTable) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

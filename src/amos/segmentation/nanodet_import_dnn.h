@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 struct NanoDetImport {
   cv::dnn::Net net;
@@ -42,4 +42,4 @@ NanoDetImport loadNanoDet(const std::string& path, int export_side, cv::Size inp
 // axes in place.
 cv::Mat transposeBlob(const cv::Mat& input, const std::vector<int>& order);
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,4 +1,4 @@
-#include "amos/dynamic/nanodet_decoder.h"
+#include "amos/segmentation/nanodet_decoder.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 constexpr int kInput = 320;
@@ -174,4 +174,4 @@ TEST(NanoDetDecoder, LetterboxMapsBackToTheImage) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "amos/dynamic/segmenter.h"
-#include "amos/dynamic/segmenter_options.h"
+#include "amos/segmentation/segmenter.h"
+#include "amos/segmentation/segmenter_options.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 // Union of the instances' masks in a frame of `size`: CV_8UC1, 255 where any instance is, 0 elsewhere.
 cv::Mat paintInstances(const std::vector<SegmentedInstance>& instances, cv::Size size);
@@ -49,4 +49,4 @@ cv::Mat drawOverlay(const cv::Mat& bgr, const std::vector<SegmentedInstance>& in
 cv::Mat contactSheet(const std::vector<cv::Mat>& images, const std::vector<std::string>& captions, int columns,
                      int tile_width);
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

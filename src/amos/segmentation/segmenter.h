@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 
 // One detected object. `mask` covers `box` only (same size as box, CV_8UC1, 255 = object, 0 = not), so a
 // frame with a few small objects does not carry several full-frame masks; segment_masks.h paints them into a
@@ -33,4 +33,4 @@ class Segmenter {
   virtual std::string name() const = 0;
 };
 
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,4 +1,4 @@
-#include "amos/dynamic/segmentation_worker.h"
+#include "amos/segmentation/segmentation_worker.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 // A segmenter whose single instance is a 4x4 square at x = (blue value of pixel (0, 0)), y = 10; it throws for
@@ -91,4 +91,4 @@ TEST(SegmentationWorker, RejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,5 +1,5 @@
 // Tests of the NanoDet import (block-copy transposes, non-square input) on hand-made blobs and the shared model.
-#include "amos/dynamic/nanodet_import_dnn.h"
+#include "amos/segmentation/nanodet_import_dnn.h"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "amos/core/error.h"
-#include "amos/dynamic/nanodet_decoder.h"
+#include "amos/segmentation/nanodet_decoder.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 const std::string kDetector = std::string(AMOS_SHARED_DIR) + "/models/nanodet_m_320.onnx";
@@ -119,4 +119,4 @@ TEST(NanoDetImport, RejectsInputsThatAreNotMultiplesOf32) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation

@@ -1,10 +1,10 @@
-#include "amos/dynamic/segment_depth_mask.h"
+#include "amos/segmentation/segment_depth_mask.h"
 
 #include <gtest/gtest.h>
 
 #include "amos/core/error.h"
 
-namespace amos::dynamic {
+namespace amos::segmentation {
 namespace {
 
 TEST(SegmentDepthMask, KeepsThePixelsAtTheObjectsDepth) {
@@ -28,4 +28,4 @@ TEST(SegmentDepthMask, WholeBoxWithoutUsableDepth) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::segmentation
