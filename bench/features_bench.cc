@@ -16,7 +16,7 @@
 #include "amos/feature/keypoint_grid.h"
 #include "amos/feature/orb_extractor.h"
 #include "amos/geometry/pnp_ransac.h"
-#include "amos/match/descriptor_distance.h"
+#include "amos/feature/descriptor_distance.h"
 
 namespace {
 
@@ -75,7 +75,7 @@ void BM_HammingBruteForce(benchmark::State& state) {
   }
   size_t matches = 0;
   for (auto _ : state) {
-    const auto m = match::matchBruteForce(a.descriptors, b.descriptors, match::kDescriptorDistanceLow, 0.8f);
+    const auto m = feature::matchBruteForce(a.descriptors, b.descriptors, feature::kDescriptorDistanceLow, 0.8f);
     matches = m.size();
     benchmark::DoNotOptimize(m.data());
   }

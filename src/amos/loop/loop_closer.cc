@@ -123,7 +123,7 @@ void LoopCloser::correct(const LoopCandidate& loop, LoopClosureReport& report) {
   }
   // ... then every loop point projected into every neighbourhood keyframe.
   for (const auto& kf : neighbourhood) {
-    if (!kf->isBad()) report.fused += mapping::fusePoints(map, kf, loop.loop_points, options_.fusion);
+    if (!kf->isBad()) report.fused += match::fusePoints(map, kf, loop.loop_points, options_.fusion);
   }
   for (const auto& kf : neighbourhood) {
     if (kf->isBad()) continue;

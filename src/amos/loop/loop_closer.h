@@ -17,7 +17,7 @@
 #include "amos/loop/loop_detector.h"
 #include "amos/loop/pose_graph.h"
 #include "amos/map/map.h"
-#include "amos/mapping/fusion.h"
+#include "amos/match/fuse.h"
 
 namespace amos::loop {
 
@@ -26,7 +26,7 @@ struct LoopClosingOptions {
   int essential_min_weight = 100;  // Loop.essentialMinWeight: covisibility links kept in the essential graph (ORB-SLAM2: 100)
   LoopDetectorOptions detector;
   PoseGraphOptions pose_graph;
-  mapping::FusionOptions fusion;   // projection fusion of the loop points (Mapping.fuse* by default)
+  match::FusionOptions fusion;   // projection fusion of the loop points (Mapping.fuse* by default)
   void check() const;
 };
 

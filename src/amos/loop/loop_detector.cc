@@ -6,7 +6,9 @@
 #include <unordered_set>
 
 #include "amos/core/error.h"
-#include "amos/tracking/relocalizer.h"
+#include "amos/match/brute_force_search.h"
+#include "amos/match/pose_from_matches.h"
+#include "amos/match/projection_search.h"
 
 namespace amos::loop {
 
@@ -38,10 +40,10 @@ map::Frame frameOf(const map::KeyFrame& kf) {
 int localizeAgainst(map::Frame& frame, const std::vector<map::KeyFramePtr>& keyframes,
                     const LoopDetectorOptions& options) {
   for (const auto& kf : keyframes) {
-    tracking::searchKeyFrameByProjection(frame, *kf, tracking::matchedPoints(frame), 10, options.matching.th_high,
-                                         options.matching);
+    match::searchKeyFrameByProjection(frame, *kf, match::matchedPoints(frame), 10, options.matching.th_high,
+                                      options.matching);
   }
-  return tracking::optimizeFramePoseDroppingOutliers(frame, options.pose);
+  return match::optimizeFramePoseDroppingOutliers(frame, options.pose);
 }
 
 namespace {
@@ -97,11 +99,11 @@ std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFrame
     map::Frame frame = frameOf(*current);
     int n = 0;
     std::vector<map::MapPointPtr> matches =
-        tracking::matchFrameToKeyFrame(frame, *candidate, options.match_ratio, options.matching, &n);
+        match::matchFrameToKeyFrame(frame, *candidate, options.match_ratio, options.matching, &n);
     if (n < options.min_matches) continue;
-    const int pnp_inliers = tracking::poseFromMatchesByPnp(frame, matches, options.pnp);
+    const int pnp_inliers = match::poseFromMatchesByPnp(frame, matches, options.pnp);
     if (pnp_inliers == 0) continue;
-    if (tracking::optimizeFramePoseDroppingOutliers(frame, options.pose) < options.min_matches) continue;
+    if (match::optimizeFramePoseDroppingOutliers(frame, options.pose) < options.min_matches) continue;
 
     // The loop neighbourhood: the candidate and its covisible keyframes, projected with the verified pose.
     std::vector<map::KeyFramePtr> neighbourhood{candidate};

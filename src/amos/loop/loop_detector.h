@@ -15,7 +15,7 @@
 #include "amos/loop/loop_consistency.h"
 #include "amos/geometry/pose_optimizer.h"
 #include "amos/map/map.h"
-#include "amos/tracking/matching.h"
+#include "amos/match/matching_options.h"
 
 namespace amos::loop {
 
@@ -34,7 +34,7 @@ struct LoopDetectorOptions {
   int consistency = 3;
   geometry::PnpRansacOptions pnp;       // reprojection threshold, iterations, seed
   geometry::PoseOptimizerOptions pose;  // robust pose refinement
-  tracking::MatchingOptions matching;
+  match::MatchingOptions matching;
   void check() const;
 };
 

@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "amos/core/error.h"
-#include "amos/match/descriptor_distance.h"
+#include "amos/feature/descriptor_distance.h"
 
 namespace amos::map {
 
@@ -115,7 +115,7 @@ void Map::updateDescriptor(const MapPointPtr& p) {
   std::vector<int> dist(n * n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
-      dist[i * n + j] = dist[j * n + i] = match::hammingDistance(descs[i], descs[j]);
+      dist[i * n + j] = dist[j * n + i] = feature::hammingDistance(descs[i], descs[j]);
     }
   }
   int best_median = std::numeric_limits<int>::max();

@@ -140,7 +140,7 @@ void LocalMapper::process(Job job) {
   watch.restart();
   if (queuedKeyFrames() == 0) {
     std::unique_lock lock(map_->mutex());
-    delta.points_fused = fuseWithNeighbors(*map_, kf, options_.fusion);
+    delta.points_fused = match::fuseWithNeighbors(*map_, kf, options_.fusion);
     if (spdlog::should_log(spdlog::level::debug)) {  // the counts walk the keyframe's points: only when shown
       spdlog::debug("keyframe {}: {} new points, {} triangulated, {} fused; points {} seen by 2+ keyframes {} "
                     "neighbours {}",

@@ -21,8 +21,8 @@
 #include "amos/map/map.h"
 #include "amos/mapping/bundle_adjustment.h"
 #include "amos/mapping/dynamic_culling.h"
-#include "amos/mapping/fusion.h"
 #include "amos/mapping/new_points.h"
+#include "amos/match/fuse.h"
 #include "amos/tracking/keyframe_sink.h"
 
 namespace amos::mapping {
@@ -35,7 +35,7 @@ struct LocalMappingOptions {
   bool local_ba = true;              // LocalBA.enabled
   bool cull_keyframes = true;        // Mapping.cullKeyFrames
   NewPointsOptions new_points;
-  FusionOptions fusion;
+  match::FusionOptions fusion;
   DynamicCullingOptions dynamic_culling;
   BundleAdjustmentOptions ba;
   void check() const;

@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "amos/core/error.h"
+#include "amos/feature/descriptor_distance.h"
 #include "amos/geometry/triangulation.h"
-#include "amos/match/descriptor_distance.h"
-#include "amos/tracking/matching.h"
+#include "amos/match/rotation_consistency.h"
 
 namespace amos::mapping {
 
@@ -95,7 +95,7 @@ std::vector<NewPointCandidate> findNewPoints(const map::Map& map, const map::Key
           const double dx = ex - kp2.pt.x, dy = ey - kp2.pt.y;
           if (dx * dx + dy * dy < 100 * s.scales()[kp2.octave]) continue;  // too close to the epipole
         }
-        const int dist = match::hammingDistance(d1, f2.descriptors.ptr<std::uint8_t>(i2));
+        const int dist = feature::hammingDistance(d1, f2.descriptors.ptr<std::uint8_t>(i2));
         if (dist < best) {
           second = best;
           best = dist;
@@ -120,7 +120,7 @@ std::vector<NewPointCandidate> findNewPoints(const map::Map& map, const map::Key
       rot.push_back(f1.keys[i1].angle - f2.keys[match12[i1]].angle);
     }
     const std::vector<bool> keep =
-        options.check_orientation ? tracking::rotationConsistent(rot) : std::vector<bool>(idx1s.size(), true);
+        options.check_orientation ? match::rotationConsistent(rot) : std::vector<bool>(idx1s.size(), true);
 
     for (std::size_t k = 0; k < idx1s.size(); ++k) {
       if (!keep[k]) continue;

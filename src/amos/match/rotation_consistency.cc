@@ -64,4 +64,12 @@ std::vector<int> RotationHistogram::inconsistent() const {
   return out;
 }
 
+std::vector<bool> rotationConsistent(const std::vector<float>& deltas) {
+  RotationHistogram histogram;
+  for (std::size_t k = 0; k < deltas.size(); ++k) histogram.add(static_cast<int>(k), deltas[k], 0.0f);
+  std::vector<bool> keep(deltas.size(), false);
+  for (const int k : histogram.consistent()) keep[k] = true;
+  return keep;
+}
+
 }  // namespace amos::match

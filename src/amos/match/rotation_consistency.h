@@ -30,4 +30,8 @@ class RotationHistogram {
   std::vector<int> ids_, bins_;
 };
 
+// The same check for a list of matches given by their rotation differences (degrees): `rotation_deltas[k]` belongs
+// to match k; returns per match whether it is kept.
+std::vector<bool> rotationConsistent(const std::vector<float>& rotation_deltas_deg);
+
 }  // namespace amos::match

@@ -1,5 +1,4 @@
 #pragma once
-#include <unordered_set>
 // Relocalisation of a lost frame without a bag-of-words vocabulary: keyframes are ranked by the similarity of
 // their thumbnails (small blurred images, as in PTAM), the best few are matched to the frame by brute-force
 // descriptor matching, and each candidate pose comes from EPnP RANSAC, refined by pose optimisation and a
@@ -8,7 +7,7 @@
 #include "amos/geometry/pose_optimizer.h"
 #include "amos/map/frame.h"
 #include "amos/map/map.h"
-#include "amos/tracking/matching.h"
+#include "amos/match/matching_options.h"
 
 namespace amos::tracking {
 
@@ -23,7 +22,7 @@ struct RelocalizerOptions {
 
 class Relocalizer {
  public:
-  Relocalizer(const RelocalizerOptions& options, const MatchingOptions& matching,
+  Relocalizer(const RelocalizerOptions& options, const match::MatchingOptions& matching,
               const geometry::PoseOptimizerOptions& pose);
 
   // On success sets frame.T_cw and frame.map_points/outlier (inliers only) and returns the keyframe used.
@@ -35,23 +34,8 @@ class Relocalizer {
   int optimize(map::Frame& frame) const;
 
   RelocalizerOptions options_;
-  MatchingOptions matching_;
+  match::MatchingOptions matching_;
   geometry::PoseOptimizerOptions pose_;
 };
-
-// Runs pose optimisation on the frame's current matches from frame.T_cw, writes pose and outlier flags back.
-// Returns the number of inliers.
-int optimizeFramePose(map::Frame& frame, const geometry::PoseOptimizerOptions& options);
-
-// optimizeFramePose, then the outlier matches are removed from the frame. Returns the number of inliers.
-int optimizeFramePoseDroppingOutliers(map::Frame& frame, const geometry::PoseOptimizerOptions& options);
-// The map points the frame is matched to (for projection searches that must skip them).
-std::unordered_set<const map::MapPoint*> matchedPoints(const map::Frame& frame);
-
-// PnP RANSAC on the frame's keypoints matched to `matches` (per keypoint, null = none). On success the frame
-// takes the PnP pose and keeps only the inlier matches; returns the number of inliers (0 on failure, frame
-// unchanged). Relocalisation and loop verification both start from this.
-int poseFromMatchesByPnp(map::Frame& frame, const std::vector<map::MapPointPtr>& matches,
-                         const geometry::PnpRansacOptions& options);
 
 }  // namespace amos::tracking

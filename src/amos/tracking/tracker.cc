@@ -9,6 +9,8 @@
 #include <unordered_set>
 
 #include "amos/core/error.h"
+#include "amos/match/brute_force_search.h"
+#include "amos/match/pose_from_matches.h"
 #include "amos/tracking/dynamic_evidence.h"
 
 namespace amos::tracking {
@@ -321,7 +323,7 @@ bool Tracker::trackWithMotionModel(map::Frame& frame, const std::optional<core::
   frame.map_points = std::move(best_matches);
   frame.outlier.assign(frame.size(), false);
   frame.setPose(best_pose);
-  const int inl = optimizeFramePose(frame, options_.pose);
+  const int inl = match::optimizeFramePose(frame, options_.pose);
   const int in_map = discardOutliers(frame);
   spdlog::debug("frame {}: motion model inliers {} (in map {}) prediction off by {:.4f} m {:.3f} deg; velocity {:.4f} m",
                 frame.id, inl, in_map, core::translationNorm(best_pose * frame.T_cw.inverse()),
@@ -332,14 +334,14 @@ bool Tracker::trackWithMotionModel(map::Frame& frame, const std::optional<core::
 bool Tracker::trackReferenceKeyFrame(map::Frame& frame) {
   if (!reference_kf_ || reference_kf_->isBad()) return false;
   int n = 0;
-  auto matches = matchFrameToKeyFrame(frame, *reference_kf_, options_.matching.brute_force_ratio,
-                                      options_.matching, &n);
+  auto matches = match::matchFrameToKeyFrame(frame, *reference_kf_, options_.matching.brute_force_ratio,
+                                             options_.matching, &n);
   spdlog::debug("frame {}: reference keyframe {} matches", frame.id, n);
   if (n < options_.reference_min_matches) return false;
   frame.map_points = std::move(matches);
   frame.outlier.assign(frame.size(), false);
   frame.setPose(last_frame_.T_cw);
-  optimizeFramePose(frame, options_.pose);
+  match::optimizeFramePose(frame, options_.pose);
   return discardOutliers(frame) >= options_.min_map_matches;
 }
 
@@ -456,8 +458,9 @@ bool Tracker::recoverNearLastPose(map::Frame& frame, const std::optional<core::S
     // The wide window lets wrong matches in, and the prediction may be degrees off: PnP RANSAC on the matches
     // (as the relocaliser does) rather than a pose optimisation started at the prediction.
     const std::vector<map::MapPointPtr> matches = frame.map_points;
-    if (poseFromMatchesByPnp(frame, matches, options_.relocalization.pnp) < options_.reloc_min_inliers) continue;
-    const int inliers = optimizeFramePoseDroppingOutliers(frame, options_.pose);
+    const int pnp_inliers = match::poseFromMatchesByPnp(frame, matches, options_.relocalization.pnp);
+    if (pnp_inliers < options_.reloc_min_inliers) continue;
+    const int inliers = match::optimizeFramePoseDroppingOutliers(frame, options_.pose);
     spdlog::debug("frame {}: recovery search {} matches, {} inliers", frame.id, found, inliers);
     if (inliers >= options_.reloc_min_inliers) return true;
   }
@@ -468,7 +471,7 @@ bool Tracker::recoverNearLastPose(map::Frame& frame, const std::optional<core::S
 bool Tracker::trackLocalMap(map::Frame& frame, int& inliers) {
   updateLocalMap(frame);
   searchLocalPoints(frame);
-  optimizeFramePose(frame, options_.pose);
+  match::optimizeFramePose(frame, options_.pose);
   inliers = 0;
   for (std::size_t i = 0; i < frame.size(); ++i) {
     const auto& p = frame.map_points[i];

@@ -19,6 +19,7 @@
 #include "amos/geometry/pose_optimizer.h"
 #include "amos/map/frame.h"
 #include "amos/map/map.h"
+#include "amos/match/matching_options.h"
 #include "amos/tracking/keyframe_sink.h"
 #include "amos/tracking/matching.h"
 #include "amos/tracking/relocalizer.h"
@@ -57,7 +58,7 @@ struct TrackerOptions {
   double recovery_search_radius = 15;
   ExternalPosePolicy external_pose = ExternalPosePolicy::kCompete;  // Tracking.externalPose
   geometry::PoseOptimizerOptions pose;  // Tracking.chi2Mono / chi2Stereo / poseRounds / poseIterations
-  MatchingOptions matching;             // Matching.*
+  match::MatchingOptions matching;      // Matching.*
   RelocalizerOptions relocalization;    // Relocalization.*
   void check() const;
 };

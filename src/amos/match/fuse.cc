@@ -1,11 +1,11 @@
-#include "amos/mapping/fusion.h"
+#include "amos/match/fuse.h"
 
 #include <unordered_set>
 
 #include "amos/core/error.h"
-#include "amos/match/descriptor_distance.h"
+#include "amos/feature/descriptor_distance.h"
 
-namespace amos::mapping {
+namespace amos::match {
 
 void FusionOptions::check() const {
   core::require(neighbors >= 1 && second_neighbors >= 0, "Mapping.fuseNeighbors must be >= 1, fuseSecondNeighbors >= 0");
@@ -50,7 +50,7 @@ int fusePoints(map::Map& map, const map::KeyFramePtr& kf, const std::vector<map:
       } else if ((ex * ex + ey * ey) * inv_s2 > 5.99) {
         continue;
       }
-      const int dd = match::hammingDistance(d, f.descriptors.ptr<std::uint8_t>(idx));
+      const int dd = feature::hammingDistance(d, f.descriptors.ptr<std::uint8_t>(idx));
       if (dd < best) {
         best = dd;
         best_idx = idx;
@@ -111,4 +111,4 @@ int fuseWithNeighbors(map::Map& map, const map::KeyFramePtr& kf, const FusionOpt
   return fused;
 }
 
-}  // namespace amos::mapping
+}  // namespace amos::match

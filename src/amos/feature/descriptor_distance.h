@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace amos::match {
+namespace amos::feature {
 
 // Distance thresholds used throughout ORB-style matching (bits out of 256).
 inline constexpr int kDescriptorDistanceHigh = 100;
@@ -25,4 +25,4 @@ struct BruteForceMatch {
 // best < ratio * second best (Lowe's test). Each train row is used at most once (the closer query wins).
 std::vector<BruteForceMatch> matchBruteForce(const cv::Mat& query, const cv::Mat& train, int max_distance, float ratio);
 
-}  // namespace amos::match
+}  // namespace amos::feature

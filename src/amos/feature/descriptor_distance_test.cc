@@ -1,4 +1,4 @@
-#include "amos/match/descriptor_distance.h"
+#include "amos/feature/descriptor_distance.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "amos/core/error.h"
 
-namespace amos::match {
+namespace amos::feature {
 namespace {
 
 cv::Mat randomDescriptors(int rows, unsigned seed) {
@@ -116,4 +116,4 @@ TEST(MatchBruteForce, EdgeCases) {
 }
 
 }  // namespace
-}  // namespace amos::match
+}  // namespace amos::feature

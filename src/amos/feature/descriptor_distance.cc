@@ -1,4 +1,4 @@
-#include "amos/match/descriptor_distance.h"
+#include "amos/feature/descriptor_distance.h"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include "amos/core/error.h"
 #include "amos/core/popcnt_clones.h"
 
-namespace amos::match {
+namespace amos::feature {
 
 namespace {
 
@@ -82,4 +82,4 @@ std::vector<BruteForceMatch> matchBruteForce(const cv::Mat& query, const cv::Mat
   return matches;
 }
 
-}  // namespace amos::match
+}  // namespace amos::feature

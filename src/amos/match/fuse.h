@@ -5,7 +5,7 @@
 // observations survives). Call with Map::mutex() held exclusively.
 #include "amos/map/map.h"
 
-namespace amos::mapping {
+namespace amos::match {
 
 struct FusionOptions {
   int neighbors = 10;         // Mapping.fuseNeighbors
@@ -22,4 +22,4 @@ int fusePoints(map::Map& map, const map::KeyFramePtr& kf, const std::vector<map:
 // The whole neighbourhood step for a new keyframe, ending with its connections updated.
 int fuseWithNeighbors(map::Map& map, const map::KeyFramePtr& kf, const FusionOptions& options);
 
-}  // namespace amos::mapping
+}  // namespace amos::match
