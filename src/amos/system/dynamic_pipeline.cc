@@ -4,9 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <functional>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include "amos/core/serial_executor.h"
@@ -348,13 +346,11 @@ void DynamicPipeline::finish() {
       iou.push_back(a.iou);
       covered.push_back(a.covered);
     }
-    std::sort(iou.begin(), iou.end());
-    std::sort(covered.begin(), covered.end());
     spdlog::info("carried-over person masks against the network's own on {} frames: IoU median {:.3f}, 5th "
                  "percentile {:.3f}; share of the network's mask inside the dilated carried mask: median {:.3f}, 5th "
                  "percentile {:.3f}",
-                 iou.size(), iou[iou.size() / 2], iou[iou.size() / 20], covered[covered.size() / 2],
-                 covered[covered.size() / 20]);
+                 iou.size(), core::percentile(iou, 0.5), core::percentile(iou, 0.05), core::percentile(covered, 0.5),
+                 core::percentile(covered, 0.05));
   }
   if (segmentation_) segmentation_->close();
   slam_.finish();
