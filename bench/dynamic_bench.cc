@@ -350,12 +350,16 @@ void BM_BonnFullSequence(benchmark::State& state) {
     const double cpu_start = processCpuSeconds();
     core::Stopwatch wall;
     std::size_t frames = 0;
-    std::optional<io::RgbdFrame> frame = reader.next();
     std::vector<double> keyframe_points;
-    while (frame) {
-      std::optional<io::RgbdFrame> next = reader.next();
-      pipeline.process(*frame, look_ahead && next ? &*next : nullptr);
-      frame = std::move(next);
+    // As runSequence does: with look-ahead the next frame's stage A runs while this one is in stage B.
+    auto feed = [&] {
+      if (auto f = reader.next()) pipeline.push(std::move(*f));
+    };
+    feed();
+    while (pipeline.waiting() > 0) {
+      if (look_ahead) feed();
+      pipeline.processNext();
+      if (!look_ahead) feed();
       ++frames;
       const auto view = slam.tracker().referenceKeyFrameView();
       keyframe_points.push_back(static_cast<double>(std::count(view.has_point.begin(), view.has_point.end(), true)));

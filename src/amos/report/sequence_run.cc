@@ -150,32 +150,34 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   double outputs_ms = 0;  // mask scoring and writing, kept out of the run's wall time
   std::size_t n = 0;
   auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
-  // One frame of look-ahead: the pipeline starts segmenting frame k+1 while it tracks frame k. A paced source
-  // offers only the frame already waiting; the pipeline then waits for the next one after this frame.
-  std::optional<io::RgbdFrame> frame = source->next();
-  while (frame && !stopped()) {
-    std::optional<io::RgbdFrame> next = paced ? source->poll() : source->next();
-    const system::DynamicFrameOutput out = result.pipeline->process(*frame, next ? &*next : nullptr);
-    source_report.latency_ms.push_back(msSince(frame->arrival));
+  system::DynamicPipeline& pipeline = *result.pipeline;
+  // Pushes the source's next frame into the pipeline's stage A: `wait` for one, or only one already waiting.
+  auto feed = [&](bool wait) {
+    std::optional<io::RgbdFrame> f = wait ? source->next() : source->poll();
+    if (f) pipeline.push(std::move(*f));
+  };
+  feed(true);
+  while (pipeline.waiting() > 0 && !stopped()) {
+    // One frame of look-ahead: stage A of frame k+1 runs while frame k is in stage B. A paced source offers only
+    // the frame already waiting; the loop then waits for the next one after this frame.
+    if (pipeline.waiting() < 2) feed(!paced);
+    const system::DynamicFrameOutput out = pipeline.processNext();
+    const io::RgbdFrame& frame = out.frame;
+    source_report.latency_ms.push_back(msSince(frame.arrival));
     ++n;
-    if (recorder) recorder->add(*frame);
+    if (recorder) recorder->add(frame);
     core::Stopwatch outputs;
     cv::Mat truth;
     if (truth_masks && (mask_writer || !out.dynamic_mask.empty())) {
-      if (const auto k = truth_masks->frameAt(frame->timestamp)) truth = truth_masks->moverMask(*k);
+      if (const auto k = truth_masks->frameAt(frame.timestamp)) truth = truth_masks->moverMask(*k);
     }
     if (!truth.empty() && !out.dynamic_mask.empty()) mask_accuracy.add(out.dynamic_mask, truth);
-    if (mask_writer)
-      mask_writer->add(frame->index, frame->rgb_file, frame->bgr, out.dynamic_mask, out.prior_mask, truth);
+    if (mask_writer) mask_writer->add(frame.index, frame.rgb_file, frame.bgr, out.dynamic_mask, out.prior_mask, truth);
     outputs_ms += outputs.elapsedMs();
     if (options.on_frame)
-      options.on_frame({frame->index + 1, source->size(), n, &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
+      options.on_frame({frame.index + 1, source->size(), n, &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
     if (options.max_frames > 0 && n >= options.max_frames) break;  // a live source has no end of its own
-    if (next || !paced) {
-      frame = std::move(next);
-    } else {
-      frame = source->next();
-    }
+    if (pipeline.waiting() == 0) feed(true);
   }
   result.pipeline->finish();
   if (recorder) recorder->finish();

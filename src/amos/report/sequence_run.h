@@ -6,8 +6,9 @@
 //
 // Frames come from an io::FrameSource chosen by SequenceRunOptions::source: the folder read as fast as the
 // pipeline takes it (the default), the folder replayed at its recorded rate (realtime), or a live camera. With
-// the folder the pipeline always gets the next frame as look-ahead (process(frame, next)); with a paced or live
-// source it gets only a frame that is already waiting (poll()), never one it would have to wait for, and a frame
+// the folder the next frame is always pushed into the pipeline's stage A while the current one is in stage B
+// (one frame of look-ahead, system/dynamic_pipeline.h); with a paced or live source only a frame that is already
+// waiting (poll()) is pushed ahead, never one the loop would have to wait for, and a frame
 // that arrives while the pipeline is busy replaces the waiting one (the source counts it as dropped). The
 // trajectory holds the processed frames; RunInfo::source says how many were delivered, processed and dropped and
 // how long each processed frame took from its arrival to its pose.

@@ -7,7 +7,6 @@
 #include <string>
 #include <utility>
 
-#include "amos/core/serial_executor.h"
 #include "amos/core/error.h"
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/reprojection_scoring.h"
@@ -39,12 +38,11 @@ std::vector<cv::Point2f> distortPixels(const std::vector<cv::Point2f>& undistort
 // (Segmentation.threads), so a stage's OpenCV work is in its thread's time.
 using core::threadCpuMs;
 
-PriorAudit auditPrediction(const cv::Mat& carried, const cv::Mat& carried_dilated,
-                           const segmentation::SegmentationResult& computed) {
+PriorAudit auditPrediction(const PersonMaskCarrier::Masks& carried, const segmentation::SegmentationResult& computed) {
   PriorAudit a;
-  a.iou = segmentation::maskIoU(carried, computed.mask);
+  a.iou = segmentation::maskIoU(carried.mask, computed.mask);
   const int truth = cv::countNonZero(computed.mask);
-  a.covered = truth == 0 ? 1.0 : cv::countNonZero(computed.mask & carried_dilated) / static_cast<double>(truth);
+  a.covered = truth == 0 ? 1.0 : cv::countNonZero(computed.mask & carried.dilated) / static_cast<double>(truth);
   return a;
 }
 
@@ -55,38 +53,54 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
     : slam_(slam),
       options_(options),
       front_end_(slam.sensor()->camera(), options),
-      segmentation_(std::move(segmentation)) {
+      scheduler_(slam, options, std::move(segmentation)) {
   options_.check();
-  core::require(!usesSegmentation() || segmentation_ != nullptr,
-                "mode " + dynamic::toString(options_.mode) + " needs the person segmenter, but none was created");
+  if (scheduler_.tasks().segmentation)
+    state_.person_masks.emplace(scheduler_.segmentation()->dilation(), options_.prior);
 }
 
-DynamicPipeline::~DynamicPipeline() {
-  look_ahead_.reset();
-  if (segmentation_) segmentation_->close();
+DynamicPipeline::~DynamicPipeline() = default;
+
+FrameNumber DynamicPipeline::push(io::RgbdFrame frame) { return scheduler_.push(std::move(frame), state_.processed); }
+
+DynamicFrameOutput DynamicPipeline::process(io::RgbdFrame frame) {
+  push(std::move(frame));
+  return processNext();
 }
 
-bool DynamicPipeline::usesSegmentation() const {
-  return options_.mode == dynamic::DynamicMode::kPrior || options_.mode == dynamic::DynamicMode::kFull;
+PreparedFrame DynamicPipeline::takePrepared(FrameSlot& slot) {
+  core::Stopwatch wait;
+  PreparedFrame prepared = slot.prepared.get();
+  times_.add("dynamic.prepare_wait", wait.elapsedMs());
+  times_.add("cpu.prepare", prepared.cpu_ms);
+  if (scheduler_.tasks().masked_extraction) times_.add("dynamic.extraction_handoff_wait", prepared.handoff_wait_ms);
+  if (!prepared.pyramid.empty()) {
+    times_.add("dynamic.pyramid", prepared.pyramid_ms);
+    times_.add("dynamic.corner_detection", prepared.corners_ms);
+  }
+  return prepared;
 }
 
-bool DynamicPipeline::usesGeometry() const {
-  return options_.mode == dynamic::DynamicMode::kGeometry || options_.mode == dynamic::DynamicMode::kFull;
-}
-
-void DynamicPipeline::rememberKeyFramePyramid(const dynamic::ImagePyramid& pyramid) {
-  keyframe_pyramids_.emplace_back(slam_.tracker().referenceKeyFrameView().id, pyramid);
-  if (keyframe_pyramids_.size() > kKeyFrameImages) keyframe_pyramids_.pop_front();
+std::vector<dynamic::PointTrack> DynamicPipeline::trackCorners(const dynamic::ImagePyramid& current) {
+  core::Stopwatch watch;
+  const double cpu = threadCpuMs();
+  auto tracks = dynamic::trackPoints({state_.last->pyramid, current}, state_.last->corners, options_.tracking);
+  times_.add("dynamic.corner_tracking", watch.elapsedMs());
+  times_.add("cpu.corner_tracking", threadCpuMs() - cpu);
+  return tracks;
 }
 
 std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyramid& current,
                                                       const std::vector<dynamic::PointTrack>& tracks,
                                                       std::optional<dynamic::PoseModel>& model) {
+  core::Stopwatch watch;
+  const double cpu = threadCpuMs();
   const core::PinholeCamera& camera = slam_.sensor()->camera();
+  const LastFrame& last = *state_.last;
   // Model 1: the reference keyframe's keypoints that carry map points, tracked by LK into this frame.
   dynamic::PoseCorrespondences from_keyframe;
   const tracking::ReferenceKeyFrameView view = slam_.tracker().referenceKeyFrameView();
-  for (const auto& [id, keyframe] : keyframe_pyramids_) {
+  for (const auto& [id, keyframe] : state_.keyframe_pyramids) {
     if (id != view.id) continue;
     std::vector<std::size_t> with_point;
     for (std::size_t i = 0; i < view.keypoints.size(); ++i)
@@ -104,238 +118,125 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
     break;
   }
   // Model 2: last-frame corners lifted with the last depth and pose (Eq. 6).
-  const auto lifted = dynamic::backProjectTracks(tracks, last_->depth, last_->T_cw, camera, options_.reprojection);
+  const auto lifted = dynamic::backProjectTracks(tracks, last.depth, last.T_cw, camera, options_.reprojection);
   const dynamic::PoseCorrespondences from_last = dynamic::lastFrameCorrespondences(tracks, lifted, camera);
   // Model 3: constant velocity.
   const dynamic::InitialPoseResult result = dynamic::estimateInitialPose(
-      from_keyframe, from_last, last_->T_cw, slam_.tracker().velocity(), camera, options_.initial_pose);
+      from_keyframe, from_last, last.T_cw, slam_.tracker().velocity(), camera, options_.initial_pose);
+  times_.add("dynamic.initial_pose", watch.elapsedMs());
+  times_.add("cpu.initial_pose", threadCpuMs() - cpu);
   if (!result.ok) return std::nullopt;
   model = result.model;
   return result.T_cw;
 }
 
-void DynamicPipeline::requestSegmentation(const io::RgbdFrame& frame, std::size_t counter) {
-  for (auto it = submitted_.begin(); it != submitted_.end(); ++it) {
-    if (it->counter != counter) continue;
-    if (it->image == frame.bgr.data) return;
-    submitted_.erase(it);  // announced as the next frame, but another one came (its result is never used)
-    break;
-  }
-  Submitted s{counter, frame.bgr.data, segmentation_->submit(frame.index, frame.bgr, frame.depth)};
-  const auto at = std::find_if(submitted_.begin(), submitted_.end(),
-                               [&](const Submitted& other) { return other.counter > counter; });
-  submitted_.insert(at, std::move(s));
-}
-
-std::shared_future<segmentation::SegmentationResult> DynamicPipeline::segmentationOf(std::size_t counter) const {
-  for (const Submitted& s : submitted_)
-    if (s.counter == counter) return s.result;
-  return {};
-}
-
-std::pair<cv::Mat, cv::Mat> DynamicPipeline::priorMasks(std::size_t counter, dynamic::FrameFlow flow) {
-  const std::size_t base = options_.prior.baseFor(counter);
-  std::shared_future<segmentation::SegmentationResult> pending = segmentationOf(base);
-  core::require(pending.valid(), "DynamicPipeline: the segmentation of frame " + std::to_string(base) +
-                                     " that frame " + std::to_string(counter) + " needs was never requested");
-  const bool fresh = !propagator_ || propagator_base_ != base;
-  if (fresh) {
+PersonMaskCarrier::Masks DynamicPipeline::personMasks(FrameSlot& slot,
+                                                     const std::vector<dynamic::PointTrack>& tracks) {
+  const FrameNumber base = options_.prior.baseFor(slot.number);
+  const std::shared_future<segmentation::SegmentationResult>& pending = scheduler_.slot(base).segmentation;
+  core::require(pending.valid(), "DynamicPipeline: the segmentation of frame " + std::to_string(base) + " that frame " +
+                                     std::to_string(slot.number) + " needs was never scheduled");
+  if (state_.person_masks->startsFrom(base)) {
     core::Stopwatch wait;
     const segmentation::SegmentationResult& segmented = pending.get();
     times_.add("dynamic.segmentation_wait", wait.elapsedMs());
     times_.add("dynamic.segmentation", segmented.segment_ms);
     times_.add("cpu.segmentation", segmented.segment_cpu_ms);
-    if (!propagator_) propagator_.emplace(segmented.mask.size(), segmentation_->dilation(), options_.prior);
-    propagator_->reset(segmented.instances);
-    propagator_base_ = base;
-    for (const auto& [c, old_flow] : flows_)  // a segmentation `lag` frames old: carried over the frames since
-      if (c > base && c < counter) propagator_->step(old_flow);
   }
-  if (counter > base) propagator_->step(flow);
-  flows_.emplace_back(counter, std::move(flow));
-  const std::size_t keep = static_cast<std::size_t>(options_.prior.interval + options_.prior.lag);
-  while (flows_.size() > keep) flows_.pop_front();
-  if (counter == base) {  // this frame's own segmentation: exactly what the network gave (the paper's way)
-    const segmentation::SegmentationResult& segmented = pending.get();
-    return {segmented.mask, segmented.dilated_mask};
+  PersonMaskCarrier::Masks masks = state_.person_masks->masksFor(slot.number, pending.get(), dynamic::FrameFlow{tracks});
+  if (options_.prior.audit_predictions && base != slot.number)
+    prior_audit_.push_back(auditPrediction(masks, slot.segmentation.get()));
+  return masks;
+}
+
+cv::Mat DynamicPipeline::judge(dynamic::DynamicFrameInput input) {
+  core::Stopwatch watch;
+  const double cpu = threadCpuMs();
+  const dynamic::DynamicFrameOutput judged = front_end_.process(input);
+  times_.add("dynamic.front_end", watch.elapsedMs());
+  times_.add("cpu.front_end", threadCpuMs() - cpu);
+  for (const auto& [stage, ms] : judged.timings_ms) times_.add("dynamic." + stage, ms);
+  return judged.mask;
+}
+
+void DynamicPipeline::track(const FrameSlot& slot, const ExtractedFeatures& features, const FrameExtras& extras,
+                            DynamicFrameOutput& out) {
+  const double cpu = threadCpuMs();
+  out.slam = slam_.track(slot.frame, features, extras);
+  times_.add("cpu.track", threadCpuMs() - cpu);
+  const int extracted = out.slam.keypoints + out.slam.removed_dynamic;
+  if (extracted > 0) out.removed_fraction = static_cast<double>(out.slam.removed_dynamic) / extracted;
+  removed_fractions_.push_back(out.removed_fraction);
+}
+
+void DynamicPipeline::remember(const DynamicFrameOutput& out, PreparedFrame prepared) {
+  const tracking::TrackResult& result = out.slam.track;
+  if (result.state != tracking::TrackingState::kOk) {
+    state_.last.reset();  // a lost frame's pose would poison the reprojection test of the next one
+    return;
   }
-  return {propagator_->mask(), propagator_->dilatedMask()};
-}
-
-bool DynamicPipeline::masksExtraction() const {
-  return usesSegmentation() && options_.prior_masked_extraction && !options_.judge_prior_regions;
-}
-
-PreparedFrame DynamicPipeline::prepare(const io::RgbdFrame& frame, bool with_partition,
-                                      std::shared_future<cv::Mat> previous_mask,
-                                      bool map_ready) const {
-  const double cpu_start = threadCpuMs();
-  PreparedFrame prepared;
-  core::Stopwatch convert;
-  const cv::Mat gray = SlamSystem::toGray(frame);
-  const double convert_ms = convert.elapsedMs();
-  // What does not need the segmentation first, so that a wait for it comes as late as possible.
-  if (usesGeometry()) {
-    core::Stopwatch watch;
-    prepared.pyramid = dynamic::buildPyramid(gray, options_.tracking);
-    prepared.pyramid_ms = watch.elapsedMs();
-    watch.restart();
-    prepared.corners = dynamic::detectCorners(gray, options_.tracking);
-    prepared.corners_ms = watch.elapsedMs();
-    if (with_partition)
-      prepared.partition =
-          dynamic::computeGeometricPartition(frame.bgr, frame.depth, options_.superpixel, options_.cluster);
+  const bool geometry = scheduler_.tasks().geometry;
+  if (geometry && (result.new_keyframe || result.initialized_map)) {
+    state_.keyframe_pyramids.emplace_back(slam_.tracker().referenceKeyFrameView().id, prepared.pyramid);
+    if (state_.keyframe_pyramids.size() > kKeyFrameImages) state_.keyframe_pyramids.pop_front();
   }
-  // The previous frame's mask rather than this frame's: waiting for this frame's segmentation would put the
-  // segmenter and the extractor one after the other on every frame. People move a few pixels between frames, well
-  // inside the mask's dilation; keypoints that still land on a person are removed with this frame's mask as always.
-  cv::Mat allowed;
-  if (masksExtraction() && previous_mask.valid()) {
-    core::Stopwatch wait;
-    const cv::Mat& dynamic = previous_mask.get();
-    prepared.segmentation_wait_ms = wait.elapsedMs();
-    if (!dynamic.empty()) {
-      const bool large = cv::countNonZero(dynamic) >=
-                         options_.prior_masked_extraction_coverage * static_cast<double>(dynamic.total());
-      if (large || !map_ready) allowed = dynamic == 0;
-    }
-  }
-  prepared.features = slam_.extractGray(gray, allowed);
-  prepared.features.extract_ms += convert_ms;
-  prepared.cpu_ms = threadCpuMs() - cpu_start;
-  return prepared;
+  state_.last = LastFrame{prepared.features.gray, out.frame.depth, out.dynamic_mask, std::move(prepared.pyramid),
+                          std::move(prepared.corners), result.T_cw};
 }
 
-void DynamicPipeline::requestPreparation(const io::RgbdFrame& frame,
-                                         const std::shared_future<cv::Mat>& previous_mask,
-                                         bool map_ready) {
-  for (const Preparing& p : preparing_)
-    if (p.index == frame.index && p.image == frame.bgr.data) return;
-  // The current and the next frame are the most in flight; room for a few announced-but-skipped ones.
-  if (!look_ahead_) look_ahead_ = std::make_unique<core::SerialExecutor>(4);
-  // The job holds its own references to the images (cv::Mat headers share the pixels), not to the caller's frame.
-  // The partition is made even though whether the frame will have a last frame (and use it) is not known yet.
-  preparing_.push_back({frame.index, frame.bgr.data,
-                        look_ahead_->submit([this, frame, previous_mask, map_ready] {
-                          return prepare(frame, usesGeometry(), previous_mask, map_ready);
-                        })});
+FrameNumber DynamicPipeline::firstSlotNeeded() const {
+  // The next frame's person masks start from (or continue) the segmentation of baseFor(next); later frames' bases
+  // are no older.
+  return options_.prior.baseFor(state_.processed);
 }
 
-PreparedFrame DynamicPipeline::takePreparation(const io::RgbdFrame& frame,
-                                              const std::shared_future<cv::Mat>& previous_mask,
-                                              bool map_ready) {
-  while (!preparing_.empty() && (preparing_.front().index != frame.index || preparing_.front().image != frame.bgr.data))
-    preparing_.pop_front();  // announced but never processed: dropped (the worker still finishes it)
-  if (preparing_.empty()) return prepare(frame, false, previous_mask, map_ready);
-  core::Stopwatch wait;
-  PreparedFrame prepared = preparing_.front().result.get();
-  preparing_.pop_front();
-  times_.add("dynamic.prepare_wait", wait.elapsedMs());
-  return prepared;
-}
-
-DynamicFrameOutput DynamicPipeline::process(const io::RgbdFrame& frame, const io::RgbdFrame* next) {
+DynamicFrameOutput DynamicPipeline::processNext() {
+  core::require(waiting() > 0, "DynamicPipeline::processNext: no frame was pushed");
+  FrameSlot& slot = scheduler_.slot(state_.processed);
   DynamicFrameOutput out;
-  // 1. The segmentations that this and the next frame schedule run in their own thread (this frame's started
-  //    during the previous call when that call was given this frame as look-ahead) ...
-  const std::size_t counter = processed_++;
-  // This frame's dilated prior mask, for the next frame's ORB extraction: promised now, set once it is known.
-  std::promise<cv::Mat> mask_for_next;
-  std::shared_future<cv::Mat> this_mask = mask_for_next.get_future().share();
-  if (usesSegmentation()) {
-    const bool audit = options_.prior.audit_predictions;
-    if (audit || options_.prior.isScheduled(counter)) requestSegmentation(frame, counter);
-    if (next != nullptr && (audit || options_.prior.isScheduled(counter + 1))) requestSegmentation(*next, counter + 1);
-  } else {
-    mask_for_next.set_value(cv::Mat());
-  }
-  // 2. ... while this thread extracts features (or takes them from the look-ahead worker, which then goes on with
-  //    the next frame).
-  // The map's state after the previous frame: what the look-ahead preparation of the next frame can know.
-  const bool map_ready_one_frame_back = slam_.tracker().state() != tracking::TrackingState::kNotInitialized;
-  PreparedFrame prepared = takePreparation(frame, previous_mask_, map_ready_two_frames_back_);
-  if (next != nullptr) requestPreparation(*next, this_mask, map_ready_one_frame_back);
-  previous_mask_ = this_mask;
-  map_ready_two_frames_back_ = map_ready_one_frame_back;
-  const ExtractedFeatures& features = prepared.features;
-  dynamic::ImagePyramid& current_pyramid = prepared.pyramid;
-  times_.add("cpu.prepare", prepared.cpu_ms);
-  if (masksExtraction()) times_.add("dynamic.extraction_segmentation_wait", prepared.segmentation_wait_ms);
-  if (!current_pyramid.empty()) {
-    times_.add("dynamic.pyramid", prepared.pyramid_ms);
-    times_.add("dynamic.corner_detection", prepared.corners_ms);
-  }
+  out.frame = slot.frame;
+  const StageATasks& tasks = scheduler_.tasks();
+  if (!tasks.segmentation) slot.dilated_prior_mask.set_value(cv::Mat());
 
+  PreparedFrame prepared = takePrepared(slot);  // 1
   FrameExtras extras;
   if (options_.mode != dynamic::DynamicMode::kNone) {
     dynamic::DynamicFrameInput input;
-    input.gray = features.gray;
-    input.bgr = frame.bgr;
-    input.depth = frame.depth;
+    input.gray = prepared.features.gray;
+    input.bgr = slot.frame.bgr;
+    input.depth = slot.frame.depth;
     if (prepared.partition) input.partition = &*prepared.partition;
     std::vector<dynamic::PointTrack> tracks;
-    if (last_) {
-      input.last_gray = last_->gray;
-      input.last_depth = last_->depth;
-      input.T_cw_last = last_->T_cw;
-      input.last_mask = last_->dynamic_mask;
-      input.T_cw_initial = last_->T_cw;
-      if (usesGeometry()) {
-        core::Stopwatch watch;
-        double cpu = threadCpuMs();
-        tracks = dynamic::trackPoints({last_->pyramid, current_pyramid}, last_->corners, options_.tracking);
-        times_.add("dynamic.corner_tracking", watch.elapsedMs());
-        times_.add("cpu.corner_tracking", threadCpuMs() - cpu);
-        watch.restart();
-        cpu = threadCpuMs();
+    if (state_.last) {
+      const LastFrame& last = *state_.last;
+      input.last_gray = last.gray;
+      input.last_depth = last.depth;
+      input.T_cw_last = last.T_cw;
+      input.last_mask = last.dynamic_mask;
+      input.T_cw_initial = last.T_cw;
+      if (tasks.geometry) {
+        tracks = trackCorners(prepared.pyramid);  // 2
         std::optional<dynamic::PoseModel> model;
-        extras.initial_T_cw = initialPose(current_pyramid, tracks, model);
+        extras.initial_T_cw = initialPose(prepared.pyramid, tracks, model);  // 3
         out.initial_pose_model = model;
-        times_.add("dynamic.initial_pose", watch.elapsedMs());
-        times_.add("cpu.initial_pose", threadCpuMs() - cpu);
         if (extras.initial_T_cw) input.T_cw_initial = *extras.initial_T_cw;
         input.tracks = &tracks;
       }
     }
-    if (usesSegmentation()) {
-      // 3a. Person masks: this frame's segmentation, or an earlier one carried here by the tracks.
-      auto [mask, dilated] = priorMasks(counter, dynamic::FrameFlow{tracks});
-      if (options_.prior.audit_predictions && options_.prior.baseFor(counter) != counter)
-        prior_audit_.push_back(auditPrediction(mask, dilated, segmentationOf(counter).get()));
-      mask_for_next.set_value(dilated);
-      input.prior_mask = std::move(dilated);
-      out.prior_mask = std::move(mask);
+    if (tasks.segmentation) {
+      PersonMaskCarrier::Masks masks = personMasks(slot, tracks);  // 4
+      slot.dilated_prior_mask.set_value(masks.dilated);            // hand-off to stage A of the next frame
+      input.prior_mask = std::move(masks.dilated);
+      out.prior_mask = std::move(masks.mask);
     }
-    core::Stopwatch watch;
-    const double cpu = threadCpuMs();
-    const dynamic::DynamicFrameOutput judged = front_end_.process(input);
-    times_.add("dynamic.front_end", watch.elapsedMs());
-    times_.add("cpu.front_end", threadCpuMs() - cpu);
-    for (const auto& [stage, ms] : judged.timings_ms) times_.add("dynamic." + stage, ms);
-    extras.dynamic_mask = judged.mask;
-    out.dynamic_mask = judged.mask;
+    extras.dynamic_mask = judge(std::move(input));  // 5
+    out.dynamic_mask = extras.dynamic_mask;
   }
-
-  // 5. Tracking without the dynamic keypoints.
-  const double track_cpu = threadCpuMs();
-  out.slam = slam_.track(frame, features, extras);
-  times_.add("cpu.track", threadCpuMs() - track_cpu);
-  const int extracted = out.slam.keypoints + out.slam.removed_dynamic;
-  if (extracted > 0) out.removed_fraction = static_cast<double>(out.slam.removed_dynamic) / extracted;
-  removed_fractions_.push_back(out.removed_fraction);
-
-  // Segmentations that no frame to come needs any more.
-  const std::size_t oldest_needed = options_.prior.baseFor(counter);
-  while (!submitted_.empty() && submitted_.front().counter < oldest_needed) submitted_.pop_front();
-
-  const tracking::TrackResult& track = out.slam.track;
-  if (track.state == tracking::TrackingState::kOk) {
-    last_ = LastFrame{features.gray, frame.depth, out.dynamic_mask, current_pyramid, std::move(prepared.corners),
-                      track.T_cw};
-    if (usesGeometry() && (track.new_keyframe || track.initialized_map)) rememberKeyFramePyramid(current_pyramid);
-  } else {
-    last_.reset();  // a lost frame's pose would poison the reprojection test of the next one
-  }
+  track(slot, prepared.features, extras, out);  // 6
+  slot.map_ready.set_value(slam_.tracker().state() != tracking::TrackingState::kNotInitialized);
+  remember(out, std::move(prepared));  // 7
+  ++state_.processed;
+  scheduler_.release(firstSlotNeeded());
   return out;
 }
 
@@ -352,7 +253,7 @@ void DynamicPipeline::finish() {
                  iou.size(), core::percentile(iou, 0.5), core::percentile(iou, 0.05), core::percentile(covered, 0.5),
                  core::percentile(covered, 0.05));
   }
-  if (segmentation_) segmentation_->close();
+  scheduler_.closeSegmentation();
   slam_.finish();
 }
 

@@ -1,5 +1,5 @@
-// DynamicPipeline look-ahead: the next frame is segmented while the current one is tracked, and the results are
-// those of the plain pipeline.
+// DynamicPipeline's two stages: stage A of frames pushed ahead runs while stage B processes the current one, and
+// the results are those of the plain pipeline whatever the look-ahead.
 #include "amos/system/dynamic_pipeline.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +13,7 @@
 
 #include "amos/segmentation/model_locator.h"
 #include "amos/segmentation/segmenter_factory.h"
+#include "amos/core/error.h"
 #include "amos/io/dataset.h"
 
 namespace amos::system {
@@ -53,25 +54,31 @@ std::unique_ptr<segmentation::SegmentationWorker> realSegmentation() {
 struct RunRecord {
   std::vector<cv::Mat> prior_masks, dynamic_masks;
   std::vector<core::SE3> poses;
-  std::size_t prepared_ahead = 0;  // frames whose features came from the look-ahead worker
 };
 
-// Mode full, deterministic, over `frames`; with look_ahead every call also gets the next frame.
-RunRecord runPipeline(const std::vector<io::RgbdFrame>& frames, bool look_ahead) {
+// Pushes frames so that `ahead` of them wait beyond the one being processed (0 = push, process, push, ...).
+template <typename OnOutput>
+void feedPipeline(DynamicPipeline& pipeline, const std::vector<io::RgbdFrame>& frames, std::size_t ahead,
+                  OnOutput&& on_output) {
+  std::size_t pushed = 0;
+  while (pushed < frames.size() || pipeline.waiting() > 0) {
+    while (pushed < frames.size() && pipeline.waiting() <= ahead) pipeline.push(frames[pushed++]);
+    on_output(pipeline.processNext());
+  }
+}
+
+// Mode full, deterministic, over `frames`, with `ahead` frames pushed ahead of stage B.
+RunRecord runPipeline(const std::vector<io::RgbdFrame>& frames, std::size_t ahead) {
   SlamSystem slam(bonnOptions());
   dynamic::DynamicOptions options;
   options.mode = dynamic::DynamicMode::kFull;
   DynamicPipeline pipeline(slam, options, realSegmentation());
   RunRecord record;
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    const io::RgbdFrame* next = look_ahead && k + 1 < frames.size() ? &frames[k + 1] : nullptr;
-    const DynamicFrameOutput out = pipeline.process(frames[k], next);
+  feedPipeline(pipeline, frames, ahead, [&](const DynamicFrameOutput& out) {
     record.prior_masks.push_back(out.prior_mask);
     record.dynamic_masks.push_back(out.dynamic_mask);
     record.poses.push_back(out.slam.track.T_cw);
-  }
-  const auto summary = pipeline.times().summary();
-  if (const auto it = summary.find("dynamic.prepare_wait"); it != summary.end()) record.prepared_ahead = it->second.count;
+  });
   pipeline.finish();
   return record;
 }
@@ -80,24 +87,25 @@ bool sameMask(const cv::Mat& a, const cv::Mat& b) {
   return a.size() == b.size() && a.type() == b.type() && (a.empty() || cv::norm(a, b, cv::NORM_INF) == 0);
 }
 
-// Twelve frames of Bonn crowd with people in view: the same prior masks, dynamic masks and poses, bit for bit.
+// Twelve frames of Bonn crowd with people in view: the same prior masks, dynamic masks and poses, bit for bit, with
+// no look-ahead, the one frame that `run` uses, and three (the stage-A tasks then wait for the hand-offs of
+// frames stage B has not reached).
 TEST(DynamicPipeline, LookAheadGivesTheSameMasksAndPoses) {
   ASSERT_TRUE(std::filesystem::exists(kBonn)) << kBonn;
   const std::vector<io::RgbdFrame> frames = bonnFrames(12, 90);
   ASSERT_EQ(frames.size(), 12u);
-  const RunRecord plain = runPipeline(frames, false);
-  const RunRecord ahead = runPipeline(frames, true);
+  const RunRecord plain = runPipeline(frames, 0);
   int with_people = 0;
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    EXPECT_TRUE(sameMask(plain.prior_masks[k], ahead.prior_masks[k])) << "prior mask of frame " << k;
-    EXPECT_TRUE(sameMask(plain.dynamic_masks[k], ahead.dynamic_masks[k])) << "dynamic mask of frame " << k;
-    EXPECT_TRUE(plain.poses[k].isApprox(ahead.poses[k], 0.0)) << "pose of frame " << k;
-    with_people += cv::countNonZero(plain.prior_masks[k]) > 0;
+  for (const std::size_t ahead : {1, 3}) {
+    const RunRecord record = runPipeline(frames, ahead);
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      EXPECT_TRUE(sameMask(plain.prior_masks[k], record.prior_masks[k])) << "prior mask of frame " << k << ", ahead " << ahead;
+      EXPECT_TRUE(sameMask(plain.dynamic_masks[k], record.dynamic_masks[k])) << "dynamic mask of frame " << k << ", ahead " << ahead;
+      EXPECT_TRUE(plain.poses[k].isApprox(record.poses[k], 0.0)) << "pose of frame " << k << ", ahead " << ahead;
+    }
   }
+  for (const cv::Mat& mask : plain.prior_masks) with_people += cv::countNonZero(mask) > 0;
   EXPECT_GE(with_people, 10);  // the comparison is about real masks, not empty ones
-  // Every frame but the first was prepared (features, pyramid, corners, superpixels) by the look-ahead worker.
-  EXPECT_EQ(plain.prepared_ahead, 0u);
-  EXPECT_EQ(ahead.prepared_ahead, frames.size() - 1);
 }
 
 // A segmenter that records which frames (by the code in pixel (0, 0)) it has started, so a test can wait until a
@@ -133,9 +141,9 @@ io::RgbdFrame codedFrame(std::size_t index) {
   return f;
 }
 
-// process(k, next = k+1) hands frame k+1 to the segmentation worker before it returns; without look-ahead frame
-// k+1 reaches the worker only in process(k+1). Frames skipped after being announced do not block later ones.
-TEST(DynamicPipeline, LookAheadSubmitsTheNextFrameEarly) {
+// push(k+1) before processNext() of frame k hands frame k+1 to the segmentation lane at once; a frame not pushed
+// yet does not reach it. More than FrameScheduler::kMaxAhead waiting frames are refused.
+TEST(DynamicPipeline, PushSchedulesStageAAtOnce) {
   auto log = std::make_shared<RecordingSegmenter::Log>();
   SlamSystem slam(bonnOptions());
   dynamic::DynamicOptions options;
@@ -145,25 +153,25 @@ TEST(DynamicPipeline, LookAheadSubmitsTheNextFrameEarly) {
   DynamicPipeline pipeline(slam, options,
                            std::make_unique<segmentation::SegmentationWorker>(
                                std::make_unique<RecordingSegmenter>(log), segmentation::MaskDilationOptions{}));
-  const io::RgbdFrame f1 = codedFrame(1), f2 = codedFrame(2), f3 = codedFrame(3), f5 = codedFrame(5);
-  pipeline.process(f1, &f2);
+  EXPECT_EQ(pipeline.push(codedFrame(1)), 0u);
+  EXPECT_EQ(pipeline.push(codedFrame(2)), 1u);
+  EXPECT_EQ(pipeline.processNext().frame.index, 1u);
   {
     std::unique_lock<std::mutex> lock(log->mutex);
     EXPECT_TRUE(log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.count(2) > 0; }))
-        << "frame 2 was not submitted during process(frame 1)";
+        << "frame 2 was not submitted when it was pushed";
   }
-  pipeline.process(f2);  // no look-ahead: frame 3 is not announced
+  EXPECT_EQ(pipeline.processNext().frame.index, 2u);  // nothing pushed ahead: frame 3 is unknown
   {
     std::lock_guard<std::mutex> lock(log->mutex);
     EXPECT_EQ(log->started, (std::set<int>{1, 2}));
   }
-  pipeline.process(f3, &f5);  // announces frame 5 ...
-  const DynamicFrameOutput out = pipeline.process(codedFrame(4));  // ... but frame 4 comes: segmented on its own
-  EXPECT_TRUE(out.prior_mask.empty() || cv::countNonZero(out.prior_mask) == 0);
+  EXPECT_THROW(pipeline.processNext(), core::Error);  // nothing waits
+  for (std::size_t code = 3; code < 3 + FrameScheduler::kMaxAhead; ++code) pipeline.push(codedFrame(code));
+  EXPECT_THROW(pipeline.push(codedFrame(9)), core::Error);
+  EXPECT_EQ(pipeline.waiting(), FrameScheduler::kMaxAhead);
+  EXPECT_EQ(pipeline.processNext().frame.index, 3u);
   pipeline.finish();
-  std::unique_lock<std::mutex> lock(log->mutex);
-  log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.size() == 5; });
-  EXPECT_EQ(log->started, (std::set<int>{1, 2, 3, 4, 5}));
 }
 
 // Dynamic.Prior.interval 3: the network sees processed frames 0, 3, 6, ... only (announced ones early, through the
@@ -180,13 +188,12 @@ TEST(DynamicPipeline, SegmentsEveryIntervalthFrame) {
                                std::make_unique<RecordingSegmenter>(log), segmentation::MaskDilationOptions{}));
   std::vector<io::RgbdFrame> frames;
   for (std::size_t code = 10; code < 18; ++code) frames.push_back(codedFrame(code));
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    pipeline.process(frames[k], k + 1 < frames.size() ? &frames[k + 1] : nullptr);
-    if (k == 2) {  // frame 3 was announced as the look-ahead of frame 2: on its way before process(frame 3)
+  feedPipeline(pipeline, frames, 1, [&](const DynamicFrameOutput& out) {
+    if (out.frame.index == 12) {  // frame 3 was pushed ahead of frame 2: on its way before frame 3 is processed
       std::unique_lock<std::mutex> lock(log->mutex);
       EXPECT_TRUE(log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.count(13) > 0; }));
     }
-  }
+  });
   pipeline.finish();
   std::unique_lock<std::mutex> lock(log->mutex);
   log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.size() >= 3; });
@@ -225,12 +232,12 @@ MaskedExtractionRun runLeftBand(const std::vector<io::RgbdFrame>& frames, double
                            std::make_unique<segmentation::SegmentationWorker>(
                                std::make_unique<LeftBandSegmenter>(fraction), segmentation::MaskDilationOptions{}));
   MaskedExtractionRun run;
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    const DynamicFrameOutput out = pipeline.process(frames[k], k + 1 < frames.size() ? &frames[k + 1] : nullptr);
+  std::size_t k = 0;
+  feedPipeline(pipeline, frames, 1, [&](const DynamicFrameOutput& out) {
     run.kept = out.slam.keypoints;
     run.removed = out.slam.removed_dynamic;
-    if (k == 0) run.map_from_first_frame = out.slam.track.initialized_map;
-  }
+    if (k++ == 0) run.map_from_first_frame = out.slam.track.initialized_map;
+  });
   pipeline.finish();
   return run;
 }

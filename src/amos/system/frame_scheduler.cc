@@ -1,0 +1,117 @@
+#include "amos/system/frame_scheduler.h"
+
+#include <string>
+#include <utility>
+
+#include "amos/core/error.h"
+#include "amos/core/stage_timer.h"
+
+namespace amos::system {
+
+StageATasks StageATasks::forMode(const dynamic::DynamicOptions& options) {
+  using dynamic::DynamicMode;
+  StageATasks t;
+  t.segmentation = options.mode == DynamicMode::kPrior || options.mode == DynamicMode::kFull;
+  t.geometry = options.mode == DynamicMode::kGeometry || options.mode == DynamicMode::kFull;
+  // When prior regions are judged (Dynamic.judgePriorRegions) a person may turn out static, so the mask must not
+  // keep features away from it.
+  t.masked_extraction = t.segmentation && options.prior_masked_extraction && !options.judge_prior_regions;
+  return t;
+}
+
+PreparedFrame prepareFrame(const io::RgbdFrame& frame, const StageATasks& tasks, const dynamic::DynamicOptions& options,
+                           const SlamSystem& slam, const PreparationInputs& inputs) {
+  const double cpu_start = core::threadCpuMs();
+  PreparedFrame prepared;
+  core::Stopwatch convert;
+  const cv::Mat gray = SlamSystem::toGray(frame);
+  const double convert_ms = convert.elapsedMs();
+  // What does not need the hand-offs first, so that a wait for them comes as late as possible.
+  if (tasks.geometry) {
+    core::Stopwatch watch;
+    prepared.pyramid = dynamic::buildPyramid(gray, options.tracking);
+    prepared.pyramid_ms = watch.elapsedMs();
+    watch.restart();
+    prepared.corners = dynamic::detectCorners(gray, options.tracking);
+    prepared.corners_ms = watch.elapsedMs();
+    prepared.partition = dynamic::computeGeometricPartition(frame.bgr, frame.depth, options.superpixel, options.cluster);
+  }
+  // The previous frame's mask rather than this frame's: waiting for this frame's segmentation would put the
+  // segmenter and the extractor one after the other on every frame. People move a few pixels between frames, well
+  // inside the mask's dilation; keypoints that still land on a person are removed with this frame's mask as always.
+  cv::Mat allowed;
+  if (tasks.masked_extraction && inputs.previous_dilated_mask.valid()) {
+    core::Stopwatch wait;
+    const cv::Mat& dynamic = inputs.previous_dilated_mask.get();
+    const bool map_ready = inputs.map_ready_two_back.valid() && inputs.map_ready_two_back.get();
+    prepared.handoff_wait_ms = wait.elapsedMs();
+    if (!dynamic.empty()) {
+      const bool large = cv::countNonZero(dynamic) >=
+                         options.prior_masked_extraction_coverage * static_cast<double>(dynamic.total());
+      // Before the map exists the frame alone must supply the points to start it: the mask steers at any coverage.
+      if (large || !map_ready) allowed = dynamic == 0;
+    }
+  }
+  prepared.features = slam.extractGray(gray, allowed);
+  prepared.features.extract_ms += convert_ms;
+  prepared.cpu_ms = core::threadCpuMs() - cpu_start;
+  return prepared;
+}
+
+FrameScheduler::FrameScheduler(const SlamSystem& slam, const dynamic::DynamicOptions& options,
+                               std::unique_ptr<segmentation::SegmentationWorker> segmentation)
+    : slam_(slam),
+      options_(options),
+      tasks_(StageATasks::forMode(options)),
+      segmentation_(std::move(segmentation)),
+      // Room for every frame that may be ahead, so that push() never blocks on a task waiting for stage B.
+      preparation_(std::make_unique<core::SerialExecutor>(kMaxAhead + 1)) {
+  core::require(!tasks_.segmentation || segmentation_ != nullptr,
+                "mode " + dynamic::toString(options_.mode) + " needs the person segmenter, but none was created");
+}
+
+FrameScheduler::~FrameScheduler() {
+  slots_.clear();  // breaks the hand-off promises, so a task that waits for one returns
+  recent_handoffs_.clear();
+  preparation_.reset();
+  closeSegmentation();
+}
+
+FrameNumber FrameScheduler::push(io::RgbdFrame frame, FrameNumber processed) {
+  core::require(next_number_ - processed < kMaxAhead,
+                "FrameScheduler: " + std::to_string(next_number_ - processed) +
+                    " frames already wait for stage B; process one before pushing more");
+  FrameSlot& slot = slots_.emplace_back();
+  slot.number = next_number_++;
+  slot.frame = std::move(frame);
+  slot.handoff.dilated_prior_mask = slot.dilated_prior_mask.get_future().share();
+  slot.handoff.map_ready = slot.map_ready.get_future().share();
+  const io::RgbdFrame& f = slot.frame;
+  if (tasks_.segmentation && (options_.prior.audit_predictions || options_.prior.isScheduled(slot.number)))
+    slot.segmentation = segmentation_->submit(f.index, f.bgr, f.depth).share();
+  PreparationInputs inputs;
+  if (!recent_handoffs_.empty()) inputs.previous_dilated_mask = recent_handoffs_.back().dilated_prior_mask;
+  if (recent_handoffs_.size() == 2) inputs.map_ready_two_back = recent_handoffs_.front().map_ready;
+  // The task holds its own copies of what it reads (cv::Mat headers share the pixels), never the slot.
+  slot.prepared = preparation_->submit(
+      [frame = f, inputs, tasks = tasks_, this] { return prepareFrame(frame, tasks, options_, slam_, inputs); });
+  recent_handoffs_.push_back(slot.handoff);
+  if (recent_handoffs_.size() > 2) recent_handoffs_.pop_front();
+  return slot.number;
+}
+
+FrameSlot& FrameScheduler::slot(FrameNumber number) {
+  core::require(!slots_.empty() && number >= slots_.front().number && number < next_number_,
+                "FrameScheduler: frame " + std::to_string(number) + " was not pushed or was already released");
+  return slots_[number - slots_.front().number];
+}
+
+void FrameScheduler::release(FrameNumber first_kept) {
+  while (!slots_.empty() && slots_.front().number < first_kept) slots_.pop_front();
+}
+
+void FrameScheduler::closeSegmentation() {
+  if (segmentation_) segmentation_->close();
+}
+
+}  // namespace amos::system

@@ -1,0 +1,94 @@
+#pragma once
+// Stage A of the pipeline (dynamic_pipeline.h): the per-frame work that needs nothing but the frame, scheduled
+// ahead into frame slots as soon as a frame is pushed. The tasks a mode schedules (StageATasks::forMode):
+//   none      preparation: grey image, ORB features
+//   prior     + segmentation (the person network) on the frames Dynamic.Prior.* names
+//   geometry  preparation + LK pyramid, corners, superpixel partition (Sec. III-B)
+//   full      all of them
+// Declared dependencies on stage B of earlier frames (StageBHandoff), used only by the masked ORB extraction
+// (Dynamic.priorMaskedExtraction; see prepareFrame):
+//   preparation(k)  <- the dilated person mask of frame k-1
+//                   <- whether a map exists after frame k-2
+// Frame k-1's mask is known early in its stage B, before its judgement and tracking, so preparation(k) overlaps
+// them; the map state after k-2 is the newest one surely known when frame k is pushed with one frame of
+// look-ahead. Each input is named by its frame number and waited for through a future, so the results are the
+// same however far ahead stage A runs: determinism follows from the dependencies, not from the timing.
+// Lanes: the segmentation network runs in the segmentation worker's executor, the preparation in this class's
+// executor (core::SerialExecutor), each in push order.
+//
+// Thread safety: one thread pushes and reads slots (the pipeline's); the lanes run in their own threads and
+// touch nothing but the copies of the inputs their tasks were given.
+#include <cstddef>
+#include <deque>
+#include <memory>
+
+#include "amos/core/serial_executor.h"
+#include "amos/dynamic/dynamic_options.h"
+#include "amos/segmentation/segmentation_worker.h"
+#include "amos/system/frame_slot.h"
+#include "amos/system/slam_system.h"
+
+namespace amos::system {
+
+// The stage-A tasks that a front-end mode schedules.
+struct StageATasks {
+  bool segmentation = false;       // the person network, on the frames the schedule names (every frame: auditing)
+  bool geometry = false;           // LK pyramid, corners and superpixel partition of the geometric stage
+  bool masked_extraction = false;  // ORB detection outside the previous frame's person mask (when it is large)
+  static StageATasks forMode(const dynamic::DynamicOptions& options);
+};
+
+// The hand-offs of earlier frames that preparation(k) reads (invalid future: none, e.g. for the first frames).
+struct PreparationInputs {
+  std::shared_future<cv::Mat> previous_dilated_mask;  // frame k-1's
+  std::shared_future<bool> map_ready_two_back;        // after frame k-2
+};
+
+// Stage A's preparation of one frame: a pure function of the frame, the options and `inputs`.
+PreparedFrame prepareFrame(const io::RgbdFrame& frame, const StageATasks& tasks, const dynamic::DynamicOptions& options,
+                           const SlamSystem& slam, const PreparationInputs& inputs);
+
+class FrameScheduler {
+ public:
+  // `segmentation` is required when the mode segments (StageATasks::segmentation) and ignored otherwise.
+  FrameScheduler(const SlamSystem& slam, const dynamic::DynamicOptions& options,
+                 std::unique_ptr<segmentation::SegmentationWorker> segmentation);
+  // Drops the slots still waiting (their hand-offs are broken, so no task waits for them), then stops the lanes.
+  ~FrameScheduler();
+  FrameScheduler(const FrameScheduler&) = delete;
+  FrameScheduler& operator=(const FrameScheduler&) = delete;
+
+  // Frames that may be pushed ahead of stage B: push() refuses more (stage-A tasks wait for the hand-offs of
+  // frames that stage B has not reached, so an unbounded run-ahead could only queue up, never help).
+  static constexpr std::size_t kMaxAhead = 4;
+
+  // Schedules the frame's stage-A tasks into a new slot and returns its number. `processed`: frames stage B has
+  // finished; at most kMaxAhead pushed frames may wait beyond it (core::Error otherwise). The lanes keep
+  // references to the frame's images (cv::Mat shares them): do not write into them.
+  FrameNumber push(io::RgbdFrame frame, FrameNumber processed);
+  // The slot of a pushed frame that has not been released.
+  FrameSlot& slot(FrameNumber number);
+  // Drops the slots before `first_kept` (stage B no longer needs them).
+  void release(FrameNumber first_kept);
+  // Frames pushed so far.
+  FrameNumber pushed() const { return next_number_; }
+
+  // Stops the segmentation lane (frames already queued are still segmented). Idempotent.
+  void closeSegmentation();
+  const StageATasks& tasks() const { return tasks_; }
+  const segmentation::SegmentationWorker* segmentation() const { return segmentation_.get(); }
+
+ private:
+  const SlamSystem& slam_;
+  dynamic::DynamicOptions options_;
+  StageATasks tasks_;
+  std::unique_ptr<segmentation::SegmentationWorker> segmentation_;
+  std::deque<FrameSlot> slots_;  // consecutive numbers, the oldest kept first
+  FrameNumber next_number_ = 0;
+  // The hand-offs of the last two frames pushed (oldest first): what preparation of the next frame declares.
+  std::deque<StageBHandoff> recent_handoffs_;
+  // Last member: stopped and joined first, before anything its tasks use goes away.
+  std::unique_ptr<core::SerialExecutor> preparation_;
+};
+
+}  // namespace amos::system

@@ -1,0 +1,32 @@
+#include "amos/system/person_mask_carrier.h"
+
+#include <utility>
+
+namespace amos::system {
+
+PersonMaskCarrier::PersonMaskCarrier(segmentation::MaskDilationOptions dilation,
+                                     dynamic::PriorScheduleOptions schedule)
+    : dilation_(std::move(dilation)), schedule_(schedule) {
+  schedule_.check();
+}
+
+PersonMaskCarrier::Masks PersonMaskCarrier::masksFor(FrameNumber number,
+                                                     const segmentation::SegmentationResult& base_result,
+                                                     dynamic::FrameFlow flow) {
+  const FrameNumber base = schedule_.baseFor(number);
+  if (startsFrom(base)) {
+    if (!propagator_) propagator_.emplace(base_result.mask.size(), dilation_, schedule_);
+    propagator_->reset(base_result.instances);
+    base_ = base;
+    for (const auto& [k, old_flow] : flows_)  // a segmentation `lag` frames old: carried over the frames since
+      if (k > base && k < number) propagator_->step(old_flow);
+  }
+  if (number > base) propagator_->step(flow);
+  flows_.emplace_back(number, std::move(flow));
+  const auto keep = static_cast<std::size_t>(schedule_.interval + schedule_.lag);
+  while (flows_.size() > keep) flows_.pop_front();
+  if (number == base) return {base_result.mask, base_result.dilated_mask};  // exactly what the network gave
+  return {propagator_->mask(), propagator_->dilatedMask()};
+}
+
+}  // namespace amos::system
