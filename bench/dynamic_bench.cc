@@ -109,9 +109,22 @@ void BM_DepthSlic(benchmark::State& state) {
   state.counters["colour_only_recall_2px"] =
       boundaryRecall(computeDepthSlic(d.current.bgr, d.current.depth, colour_only).labels, d.depth_edges, 2);
 }
+// The assignment loop in 4 lanes (the x86-64 baseline) and in 8 (AVX2, chosen at run time): same labels.
+void BM_DepthSlicLanes(benchmark::State& state) {
+  const BenchData& d = data();
+  const bool avx2 = state.range(0) != 0;
+  for (auto _ : state) {
+    const SuperpixelSegmentation seg = detail::computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{}, avx2);
+    benchmark::DoNotOptimize(seg.labels.data);
+  }
+}
+BENCHMARK(BM_DepthSlicLanes)->ArgName("avx2")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_DepthSlic)
     ->Args({25, 300, 5})
     ->Args({50, 150, 5})
+    ->Args({50, 300, 3})
+    ->Args({50, 300, 4})
     ->Args({50, 300, 5})
     ->Args({50, 300, 10})
     ->Args({50, 600, 5})

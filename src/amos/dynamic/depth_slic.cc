@@ -3,10 +3,21 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
+
+#if defined(__GNUC__) && defined(__x86_64__) && CV_SIMD128 && !CV_SIMD256
+#include <immintrin.h>
+// The assignment loop in 8 lanes on CPUs that have AVX2, chosen at run time: the library itself is built for the
+// x86-64 baseline (4 lanes), as distribution packages are.
+#define AMOS_SLIC_AVX2 1
+#else
+#define AMOS_SLIC_AVX2 0
+#endif
 
 #include "amos/core/error.h"
 
@@ -122,9 +133,48 @@ std::vector<Centre> seedCentres(const Planes& p, int num_superpixels, float& ste
   return centres;
 }
 
+#if AMOS_SLIC_AVX2
+// Pixels [x, x1) of one row of a centre's window, 8 at a time, for as long as 8 remain; returns where it stopped.
+// Operation by operation the arithmetic of the 4-lane loop in assignPixels (no FMA: fused operations would round
+// differently), and `dx4` carries that loop's running x offsets in and out (lanes 0-3 here hold its chunk, lanes
+// 4-7 its next one), so both paths give the same labels bit for bit.
+__attribute__((target("avx2"))) int assignRowAvx2(const float* L, const float* A, const float* B, const float* Z,
+                                                  const float* V, float* dist, int* lab, int x, int x1,
+                                                  const Centre& c, float dy2, float inv_colour, float inv_step,
+                                                  float depth_w, int k, __m128& dx4) {
+  const __m128 four = _mm_set1_ps(4.f);
+  __m256 dx = _mm256_set_m128(_mm_add_ps(dx4, four), dx4);
+  const __m256 v_four = _mm256_set1_ps(4.f), v_cl = _mm256_set1_ps(c.L), v_ca = _mm256_set1_ps(c.A),
+               v_cb = _mm256_set1_ps(c.B), v_cz = _mm256_set1_ps(c.z), v_dy2 = _mm256_set1_ps(dy2),
+               v_ic = _mm256_set1_ps(inv_colour), v_is = _mm256_set1_ps(inv_step), v_dw = _mm256_set1_ps(depth_w),
+               abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+  const __m256 v_k = _mm256_castsi256_ps(_mm256_set1_epi32(k));
+  for (; x + 8 <= x1; x += 8) {
+    const __m256 dl = _mm256_sub_ps(_mm256_loadu_ps(L + x), v_cl), da = _mm256_sub_ps(_mm256_loadu_ps(A + x), v_ca),
+                 db = _mm256_sub_ps(_mm256_loadu_ps(B + x), v_cb);
+    const __m256 d_colour = _mm256_sqrt_ps(
+        _mm256_add_ps(_mm256_mul_ps(dl, dl), _mm256_add_ps(_mm256_mul_ps(da, da), _mm256_mul_ps(db, db))));
+    const __m256 d_image = _mm256_sqrt_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), v_dy2));
+    const __m256 d_depth =
+        _mm256_mul_ps(_mm256_and_ps(_mm256_sub_ps(_mm256_loadu_ps(Z + x), v_cz), abs_mask), _mm256_loadu_ps(V + x));
+    const __m256 D = _mm256_add_ps(_mm256_mul_ps(d_colour, v_ic),
+                                   _mm256_add_ps(_mm256_mul_ps(d_image, v_is), _mm256_mul_ps(d_depth, v_dw)));
+    const __m256 old = _mm256_loadu_ps(dist + x);
+    const __m256 closer = _mm256_cmp_ps(D, old, _CMP_LT_OQ);
+    _mm256_storeu_ps(dist + x, _mm256_blendv_ps(old, D, closer));
+    const __m256 old_label = _mm256_loadu_ps(reinterpret_cast<const float*>(lab + x));
+    _mm256_storeu_ps(reinterpret_cast<float*>(lab + x), _mm256_blendv_ps(old_label, v_k, closer));
+    dx = _mm256_add_ps(_mm256_add_ps(dx, v_four), v_four);
+  }
+  dx4 = _mm256_castps256_ps128(dx);
+  return x;
+}
+#endif
+
 // One SLIC assignment pass: every pixel within +-step of a centre takes the nearest centre under Eq. 1.
 void assignPixels(const Planes& p, const std::vector<Centre>& centres, float step, float inv_colour, float inv_depth,
-                  cv::Mat& labels, cv::Mat& distance) {
+                  bool avx2, cv::Mat& labels, cv::Mat& distance) {
+  (void)avx2;
   distance.setTo(std::numeric_limits<float>::max());
   const float inv_step = 1.f / step;
   const int radius = static_cast<int>(std::ceil(step));
@@ -159,6 +209,9 @@ void assignPixels(const Planes& p, const std::vector<Centre>& centres, float ste
                             v_lanes = cv::vx_setall_f32(static_cast<float>(kLanes));
         const cv::v_int32 v_k = cv::vx_setall_s32(k);
         cv::v_float32 v_dx = cv::vx_load(ramp) + cv::vx_setall_f32(x0 - c.x);
+#if AMOS_SLIC_AVX2
+        if (avx2) x = assignRowAvx2(L, A, B, Z, V, dist, lab, x, x1, c, dy2, inv_colour, inv_step, depth_w, k, v_dx.val);
+#endif
         for (; x + kLanes <= x1; x += kLanes, v_dx = v_dx + v_lanes) {
           const cv::v_float32 dl = cv::vx_load(L + x) - v_cl, da = cv::vx_load(A + x) - v_ca,
                               db = cv::vx_load(B + x) - v_cb;
@@ -193,8 +246,11 @@ void assignPixels(const Planes& p, const std::vector<Centre>& centres, float ste
 }
 
 void updateCentres(const Planes& p, const cv::Mat& labels, std::vector<Centre>& centres) {
+  // Positions and a, b (integers in the 8-bit Lab conversion) sum exactly in integers; L and depth in double.
   struct Sum {
-    double x = 0, y = 0, L = 0, A = 0, B = 0, z = 0;
+    double L = 0, z = 0;
+    std::int64_t x = 0, y = 0;
+    int A = 0, B = 0;
     int n = 0, nz = 0;
   };
   std::vector<Sum> sums(centres.size());
@@ -208,7 +264,7 @@ void updateCentres(const Planes& p, const cv::Mat& labels, std::vector<Centre>& 
     for (int x = 0; x < p.width; ++x) {
       if (lab[x] < 0) continue;
       Sum& s = sums[lab[x]];
-      s.x += x, s.y += y, s.L += L[x], s.A += A[x], s.B += B[x];
+      s.x += x, s.y += y, s.L += L[x], s.A += static_cast<int>(A[x]), s.B += static_cast<int>(B[x]);
       ++s.n;
       if (V[x] > 0.f) s.z += Z[x], ++s.nz;
     }
@@ -217,11 +273,11 @@ void updateCentres(const Planes& p, const cv::Mat& labels, std::vector<Centre>& 
     const Sum& s = sums[k];
     if (s.n == 0) continue;  // an empty centre keeps its place; it may win pixels back next round
     Centre& c = centres[k];
-    c.x = static_cast<float>(s.x / s.n);
-    c.y = static_cast<float>(s.y / s.n);
+    c.x = static_cast<float>(static_cast<double>(s.x) / s.n);
+    c.y = static_cast<float>(static_cast<double>(s.y) / s.n);
     c.L = static_cast<float>(s.L / s.n);
-    c.A = static_cast<float>(s.A / s.n);
-    c.B = static_cast<float>(s.B / s.n);
+    c.A = static_cast<float>(static_cast<double>(s.A) / s.n);
+    c.B = static_cast<float>(static_cast<double>(s.B) / s.n);
     c.z = s.nz > 0 ? static_cast<float>(s.z / s.nz) : 0.f;
     c.z_weight = s.nz > 0 ? 1.f : 0.f;
   }
@@ -244,26 +300,27 @@ int enforceConnectivity(const Planes& p, cv::Mat& labels, int min_size, float in
   int* comp_of = comp.ptr<int>();
   const float *L = p.L.ptr<float>(), *A = p.A.ptr<float>(), *B = p.B.ptr<float>();
   const float *Z = p.Z.ptr<float>(), *V = p.valid.ptr<float>();
-  std::vector<int> queue;
+  // Pixel indices with their column (a division per pixel would cost more than the rest of the walk).
+  std::vector<std::pair<int, int>> queue;
   queue.reserve(static_cast<std::size_t>(w) * h);
   for (int start = 0; start < w * h; ++start) {
     if (comp_of[start] >= 0) continue;
     const int old = old_labels[start], id = static_cast<int>(stats.size());
     Stats st;
     queue.clear();
-    queue.push_back(start);
+    queue.emplace_back(start, start % w);
     comp_of[start] = id;
     for (std::size_t q = 0; q < queue.size(); ++q) {
-      const int i = queue[q], qx = i % w;
+      const auto [i, qx] = queue[q];
       st.L += L[i], st.A += A[i], st.B += B[i];
       if (V[i] > 0.f) st.z += Z[i], ++st.nz;
-      auto visit = [&](int j) {
-        if (comp_of[j] < 0 && old_labels[j] == old) comp_of[j] = id, queue.push_back(j);
+      auto visit = [&](int j, int jx) {
+        if (comp_of[j] < 0 && old_labels[j] == old) comp_of[j] = id, queue.emplace_back(j, jx);
       };
-      if (qx > 0) visit(i - 1);
-      if (qx + 1 < w) visit(i + 1);
-      if (i >= w) visit(i - w);
-      if (i + w < w * h) visit(i + w);
+      if (qx > 0) visit(i - 1, qx - 1);
+      if (qx + 1 < w) visit(i + 1, qx + 1);
+      if (i >= w) visit(i - w, qx);
+      if (i + w < w * h) visit(i + w, qx);
     }
     st.n = static_cast<int>(queue.size());
     stats.push_back(st);
@@ -331,9 +388,25 @@ int enforceConnectivity(const Planes& p, cv::Mat& labels, int min_size, float in
   return next;
 }
 
+bool cpuHasAvx2() {
+#if AMOS_SLIC_AVX2
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
 }  // namespace
 
 SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth, const DepthSlicOptions& options) {
+  static const bool avx2 = cpuHasAvx2();
+  return detail::computeDepthSlic(bgr, depth, options, avx2);
+}
+
+namespace detail {
+
+SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth, const DepthSlicOptions& options,
+                                        bool avx2) {
   options.check();
   core::require(!bgr.empty() && bgr.type() == CV_8UC3, "computeDepthSlic: bgr must be a non-empty CV_8UC3 image");
   core::require(depth.type() == CV_32F && depth.size() == bgr.size(),
@@ -347,7 +420,7 @@ SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth
   const float inv_colour = static_cast<float>(1.0 / options.colour_scale);
   const float inv_depth = static_cast<float>(1.0 / options.depth_scale_m);
   for (int it = 0; it < options.iterations; ++it) {
-    assignPixels(p, centres, step, inv_colour, inv_depth, labels, distance);
+    assignPixels(p, centres, step, inv_colour, inv_depth, avx2, labels, distance);
     updateCentres(p, labels, centres);
   }
   // Pixels farther than one step from every centre (possible after centres drift) keep -1; give them to their
@@ -396,5 +469,7 @@ SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth
   }
   return result;
 }
+
+}  // namespace detail
 
 }  // namespace amos::dynamic

@@ -50,4 +50,11 @@ struct SuperpixelSegmentation {
 // bgr: CV_8UC3; depth: CV_32F metres, same size, 0 (or non-finite) = invalid. Deterministic.
 SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth, const DepthSlicOptions& options);
 
+namespace detail {
+// computeDepthSlic with the 8-lane AVX2 assignment loop on or off (on is used when the CPU has AVX2; both give the
+// same result). For tests and benchmarks.
+SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth, const DepthSlicOptions& options,
+                                        bool avx2);
+}  // namespace detail
+
 }  // namespace amos::dynamic
