@@ -23,15 +23,21 @@ std::vector<bool> borderSuperpixels(const cv::Mat& superpixel_labels, int count,
   std::vector<bool> border(std::max(0, count), false);
   const int w = superpixel_labels.cols, h = superpixel_labels.rows;
   const int m = std::min(margin_px, std::max(0, std::min(w, h) / 2 - 1));
-  auto mark = [&](int x, int y) {
-    const int label = superpixel_labels.at<int>(y, x);
-    if (label < 0 || label >= count) throw core::Error("borderSuperpixels: label out of range");
-    border[label] = true;
+  auto mark = [&](const int* row, int x0, int x1) {
+    for (int x = std::max(0, x0); x < std::min(w, x1); ++x) {
+      const int label = row[x];
+      if (label < 0 || label >= count) throw core::Error("borderSuperpixels: label out of range");
+      border[label] = true;
+    }
   };
+  // Only the band within m + 1 pixels of the image edge is visited.
   for (int y = 0; y < h; ++y) {
-    const bool edge_row = y <= m || y >= h - 1 - m;
-    for (int x = 0; x < w; ++x) {
-      if (edge_row || x <= m || x >= w - 1 - m) mark(x, y);
+    const int* row = superpixel_labels.ptr<int>(y);
+    if (y <= m || y >= h - 1 - m) {
+      mark(row, 0, w);
+    } else {
+      mark(row, 0, m + 1);
+      mark(row, std::max(m + 1, w - 1 - m), w);
     }
   }
   return border;
@@ -42,12 +48,18 @@ cv::Mat decisionClusterMap(const cv::Mat& cluster_map, const cv::Mat& superpixel
   core::require(cluster_map.type() == CV_32S && superpixel_labels.type() == CV_32S &&
                     cluster_map.size() == superpixel_labels.size(),
                 "decisionClusterMap: both maps must be CV_32S of the same size");
+  // Bytes instead of vector<bool>'s bits: this is looked up for every pixel.
+  const std::vector<unsigned char> border(border_superpixels.begin(), border_superpixels.end());
+  const auto count = static_cast<unsigned>(border.size());
   cv::Mat out = cluster_map.clone();
   for (int y = 0; y < out.rows; ++y) {
     const int* sp = superpixel_labels.ptr<int>(y);
     int* o = out.ptr<int>(y);
-    for (int x = 0; x < out.cols; ++x)
-      if (border_superpixels.at(sp[x])) o[x] = -1;
+    for (int x = 0; x < out.cols; ++x) {
+      const auto label = static_cast<unsigned>(sp[x]);
+      if (label >= count) throw core::Error("decisionClusterMap: superpixel label out of range");
+      if (border[label]) o[x] = -1;
+    }
   }
   return out;
 }

@@ -20,6 +20,7 @@
 #include "amos/io/realtime_replay.h"
 #include "amos/io/sequence_recorder.h"
 #include "amos/report/mask_outputs.h"
+#include "amos/report/paced_feeder.h"
 #ifdef AMOS_HAVE_OPENNI2
 #include "amos/camera/openni2_source.h"
 #endif
@@ -151,17 +152,8 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   std::size_t n = 0;
   auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
   system::DynamicPipeline& pipeline = *result.pipeline;
-  // Pushes the source's next frame into the pipeline's stage A: `wait` for one, or only one already waiting.
-  auto feed = [&](bool wait) {
-    std::optional<io::RgbdFrame> f = wait ? source->next() : source->poll();
-    if (f) pipeline.push(std::move(*f));
-  };
-  feed(true);
-  while (pipeline.waiting() > 0 && !stopped()) {
-    // One frame of look-ahead: stage A of frame k+1 runs while frame k is in stage B. A paced source offers only
-    // the frame already waiting; the loop then waits for the next one after this frame.
-    if (pipeline.waiting() < 2) feed(!paced);
-    const system::DynamicFrameOutput out = pipeline.processNext();
+  // Everything done with a processed frame; false when the run should end (--max-frames reached).
+  auto consume = [&](const system::DynamicFrameOutput& out) {
     const io::RgbdFrame& frame = out.frame;
     source_report.latency_ms.push_back(msSince(frame.arrival));
     ++n;
@@ -176,8 +168,23 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     outputs_ms += outputs.elapsedMs();
     if (options.on_frame)
       options.on_frame({frame.index + 1, source->size(), n, &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
-    if (options.max_frames > 0 && n >= options.max_frames) break;  // a live source has no end of its own
-    if (pipeline.waiting() == 0) feed(true);
+    return options.max_frames == 0 || n < options.max_frames;  // a live source has no end of its own
+  };
+  if (paced) {
+    // A feeder thread hands frames to stage A as they arrive (paced_feeder.h).
+    PacedFeeder feeder(*source, pipeline);
+    while (!stopped() && feeder.nextForStageB())
+      if (!consume(pipeline.processNext())) break;
+  } else {
+    // One frame of look-ahead: stage A of frame k+1 runs while frame k is in stage B.
+    auto feed = [&] {
+      if (std::optional<io::RgbdFrame> f = source->next()) pipeline.push(std::move(*f));
+    };
+    feed();
+    while (pipeline.waiting() > 0 && !stopped()) {
+      if (pipeline.waiting() < 2) feed();
+      if (!consume(pipeline.processNext())) break;
+    }
   }
   result.pipeline->finish();
   if (recorder) recorder->finish();

@@ -7,8 +7,8 @@
 // Frames come from an io::FrameSource chosen by SequenceRunOptions::source: the folder read as fast as the
 // pipeline takes it (the default), the folder replayed at its recorded rate (realtime), or a live camera. With
 // the folder the next frame is always pushed into the pipeline's stage A while the current one is in stage B
-// (one frame of look-ahead, system/dynamic_pipeline.h); with a paced or live source only a frame that is already
-// waiting (poll()) is pushed ahead, never one the loop would have to wait for, and a frame
+// (one frame of look-ahead, system/dynamic_pipeline.h); with a paced or live source a feeder thread pushes each
+// frame into stage A as soon as stage A is free (paced_feeder.h), and a frame
 // that arrives while the pipeline is busy replaces the waiting one (the source counts it as dropped). The
 // trajectory holds the processed frames; RunInfo::source says how many were delivered, processed and dropped and
 // how long each processed frame took from its arrival to its pose.

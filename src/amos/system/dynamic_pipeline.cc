@@ -61,7 +61,7 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
 
 DynamicPipeline::~DynamicPipeline() = default;
 
-FrameNumber DynamicPipeline::push(io::RgbdFrame frame) { return scheduler_.push(std::move(frame), state_.processed); }
+FrameNumber DynamicPipeline::push(io::RgbdFrame frame) { return scheduler_.push(std::move(frame), processed_.load()); }
 
 DynamicFrameOutput DynamicPipeline::process(io::RgbdFrame frame) {
   push(std::move(frame));
@@ -236,6 +236,7 @@ DynamicFrameOutput DynamicPipeline::processNext() {
   slot.map_ready.set_value(slam_.tracker().state() != tracking::TrackingState::kNotInitialized);
   remember(out, std::move(prepared));  // 7
   ++state_.processed;
+  processed_.store(state_.processed);
   scheduler_.release(firstSlotNeeded());
   return out;
 }

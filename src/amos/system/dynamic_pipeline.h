@@ -28,8 +28,9 @@
 // interval-th frame segmented, used lag frames later, carried in between by PersonMaskCarrier) is a function of
 // the frame numbers alone. interval 1, lag 0 is the paper's every-frame segmentation.
 //
-// Threading: push() and processNext() are called from one thread. Besides it run the two stage-A lanes and local
-// mapping (SlamSystem).
+// Threading: processNext() and the other members are called from one thread; push() may be called from that thread
+// or from one other (a feeder that hands over frames as a paced source delivers them). Besides them run the two
+// stage-A lanes and local mapping (SlamSystem).
 //
 //   DynamicPipeline pipeline(slam, options, segmentation);
 //   pipeline.push(frame0);
@@ -40,6 +41,7 @@
 //   pipeline.finish();
 #include <opencv2/core.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -83,7 +85,7 @@ class DynamicPipeline {
   // Stage A: schedules the frame's per-frame work. At most FrameScheduler::kMaxAhead frames may wait.
   FrameNumber push(io::RgbdFrame frame);
   // Frames pushed and not processed yet.
-  std::size_t waiting() const { return scheduler_.pushed() - state_.processed; }
+  std::size_t waiting() const { return scheduler_.pushed() - processed_.load(); }
   // Stage B: processes the oldest waiting frame (core::Error when none waits).
   DynamicFrameOutput processNext();
   // push() then processNext(): one frame without look-ahead.
@@ -139,6 +141,7 @@ class DynamicPipeline {
   core::StageTimes times_;
   std::vector<double> removed_fractions_;
   std::vector<PriorAudit> prior_audit_;
+  std::atomic<FrameNumber> processed_{0};  // state_.processed, for push() and waiting() from another thread
   // Last member: its lanes are stopped first, before anything their tasks use goes away.
   FrameScheduler scheduler_;
 };

@@ -78,35 +78,50 @@ FrameScheduler::~FrameScheduler() {
 }
 
 FrameNumber FrameScheduler::push(io::RgbdFrame frame, FrameNumber processed) {
-  core::require(next_number_ - processed < kMaxAhead,
-                "FrameScheduler: " + std::to_string(next_number_ - processed) +
-                    " frames already wait for stage B; process one before pushing more");
-  FrameSlot& slot = slots_.emplace_back();
-  slot.number = next_number_++;
-  slot.frame = std::move(frame);
-  slot.handoff.dilated_prior_mask = slot.dilated_prior_mask.get_future().share();
-  slot.handoff.map_ready = slot.map_ready.get_future().share();
-  const io::RgbdFrame& f = slot.frame;
-  if (tasks_.segmentation && (options_.prior.audit_predictions || options_.prior.isScheduled(slot.number)))
-    slot.segmentation = segmentation_->submit(f.index, f.bgr, f.depth).share();
+  FrameSlot* slot = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    core::require(next_number_ - processed < kMaxAhead,
+                  "FrameScheduler: " + std::to_string(next_number_ - processed) +
+                      " frames already wait for stage B; process one before pushing more");
+    slot = &slots_.emplace_back();
+    slot->number = next_number_++;
+  }
+  // Filled in without the lock (submitting may wait for room in a lane) and published at the end: slot() and
+  // pushed() see only published slots.
+  slot->frame = std::move(frame);
+  slot->handoff.dilated_prior_mask = slot->dilated_prior_mask.get_future().share();
+  slot->handoff.map_ready = slot->map_ready.get_future().share();
+  const io::RgbdFrame& f = slot->frame;
+  if (tasks_.segmentation && (options_.prior.audit_predictions || options_.prior.isScheduled(slot->number)))
+    slot->segmentation = segmentation_->submit(f.index, f.bgr, f.depth).share();
   PreparationInputs inputs;
   if (!recent_handoffs_.empty()) inputs.previous_dilated_mask = recent_handoffs_.back().dilated_prior_mask;
   if (recent_handoffs_.size() == 2) inputs.map_ready_two_back = recent_handoffs_.front().map_ready;
   // The task holds its own copies of what it reads (cv::Mat headers share the pixels), never the slot.
-  slot.prepared = preparation_->submit(
+  slot->prepared = preparation_->submit(
       [frame = f, inputs, tasks = tasks_, this] { return prepareFrame(frame, tasks, options_, slam_, inputs); });
-  recent_handoffs_.push_back(slot.handoff);
+  recent_handoffs_.push_back(slot->handoff);
   if (recent_handoffs_.size() > 2) recent_handoffs_.pop_front();
-  return slot.number;
+  std::lock_guard<std::mutex> lock(mutex_);
+  published_ = next_number_;
+  return slot->number;
+}
+
+FrameNumber FrameScheduler::pushed() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return published_;
 }
 
 FrameSlot& FrameScheduler::slot(FrameNumber number) {
-  core::require(!slots_.empty() && number >= slots_.front().number && number < next_number_,
+  std::lock_guard<std::mutex> lock(mutex_);
+  core::require(!slots_.empty() && number >= slots_.front().number && number < published_,
                 "FrameScheduler: frame " + std::to_string(number) + " was not pushed or was already released");
   return slots_[number - slots_.front().number];
 }
 
 void FrameScheduler::release(FrameNumber first_kept) {
+  std::lock_guard<std::mutex> lock(mutex_);
   while (!slots_.empty() && slots_.front().number < first_kept) slots_.pop_front();
 }
 

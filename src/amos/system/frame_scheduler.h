@@ -16,11 +16,14 @@
 // Lanes: the segmentation network runs in the segmentation worker's executor, the preparation in this class's
 // executor (core::SerialExecutor), each in push order.
 //
-// Thread safety: one thread pushes and reads slots (the pipeline's); the lanes run in their own threads and
-// touch nothing but the copies of the inputs their tasks were given.
+// Thread safety: push() may be called from one thread (a feeder of a paced source) while another reads and
+// releases slots (the pipeline's stage B): the slot list is guarded by a mutex, and a slot's reference stays
+// valid while other slots are added or released. The lanes run in their own threads and touch nothing but the
+// copies of the inputs their tasks were given.
 #include <cstddef>
 #include <deque>
 #include <memory>
+#include <mutex>
 
 #include "amos/core/serial_executor.h"
 #include "amos/dynamic/dynamic_options.h"
@@ -71,7 +74,7 @@ class FrameScheduler {
   // Drops the slots before `first_kept` (stage B no longer needs them).
   void release(FrameNumber first_kept);
   // Frames pushed so far.
-  FrameNumber pushed() const { return next_number_; }
+  FrameNumber pushed() const;
 
   // Stops the segmentation lane (frames already queued are still segmented). Idempotent.
   void closeSegmentation();
@@ -83,9 +86,12 @@ class FrameScheduler {
   dynamic::DynamicOptions options_;
   StageATasks tasks_;
   std::unique_ptr<segmentation::SegmentationWorker> segmentation_;
+  mutable std::mutex mutex_;     // guards slots_, next_number_ and published_
   std::deque<FrameSlot> slots_;  // consecutive numbers, the oldest kept first
-  FrameNumber next_number_ = 0;
+  FrameNumber next_number_ = 0;  // numbers given out
+  FrameNumber published_ = 0;    // slots filled in and visible to slot() and pushed()
   // The hand-offs of the last two frames pushed (oldest first): what preparation of the next frame declares.
+  // Touched by push() only.
   std::deque<StageBHandoff> recent_handoffs_;
   // Last member: stopped and joined first, before anything its tasks use goes away.
   std::unique_ptr<core::SerialExecutor> preparation_;
