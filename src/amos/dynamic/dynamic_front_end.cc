@@ -6,6 +6,7 @@
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/dynamic/frame_regions.h"
 
 namespace amos::dynamic {
 
@@ -15,12 +16,6 @@ DynamicFrontEnd::DynamicFrontEnd(const core::PinholeCamera& camera, const Dynami
 }
 
 namespace {
-
-int labelAt(const cv::Mat& map, cv::Point2f p) {
-  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
-  if (x < 0 || y < 0 || x >= map.cols || y >= map.rows) return -1;
-  return map.at<int>(y, x);
-}
 
 // Depth [m] at the pixel nearest p, 0 when invalid or outside the image.
 float depthAt(const cv::Mat& depth, cv::Point2f p) {
@@ -49,12 +44,6 @@ bool depthEdgeInWindow(const cv::Mat& depth, cv::Point2f p, int r, double ratio)
     }
   }
   return false;
-}
-
-// Whether the pixel nearest p is set in a CV_8U mask (false outside the image).
-bool maskAt(const cv::Mat& mask, cv::Point2f p) {
-  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
-  return x >= 0 && y >= 0 && x < mask.cols && y < mask.rows && mask.at<uchar>(y, x) != 0;
 }
 
 void checkInput(const DynamicFrameInput& in) {
@@ -86,13 +75,11 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   const bool use_prior = (mode == DynamicMode::kPrior || mode == DynamicMode::kFull) && !in.prior_mask.empty();
   const bool use_geometry = (mode == DynamicMode::kGeometry || mode == DynamicMode::kFull) && !in.last_gray.empty();
 
-  // Prior regions: connected components of the (already dilated) segmentation mask.
-  cv::Mat prior_components;
-  int prior_count = 0;
-  if (use_prior) {
-    prior_count = cv::connectedComponents(in.prior_mask != 0, prior_components, 8, CV_32S) - 1;
-    out.diagnostics.prior_regions = prior_count;
-  }
+  // Prior regions (III-A): connected components of the (already dilated) segmentation mask.
+  const PriorRegions prior = use_prior ? findPriorRegions(in.prior_mask) : PriorRegions{};
+  const cv::Mat& prior_components = prior.components;
+  const int prior_count = prior.count;
+  out.diagnostics.prior_regions = prior_count;
   const bool judge_prior = use_prior && use_geometry && options_.judge_prior_regions;
   if (use_prior && !judge_prior) {
     out.mask.setTo(255, in.prior_mask != 0);
@@ -122,9 +109,10 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   diag.superpixels = static_cast<int>(segmentation.superpixels.size());
   diag.clusters = num_clusters;
   // Border blocks take no part in the decisions (III-C).
-  const std::vector<bool> border =
-      borderSuperpixels(segmentation.labels, diag.superpixels, options_.boundary.border_margin_px);
-  const cv::Mat decision_map = decisionClusterMap(out.cluster_map, segmentation.labels, border);
+  const DecisionRegions regions =
+      findDecisionRegions(segmentation, partition.cluster_map, options_.boundary.border_margin_px);
+  const std::vector<bool>& border = regions.border;
+  const cv::Mat& decision_map = regions.decision_map;
   out.timings_ms.emplace_back("clusters", partition.cluster_ms + stage.elapsedMs());
   stage.restart();
 
@@ -182,7 +170,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   for (std::size_t i = 0; i < out.tracks.size(); ++i) {
     const int c = cluster_of_track[i];
     if (c >= 0 && out.cluster_scores[c].candidate) continue;
-    if (use_prior && labelAt(prior_components, out.tracks[i].current) > 0) continue;
+    if (labelAt(prior_components, out.tracks[i].current) > 0) continue;  // empty without prior regions
     outside_now[i] = true;
     outside_candidates[i] = !from_last_mask[i];
   }
