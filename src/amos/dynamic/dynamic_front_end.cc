@@ -6,7 +6,9 @@
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/dynamic/candidate_scoring.h"
 #include "amos/dynamic/frame_regions.h"
+#include "amos/dynamic/pose_confirmation.h"
 
 namespace amos::dynamic {
 
@@ -121,88 +123,23 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   diag.tracks = static_cast<int>(out.tracks.size());
   lap("tracking");
 
-  // Stage 1b (III-C, Eq. 5-6): cluster scores from reprojection errors under the initial pose.
-  const auto points_w = backProjectTracks(out.tracks, in.last_depth, in.T_cw_last, camera_, options_.reprojection);
-  // Tracks without a trusted depth (on a depth edge, among holes) are where the corners of a mover's outline are,
-  // and on a person with dark clothes nearly all of them: each gets the smallest error any depth of its
-  // neighbourhood allows (intervalResiduals), a lower bound that a static point under the right pose keeps near 0.
-  const int half_window = options_.tracking.lk_window / 2;
-  std::vector<std::optional<DepthInterval>> intervals;
-  if (options_.reprojection.interval_errors) {
-    intervals = trackDepthIntervals(out.tracks, in.last_depth, half_window, options_.reprojection);
-    for (std::size_t i = 0; i < intervals.size(); ++i)
-      if (points_w[i]) intervals[i].reset();
-  }
-  // Residuals under a pose: from the back-projected point, else the interval's lower bound.
-  auto residualsUnder = [&](const core::SE3& T_cw) {
-    auto residuals = reprojectionResiduals(out.tracks, points_w, T_cw, camera_);
-    if (intervals.empty()) return residuals;
-    const auto lower = intervalResiduals(out.tracks, intervals, in.T_cw_last, T_cw, camera_);
-    for (std::size_t i = 0; i < residuals.size(); ++i)
-      if (!residuals[i]) residuals[i] = lower[i];
-    return residuals;
-  };
-  out.reprojection_error_px = residualNorms(residualsUnder(in.T_cw_initial));
-  const auto& errors = out.reprojection_error_px;
-  std::vector<int> cluster_of_track(out.tracks.size());
-  for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-    cluster_of_track[i] = labelAt(decision_map, out.tracks[i].current);
-    if (errors[i]) ++diag.tracks_with_depth;
-  }
-  out.cluster_scores = scoreClusters(errors, cluster_of_track, num_clusters, options_.reprojection);
+  // Stage 1b (III-C, Eq. 5-6): the potential motion regions from the reprojection errors under the initial pose,
+  // and every cluster judged again under the pose refitted without them.
+  const CandidateScoring candidates =
+      scoreCandidates(out.tracks, in, decision_map, num_clusters, prior, camera_, options_, diag);
+  const PoseConfirmation confirmation = confirmUnderRefittedPose(out.tracks, candidates, in.T_cw_last, in.T_cw_initial,
+                                                                 camera_, options_.reprojection, diag);
+  out.reprojection_error_px = candidates.errors_px;
+  out.cluster_scores = candidates.cluster_scores;
+  out.confirm_scores = confirmation.confirm_scores;
+  out.T_cw_judged = confirmation.refit.T_cw;
+  const std::vector<std::optional<Eigen::Vector3d>>& points_w = candidates.lifted.points_w;
+  const std::vector<std::optional<DepthInterval>>& intervals = candidates.lifted.intervals;
+  const std::vector<std::optional<Eigen::Vector2d>>& residuals = confirmation.residuals;
+  const std::vector<bool>& outside_candidates = confirmation.fit_tracks;
   std::vector<double> cluster_error(num_clusters);
   for (int c = 0; c < num_clusters; ++c) cluster_error[c] = out.cluster_scores[c].mean_rho;
-
-  // Temporal evidence: the tracks that start inside the last frame's final mask were on a mover one frame ago, and
-  // movers rarely stop between two frames (33 ms). They are kept out of the fits below like the candidates: an
-  // undetected person holding a fifth of the tracks would otherwise pull the initial pose and the refit half-way
-  // to its own motion (a person moving 3 px per frame leaves both sides within the refit's inlier band), and then
-  // nothing in the frame looks dynamic. Only the fits lose them; every decision below is still made from this
-  // frame's evidence, so a static surface wrongly masked in the last frame is released here (its tracks fit the
-  // clean pose) instead of staying masked for good.
-  std::vector<bool> from_last_mask(out.tracks.size(), false);
-  if (options_.temporal.exclude_last_mask_from_fits && !in.last_mask.empty())
-    for (std::size_t i = 0; i < out.tracks.size(); ++i) from_last_mask[i] = maskAt(in.last_mask, out.tracks[i].last);
-
-  // Tracks outside the potential motion regions found so far (candidate clusters, prior regions, the last mask):
-  // what F and the pose refit are estimated on.
-  std::vector<bool> outside_candidates(out.tracks.size(), false), outside_now(out.tracks.size(), false);
-  for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-    const int c = cluster_of_track[i];
-    if (c >= 0 && out.cluster_scores[c].candidate) continue;
-    if (labelAt(prior_components, out.tracks[i].current) > 0) continue;  // empty without prior regions
-    outside_now[i] = true;
-    outside_candidates[i] = !from_last_mask[i];
-  }
-
-  // The pose again, without the candidates (see ReprojectionOptions::refit_pose), and every cluster scored under it.
-  // When the last mask leaves too few tracks (it covered most of the view), the refit does without it.
-  PoseRefit refit;
-  refit.T_cw = in.T_cw_initial;
-  if (options_.reprojection.refit_pose) {
-    refit = refitPose(out.tracks, points_w, outside_candidates, in.T_cw_initial, camera_, options_.reprojection);
-    if (!refit.ok && outside_now != outside_candidates) {
-      outside_candidates = outside_now;
-      refit = refitPose(out.tracks, points_w, outside_candidates, in.T_cw_initial, camera_, options_.reprojection);
-    }
-  }
-  diag.pose_refit_ok = refit.ok;
-  diag.pose_refit_points = refit.points;
-  diag.pose_refit_inliers = refit.inliers;
-  diag.pose_refit_sigma_px = refit.sigma_px;
-  out.T_cw_judged = refit.T_cw;
-  const auto residuals = residualsUnder(refit.T_cw);
-  if (refit.ok) {
-    const std::vector<std::optional<double>> refit_errors = residualNorms(residuals);
-    ReprojectionOptions confirm = options_.reprojection;
-    confirm.candidate_threshold_px = confirmThreshold(refit, options_.reprojection);
-    diag.confirm_threshold_px = confirm.candidate_threshold_px;
-    out.confirm_scores = scoreClusters(refit_errors, cluster_of_track, num_clusters, confirm);
-  }
-  auto confirmed = [&](int c) { return refit.ok && out.confirm_scores[c].candidate; };
-  diag.candidate_clusters = 0;
-  for (int c = 0; c < num_clusters; ++c)
-    if (out.cluster_scores[c].candidate || confirmed(c)) ++diag.candidate_clusters;
+  auto confirmed = [&](int c) { return confirmation.confirmed[c]; };
   lap("reprojection");
 
   // Stage 2 (III-C, Eq. 7-8): fundamental matrix on undistorted tracks, epipolar distance of every track.
@@ -260,7 +197,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     if (out.dynamic_cluster[c]) ++diag.dynamic_clusters;
   }
   out.superpixel_labels = segmentation.labels;
-  const bool seed_outside = options_.boundary.seed_outside_clusters && refit.ok;
+  const bool seed_outside = options_.boundary.seed_outside_clusters && confirmation.refit.ok;
   if (options_.boundary.superpixel_mask && (diag.dynamic_clusters > 0 || seed_outside)) {
     // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
     // A track moves with what fills its LK window. When the window (in either frame) holds an occlusion edge
@@ -268,7 +205,8 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     // moving box follows the box. Such a track, or one whose current pixel shows another surface than its last
     // one, would seed the wrong superpixel; it abstains.
     const double ratio = options_.reprojection.depth_edge_ratio;
-    const double static_bar = refit.ok ? confirmThreshold(refit, options_.reprojection) : options_.reprojection.candidate_threshold_px;
+    const int half_window = options_.tracking.lk_window / 2;
+    const double static_bar = confirmation.static_bar_px;
     std::vector<TrackEvidence> evidence;
     evidence.reserve(out.tracks.size());
     for (std::size_t i = 0; i < out.tracks.size(); ++i) {
