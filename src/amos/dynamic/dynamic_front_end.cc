@@ -7,6 +7,7 @@
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
 #include "amos/dynamic/candidate_scoring.h"
+#include "amos/dynamic/epipolar_evidence.h"
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/pose_confirmation.h"
 
@@ -142,52 +143,25 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   auto confirmed = [&](int c) { return confirmation.confirmed[c]; };
   lap("reprojection");
 
-  // Stage 2 (III-C, Eq. 7-8): fundamental matrix on undistorted tracks, epipolar distance of every track.
-  std::vector<cv::Point2f> last_raw, current_raw;
-  for (const PointTrack& t : out.tracks) last_raw.push_back(t.last), current_raw.push_back(t.current);
-  const std::vector<cv::Point2f> last_u = camera_.undistort(last_raw), current_u = camera_.undistort(current_raw);
-  // F is fitted on the tracks outside the potential motion regions: a rigid moving object holding many tracks
-  // would otherwise pull F towards its own motion whenever the static scene has little parallax (small baseline,
-  // one dominant plane), and then it would satisfy the epipolar test. With too few such tracks (e.g. every
-  // cluster a candidate after a bad initial pose) all tracks are used.
-  std::vector<cv::Point2f> fit_last, fit_current;
-  for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-    if (!outside_candidates[i]) continue;
-    fit_last.push_back(last_u[i]);
-    fit_current.push_back(current_u[i]);
-  }
-  if (static_cast<int>(fit_last.size()) < options_.epipolar.min_fit_points) fit_last = last_u, fit_current = current_u;
-  diag.f_fit_points = static_cast<int>(fit_last.size());
-  const FundamentalFit fit = fitFundamental(fit_last, fit_current, options_.epipolar);
-  diag.fundamental_ok = fit.ok;
-  diag.f_ransac_inliers = fit.ransac_inliers;
-  diag.f_refit_points = fit.refit_points;
-  diag.f_final_inliers = fit.final_inliers;
-  out.epipolar_distance_px.assign(out.tracks.size(), std::numeric_limits<double>::infinity());
-  if (fit.ok) {
-    for (std::size_t i = 0; i < out.tracks.size(); ++i)
-      out.epipolar_distance_px[i] =
-          epipolarDistance(fit.F, {last_u[i].x, last_u[i].y}, {current_u[i].x, current_u[i].y});
-  }
+  // Stage 2 (III-C, Eq. 7-8): fundamental matrix on the undistorted tracks outside the potential motion regions,
+  // epipolar distance of every track.
+  const EpipolarEvidence epipolar =
+      fitEpipolarEvidence(out.tracks, outside_candidates, camera_, options_.epipolar, diag);
+  out.epipolar_distance_px = epipolar.distance_px;
   lap("epipolar");
 
   // Decision: each epipolar violator votes for the cluster it belongs to after boundary reassignment and for
   // the prior region it lies in; a candidate region with enough votes is dynamic, and so is a cluster confirmed
   // under the refitted pose. Without F only the confirmation judges.
   std::vector<int> cluster_votes(num_clusters, 0), prior_votes(prior_count + 1, 0);
-  if (fit.ok) {
-    for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-      if (!(out.epipolar_distance_px[i] > options_.epipolar.dynamic_threshold_px)) continue;
-      ++diag.dynamic_points;
-      const cv::Point2f p = out.tracks[i].current;
-      if (judge_prior) {
-        const int region = labelAt(prior_components, p);
-        if (region > 0) ++prior_votes[region];
-      }
-      if (labelAt(decision_map, p) < 0) continue;  // in a border block
-      const int c = assignToNeighbourCluster(p, decision_map, cluster_error, options_.boundary.search_radius_px);
-      if (c >= 0) ++cluster_votes[c];
+  for (const cv::Point2f& p : epipolar.violators) {
+    if (judge_prior) {
+      const int region = labelAt(prior_components, p);
+      if (region > 0) ++prior_votes[region];
     }
+    if (labelAt(decision_map, p) < 0) continue;  // in a border block
+    const int c = assignToNeighbourCluster(p, decision_map, cluster_error, options_.boundary.search_radius_px);
+    if (c >= 0) ++cluster_votes[c];
   }
   const int min_votes = options_.epipolar.min_dynamic_points;
   out.dynamic_cluster.assign(num_clusters, false);
