@@ -1,11 +1,16 @@
 #include "amos/dynamic/dynamic_front_end.h"
 
-#include <cmath>
-#include <limits>
-#include <opencv2/imgproc.hpp>
+#include <opencv2/core.hpp>
+#include <utility>
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/dynamic/candidate_scoring.h"
+#include "amos/dynamic/cluster_voting.h"
+#include "amos/dynamic/epipolar_evidence.h"
+#include "amos/dynamic/frame_regions.h"
+#include "amos/dynamic/mask_building.h"
+#include "amos/dynamic/pose_confirmation.h"
 
 namespace amos::dynamic {
 
@@ -15,47 +20,6 @@ DynamicFrontEnd::DynamicFrontEnd(const core::PinholeCamera& camera, const Dynami
 }
 
 namespace {
-
-int labelAt(const cv::Mat& map, cv::Point2f p) {
-  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
-  if (x < 0 || y < 0 || x >= map.cols || y >= map.rows) return -1;
-  return map.at<int>(y, x);
-}
-
-// Depth [m] at the pixel nearest p, 0 when invalid or outside the image.
-float depthAt(const cv::Mat& depth, cv::Point2f p) {
-  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
-  if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) return 0.f;
-  const float z = depth.at<float>(y, x);
-  return std::isfinite(z) && z > 0.f ? z : 0.f;
-}
-
-// Whether the (2 r + 1)^2 window around p holds an occlusion edge: two adjacent valid depths differing by more than
-// `ratio` of the nearer one (holes are skipped). Adjacent pixels, not the window's range, so that a slanted surface
-// (a floor, a box face seen obliquely: a few mm per pixel) does not count.
-bool depthEdgeInWindow(const cv::Mat& depth, cv::Point2f p, int r, double ratio) {
-  const int cx = static_cast<int>(std::lround(p.x)), cy = static_cast<int>(std::lround(p.y));
-  const int x0 = std::max(0, cx - r), x1 = std::min(depth.cols - 1, cx + r);
-  const int y0 = std::max(0, cy - r), y1 = std::min(depth.rows - 1, cy + r);
-  auto jump = [ratio](float a, float b) {
-    return a > 0.f && b > 0.f && std::fabs(a - b) > ratio * std::min(a, b);  // NaN compares false: skipped
-  };
-  for (int y = y0; y <= y1; ++y) {
-    const float* row = depth.ptr<float>(y);
-    const float* below = y < y1 ? depth.ptr<float>(y + 1) : nullptr;
-    for (int x = x0; x <= x1; ++x) {
-      if (x < x1 && jump(row[x], row[x + 1])) return true;
-      if (below && jump(row[x], below[x])) return true;
-    }
-  }
-  return false;
-}
-
-// Whether the pixel nearest p is set in a CV_8U mask (false outside the image).
-bool maskAt(const cv::Mat& mask, cv::Point2f p) {
-  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
-  return x >= 0 && y >= 0 && x < mask.cols && y < mask.rows && mask.at<uchar>(y, x) != 0;
-}
 
 void checkInput(const DynamicFrameInput& in) {
   core::require(!in.gray.empty() && in.gray.type() == CV_8UC1, "DynamicFrontEnd: gray must be CV_8UC1");
@@ -81,28 +45,25 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   checkInput(in);
   core::Stopwatch total;
   DynamicFrameOutput out;
+  DynamicDiagnostics& diag = out.diagnostics;
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
   const DynamicMode mode = options_.mode;
   const bool use_prior = (mode == DynamicMode::kPrior || mode == DynamicMode::kFull) && !in.prior_mask.empty();
   const bool use_geometry = (mode == DynamicMode::kGeometry || mode == DynamicMode::kFull) && !in.last_gray.empty();
 
-  // Prior regions: connected components of the (already dilated) segmentation mask.
-  cv::Mat prior_components;
-  int prior_count = 0;
-  if (use_prior) {
-    prior_count = cv::connectedComponents(in.prior_mask != 0, prior_components, 8, CV_32S) - 1;
-    out.diagnostics.prior_regions = prior_count;
-  }
+  // Prior regions (III-A): connected components of the (already dilated) segmentation mask. Unless they are judged
+  // by their epipolar violators below, every one of them is dynamic.
+  const PriorRegions prior = use_prior ? findPriorRegions(in.prior_mask) : PriorRegions{};
+  diag.prior_regions = prior.count;
   const bool judge_prior = use_prior && use_geometry && options_.judge_prior_regions;
   if (use_prior && !judge_prior) {
     out.mask.setTo(255, in.prior_mask != 0);
-    out.diagnostics.dynamic_prior_regions = prior_count;
+    diag.dynamic_prior_regions = prior.count;
   }
   if (!use_geometry) {
     out.timings_ms.emplace_back("total", total.elapsedMs());
     return out;
   }
-  DynamicDiagnostics& diag = out.diagnostics;
   diag.geometry_ran = true;
   core::Stopwatch stage;
   auto lap = [&](const char* name) {
@@ -110,21 +71,18 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     stage.restart();
   };
 
-  // Stage 1a (III-B): superpixels and geometric clusters of the current frame.
+  // Stage 1a (III-B): superpixels and geometric clusters of the current frame; border blocks take no part in the
+  // decisions (III-C).
   GeometricPartition computed;
-  if (in.partition == nullptr) computed = computeGeometricPartition(in.bgr, in.depth, options_.superpixel, options_.cluster);
+  if (in.partition == nullptr)
+    computed = computeGeometricPartition(in.bgr, in.depth, options_.superpixel, options_.cluster);
   const GeometricPartition& partition = in.partition ? *in.partition : computed;
-  const SuperpixelSegmentation& segmentation = partition.segmentation;
   out.timings_ms.emplace_back("superpixels", partition.superpixel_ms);
-  out.cluster_map = partition.cluster_map;
   stage.restart();
-  const int num_clusters = clusterCount(segmentation);
-  diag.superpixels = static_cast<int>(segmentation.superpixels.size());
-  diag.clusters = num_clusters;
-  // Border blocks take no part in the decisions (III-C).
-  const std::vector<bool> border =
-      borderSuperpixels(segmentation.labels, diag.superpixels, options_.boundary.border_margin_px);
-  const cv::Mat decision_map = decisionClusterMap(out.cluster_map, segmentation.labels, border);
+  diag.superpixels = static_cast<int>(partition.segmentation.superpixels.size());
+  diag.clusters = clusterCount(partition.segmentation);
+  const DecisionRegions regions =
+      findDecisionRegions(partition.segmentation, partition.cluster_map, options_.boundary.border_margin_px);
   out.timings_ms.emplace_back("clusters", partition.cluster_ms + stage.elapsedMs());
   stage.restart();
 
@@ -133,225 +91,38 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   diag.tracks = static_cast<int>(out.tracks.size());
   lap("tracking");
 
-  // Stage 1b (III-C, Eq. 5-6): cluster scores from reprojection errors under the initial pose.
-  const auto points_w = backProjectTracks(out.tracks, in.last_depth, in.T_cw_last, camera_, options_.reprojection);
-  // Tracks without a trusted depth (on a depth edge, among holes) are where the corners of a mover's outline are,
-  // and on a person with dark clothes nearly all of them: each gets the smallest error any depth of its
-  // neighbourhood allows (intervalResiduals), a lower bound that a static point under the right pose keeps near 0.
-  const int half_window = options_.tracking.lk_window / 2;
-  std::vector<std::optional<DepthInterval>> intervals;
-  if (options_.reprojection.interval_errors) {
-    intervals = trackDepthIntervals(out.tracks, in.last_depth, half_window, options_.reprojection);
-    for (std::size_t i = 0; i < intervals.size(); ++i)
-      if (points_w[i]) intervals[i].reset();
-  }
-  // Residuals under a pose: from the back-projected point, else the interval's lower bound.
-  auto residualsUnder = [&](const core::SE3& T_cw) {
-    auto residuals = reprojectionResiduals(out.tracks, points_w, T_cw, camera_);
-    if (intervals.empty()) return residuals;
-    const auto lower = intervalResiduals(out.tracks, intervals, in.T_cw_last, T_cw, camera_);
-    for (std::size_t i = 0; i < residuals.size(); ++i)
-      if (!residuals[i]) residuals[i] = lower[i];
-    return residuals;
-  };
-  out.reprojection_error_px = residualNorms(residualsUnder(in.T_cw_initial));
-  const auto& errors = out.reprojection_error_px;
-  std::vector<int> cluster_of_track(out.tracks.size());
-  for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-    cluster_of_track[i] = labelAt(decision_map, out.tracks[i].current);
-    if (errors[i]) ++diag.tracks_with_depth;
-  }
-  out.cluster_scores = scoreClusters(errors, cluster_of_track, num_clusters, options_.reprojection);
-  std::vector<double> cluster_error(num_clusters);
-  for (int c = 0; c < num_clusters; ++c) cluster_error[c] = out.cluster_scores[c].mean_rho;
-
-  // Temporal evidence: the tracks that start inside the last frame's final mask were on a mover one frame ago, and
-  // movers rarely stop between two frames (33 ms). They are kept out of the fits below like the candidates: an
-  // undetected person holding a fifth of the tracks would otherwise pull the initial pose and the refit half-way
-  // to its own motion (a person moving 3 px per frame leaves both sides within the refit's inlier band), and then
-  // nothing in the frame looks dynamic. Only the fits lose them; every decision below is still made from this
-  // frame's evidence, so a static surface wrongly masked in the last frame is released here (its tracks fit the
-  // clean pose) instead of staying masked for good.
-  std::vector<bool> from_last_mask(out.tracks.size(), false);
-  if (options_.temporal.exclude_last_mask_from_fits && !in.last_mask.empty())
-    for (std::size_t i = 0; i < out.tracks.size(); ++i) from_last_mask[i] = maskAt(in.last_mask, out.tracks[i].last);
-
-  // Tracks outside the potential motion regions found so far (candidate clusters, prior regions, the last mask):
-  // what F and the pose refit are estimated on.
-  std::vector<bool> outside_candidates(out.tracks.size(), false), outside_now(out.tracks.size(), false);
-  for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-    const int c = cluster_of_track[i];
-    if (c >= 0 && out.cluster_scores[c].candidate) continue;
-    if (use_prior && labelAt(prior_components, out.tracks[i].current) > 0) continue;
-    outside_now[i] = true;
-    outside_candidates[i] = !from_last_mask[i];
-  }
-
-  // The pose again, without the candidates (see ReprojectionOptions::refit_pose), and every cluster scored under it.
-  // When the last mask leaves too few tracks (it covered most of the view), the refit does without it.
-  PoseRefit refit;
-  refit.T_cw = in.T_cw_initial;
-  if (options_.reprojection.refit_pose) {
-    refit = refitPose(out.tracks, points_w, outside_candidates, in.T_cw_initial, camera_, options_.reprojection);
-    if (!refit.ok && outside_now != outside_candidates) {
-      outside_candidates = outside_now;
-      refit = refitPose(out.tracks, points_w, outside_candidates, in.T_cw_initial, camera_, options_.reprojection);
-    }
-  }
-  diag.pose_refit_ok = refit.ok;
-  diag.pose_refit_points = refit.points;
-  diag.pose_refit_inliers = refit.inliers;
-  diag.pose_refit_sigma_px = refit.sigma_px;
-  out.T_cw_judged = refit.T_cw;
-  const auto residuals = residualsUnder(refit.T_cw);
-  if (refit.ok) {
-    const std::vector<std::optional<double>> refit_errors = residualNorms(residuals);
-    ReprojectionOptions confirm = options_.reprojection;
-    confirm.candidate_threshold_px = confirmThreshold(refit, options_.reprojection);
-    diag.confirm_threshold_px = confirm.candidate_threshold_px;
-    out.confirm_scores = scoreClusters(refit_errors, cluster_of_track, num_clusters, confirm);
-  }
-  auto confirmed = [&](int c) { return refit.ok && out.confirm_scores[c].candidate; };
-  diag.candidate_clusters = 0;
-  for (int c = 0; c < num_clusters; ++c)
-    if (out.cluster_scores[c].candidate || confirmed(c)) ++diag.candidate_clusters;
+  // Stage 1b (III-C, Eq. 5-6): the potential motion regions from the reprojection errors under the initial pose,
+  // and every cluster judged again under the pose refitted without them.
+  CandidateScoring candidates =
+      scoreCandidates(out.tracks, in, regions.decision_map, diag.clusters, prior, camera_, options_, diag);
+  PoseConfirmation confirmation = confirmUnderRefittedPose(out.tracks, candidates, in.T_cw_last, in.T_cw_initial,
+                                                           camera_, options_.reprojection, diag);
   lap("reprojection");
 
-  // Stage 2 (III-C, Eq. 7-8): fundamental matrix on undistorted tracks, epipolar distance of every track.
-  std::vector<cv::Point2f> last_raw, current_raw;
-  for (const PointTrack& t : out.tracks) last_raw.push_back(t.last), current_raw.push_back(t.current);
-  const std::vector<cv::Point2f> last_u = camera_.undistort(last_raw), current_u = camera_.undistort(current_raw);
-  // F is fitted on the tracks outside the potential motion regions: a rigid moving object holding many tracks
-  // would otherwise pull F towards its own motion whenever the static scene has little parallax (small baseline,
-  // one dominant plane), and then it would satisfy the epipolar test. With too few such tracks (e.g. every
-  // cluster a candidate after a bad initial pose) all tracks are used.
-  std::vector<cv::Point2f> fit_last, fit_current;
-  for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-    if (!outside_candidates[i]) continue;
-    fit_last.push_back(last_u[i]);
-    fit_current.push_back(current_u[i]);
-  }
-  if (static_cast<int>(fit_last.size()) < options_.epipolar.min_fit_points) fit_last = last_u, fit_current = current_u;
-  diag.f_fit_points = static_cast<int>(fit_last.size());
-  const FundamentalFit fit = fitFundamental(fit_last, fit_current, options_.epipolar);
-  diag.fundamental_ok = fit.ok;
-  diag.f_ransac_inliers = fit.ransac_inliers;
-  diag.f_refit_points = fit.refit_points;
-  diag.f_final_inliers = fit.final_inliers;
-  out.epipolar_distance_px.assign(out.tracks.size(), std::numeric_limits<double>::infinity());
-  if (fit.ok) {
-    for (std::size_t i = 0; i < out.tracks.size(); ++i)
-      out.epipolar_distance_px[i] =
-          epipolarDistance(fit.F, {last_u[i].x, last_u[i].y}, {current_u[i].x, current_u[i].y});
-  }
+  // Stage 2 (III-C, Eq. 7-8): fundamental matrix on the undistorted tracks outside the potential motion regions,
+  // epipolar distance of every track.
+  EpipolarEvidence epipolar =
+      fitEpipolarEvidence(out.tracks, confirmation.fit_tracks, camera_, options_.epipolar, diag);
   lap("epipolar");
 
-  // Decision: each epipolar violator votes for the cluster it belongs to after boundary reassignment and for
-  // the prior region it lies in; a candidate region with enough votes is dynamic, and so is a cluster confirmed
-  // under the refitted pose. Without F only the confirmation judges.
-  std::vector<int> cluster_votes(num_clusters, 0), prior_votes(prior_count + 1, 0);
-  if (fit.ok) {
-    for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-      if (!(out.epipolar_distance_px[i] > options_.epipolar.dynamic_threshold_px)) continue;
-      ++diag.dynamic_points;
-      const cv::Point2f p = out.tracks[i].current;
-      if (judge_prior) {
-        const int region = labelAt(prior_components, p);
-        if (region > 0) ++prior_votes[region];
-      }
-      if (labelAt(decision_map, p) < 0) continue;  // in a border block
-      const int c = assignToNeighbourCluster(p, decision_map, cluster_error, options_.boundary.search_radius_px);
-      if (c >= 0) ++cluster_votes[c];
-    }
-  }
-  const int min_votes = options_.epipolar.min_dynamic_points;
-  out.dynamic_cluster.assign(num_clusters, false);
-  for (int c = 0; c < num_clusters; ++c) {
-    out.dynamic_cluster[c] = (out.cluster_scores[c].candidate && cluster_votes[c] >= min_votes) || confirmed(c);
-    if (confirmed(c)) ++diag.confirmed_clusters;
-    if (out.dynamic_cluster[c]) ++diag.dynamic_clusters;
-  }
-  out.superpixel_labels = segmentation.labels;
-  const bool seed_outside = options_.boundary.seed_outside_clusters && refit.ok;
-  if (options_.boundary.superpixel_mask && (diag.dynamic_clusters > 0 || seed_outside)) {
-    // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
-    // A track moves with what fills its LK window. When the window (in either frame) holds an occlusion edge
-    // (a depth step beyond the depth-edge ratio) that may be the other side's motion: a wall corner next to a
-    // moving box follows the box. Such a track, or one whose current pixel shows another surface than its last
-    // one, would seed the wrong superpixel; it abstains.
-    const double ratio = options_.reprojection.depth_edge_ratio;
-    const double static_bar = refit.ok ? confirmThreshold(refit, options_.reprojection) : options_.reprojection.candidate_threshold_px;
-    std::vector<TrackEvidence> evidence;
-    evidence.reserve(out.tracks.size());
-    for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-      const PointTrack& t = out.tracks[i];
-      const float z_last = depthAt(in.last_depth, t.last), z_now = depthAt(in.depth, t.current);
-      const int s = labelAt(segmentation.labels, t.current);
-      const float z_superpixel = s >= 0 ? segmentation.superpixels[s].depth : 0.f;
-      if ((z_last > 0 && z_now > 0 && std::fabs(z_now - z_last) > ratio * z_last) ||
-          depthEdgeInWindow(in.last_depth, t.last, half_window, ratio) ||
-          depthEdgeInWindow(in.depth, t.current, half_window, ratio)) {
-        // Except when no depth of its window lets it be static: then the edge itself moved, and an edge moves
-        // with its occluding (near) side. It then votes, by its motion only, for its superpixel if that is the
-        // near side.
-        if (!points_w[i] && !intervals.empty() && intervals[i] && residuals[i] && residuals[i]->norm() >= static_bar &&
-            z_superpixel > 0 && z_superpixel <= (1 + ratio) * intervals[i]->near_m)
-          evidence.push_back({t.current, residuals[i], 0.0});
-        continue;
-      }
-      // Nor does one that lies off its superpixel's surface: where a superpixel straddles the mover's border (its
-      // outline is found at a coarser scale), the track belongs to the other side.
-      if (z_now > 0 && z_superpixel > 0 && std::fabs(z_now - z_superpixel) > ratio * std::min(z_now, z_superpixel))
-        continue;
-      evidence.push_back({t.current, residuals[i], out.epipolar_distance_px[i]});
-    }
-    const auto neighbours = superpixelNeighbours(segmentation.labels, diag.superpixels);
-    const std::vector<RegionLabel> seeds =
-        seedSuperpixels(segmentation.labels, segmentation.superpixels, neighbours, border, out.dynamic_cluster,
-                        evidence, static_bar,
-                        options_.epipolar.dynamic_threshold_px,
-                        SeedOptions{seed_outside, options_.epipolar.min_dynamic_points});
-    std::vector<bool> may_be_dynamic(diag.superpixels);
-    for (int s = 0; s < diag.superpixels; ++s)
-      may_be_dynamic[s] = out.dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
-    const std::vector<RegionLabel> labels =
-        growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options_.superpixel.colour_scale,
-                    options_.superpixel.depth_scale_m,
-                    occlusionEdges(segmentation.labels, neighbours, in.depth, options_.reprojection.depth_edge_ratio));
-    std::vector<uchar> dynamic_superpixel(diag.superpixels, 0);
-    for (int s = 0; s < diag.superpixels; ++s) {
-      dynamic_superpixel[s] = labels[s] == RegionLabel::kDynamic;
-      diag.dynamic_superpixels += dynamic_superpixel[s];
-    }
-    for (int y = 0; y < out.mask.rows; ++y) {
-      const int* sp = segmentation.labels.ptr<int>(y);
-      uchar* m = out.mask.ptr<uchar>(y);
-      for (int x = 0; x < out.mask.cols; ++x)
-        if (dynamic_superpixel[sp[x]]) m[x] = 255;
-    }
-  } else {
-    // The mask covers whole dynamic clusters, border blocks included (they only abstain from the decision).
-    for (int y = 0; y < out.mask.rows; ++y) {
-      const int* cm = out.cluster_map.ptr<int>(y);
-      uchar* m = out.mask.ptr<uchar>(y);
-      for (int x = 0; x < out.mask.cols; ++x)
-        if (out.dynamic_cluster[cm[x]]) m[x] = 255;
-    }
-  }
-  if (judge_prior) {
-    std::vector<bool> keep(prior_count + 1, false);
-    for (int r = 1; r <= prior_count; ++r) {
-      keep[r] = prior_votes[r] >= min_votes;
-      if (keep[r]) ++diag.dynamic_prior_regions;
-    }
-    for (int y = 0; y < out.mask.rows; ++y) {
-      const int* pc = prior_components.ptr<int>(y);
-      uchar* m = out.mask.ptr<uchar>(y);
-      for (int x = 0; x < out.mask.cols; ++x)
-        if (keep[pc[x]]) m[x] = 255;
-    }
-  }
+  // Decision: the epipolar violators vote for clusters and judged prior regions, then the mask follows the dynamic
+  // clusters per superpixel (or covers them whole) and the prior regions that stay.
+  const PriorRegions judged_prior = judge_prior ? prior : PriorRegions{};
+  ClusterVoting voting = voteClusters(epipolar.violators, regions.decision_map, candidates.cluster_scores,
+                                      confirmation.confirmed, judged_prior, options_, diag);
+  const DynamicMask mask = buildDynamicMask(in, out.tracks, partition, regions, candidates, confirmation, epipolar,
+                                            voting, judged_prior, options_, diag);
+  cv::bitwise_or(out.mask, mask.mask, out.mask);
   lap("decision");
+
+  out.superpixel_labels = partition.segmentation.labels;
+  out.cluster_map = partition.cluster_map;
+  out.cluster_scores = std::move(candidates.cluster_scores);
+  out.reprojection_error_px = std::move(candidates.errors_px);
+  out.confirm_scores = std::move(confirmation.confirm_scores);
+  out.T_cw_judged = confirmation.refit.T_cw;
+  out.dynamic_cluster = std::move(voting.dynamic_cluster);
+  out.epipolar_distance_px = std::move(epipolar.distance_px);
   out.timings_ms.emplace_back("total", total.elapsedMs());
   return out;
 }

@@ -9,6 +9,21 @@
 //     epipolar test is blind to motion along the epipolar lines, the depth-based error is not).
 //   mask: per superpixel in and around the dynamic clusters (boundary_assignment.h), so that it follows the
 //     mover's outline rather than the clusters' blobs.
+//
+// process() runs the stages in the paper's order; each is a function in its own file that takes the earlier stages'
+// results, returns a small struct and fills its own part of DynamicDiagnostics:
+//
+//   prior = findPriorRegions(prior_mask);                      // frame_regions.h, III-A (each region is dynamic
+//                                                              //   unless Dynamic.judgePriorRegions)
+//   partition = computeGeometricPartition(bgr, depth);         // geometric_clustering.h, III-B (or given)
+//   regions = findDecisionRegions(partition);                  // frame_regions.h, III-C (border blocks out)
+//   tracks = trackCorners(last_gray, gray);                    // corner_tracking.h (or given)
+//   candidates = scoreCandidates(tracks, regions, prior);      // candidate_scoring.h, III-C Eq. 5-6
+//   confirmation = confirmUnderRefittedPose(candidates);       // pose_confirmation.h, III-C Eq. 5
+//   epipolar = fitEpipolarEvidence(confirmation.fit_tracks);   // epipolar_evidence.h, III-C Eq. 7-8
+//   voting = voteClusters(epipolar.violators, candidates, confirmation);  // cluster_voting.h, III-C
+//   mask |= buildDynamicMask(candidates, confirmation, epipolar, voting); // mask_building.h, III-C boundaries
+//
 // State: none. The caller keeps the last frame (gray, depth, pose) and passes it in with the current frame, so
 // one DynamicFrontEnd can be shared, tested and benchmarked frame pair by frame pair. process() is const and
 // thread-compatible (no mutable members).

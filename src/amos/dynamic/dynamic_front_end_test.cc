@@ -10,15 +10,10 @@
 #include <sstream>
 
 #include "amos/core/error.h"
+#include "amos/dynamic/test_scenes.h"
 
 namespace amos::dynamic {
 namespace {
-
-core::PinholeCamera testCamera() {
-  core::CameraIntrinsics intr;
-  intr.fx = 535.4, intr.fy = 539.2, intr.cx = 320.1, intr.cy = 247.6;
-  return core::PinholeCamera(intr);
-}
 
 cv::Mat noiseTexture(int seed, int size) {
   cv::Mat t(size, size, CV_8U);

@@ -5,14 +5,10 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "amos/dynamic/test_scenes.h"
+
 namespace amos::dynamic {
 namespace {
-
-core::PinholeCamera testCamera() {
-  core::CameraIntrinsics intr;
-  intr.fx = 535.4, intr.fy = 539.2, intr.cx = 320.1, intr.cy = 247.6;
-  return core::PinholeCamera(intr);
-}
 
 core::SE3 pose(double tx, double ty, double tz, double rx, double ry, double rz) {
   core::Vector6d xi;

@@ -7,15 +7,10 @@
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/dynamic/test_scenes.h"
 
 namespace amos::dynamic {
 namespace {
-
-core::PinholeCamera testCamera() {
-  core::CameraIntrinsics intr;
-  intr.fx = 535.4, intr.fy = 539.2, intr.cx = 320.1, intr.cy = 247.6;  // TUM fr3, no distortion
-  return core::PinholeCamera(intr);
-}
 
 TEST(CauchyRho, IsQuadraticForSmallErrorsAndLogarithmicForLargeOnes) {
   EXPECT_DOUBLE_EQ(cauchyRho(0.0, 2.0), 0.0);

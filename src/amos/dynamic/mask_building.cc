@@ -1,0 +1,142 @@
+#include "amos/dynamic/mask_building.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace amos::dynamic {
+
+namespace {
+
+// Depth [m] at the pixel nearest p, 0 when invalid or outside the image.
+float depthAt(const cv::Mat& depth, cv::Point2f p) {
+  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
+  if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) return 0.f;
+  const float z = depth.at<float>(y, x);
+  return std::isfinite(z) && z > 0.f ? z : 0.f;
+}
+
+// Whether the (2 r + 1)^2 window around p holds an occlusion edge: two adjacent valid depths differing by more than
+// `ratio` of the nearer one (holes are skipped). Adjacent pixels, not the window's range, so that a slanted surface
+// (a floor, a box face seen obliquely: a few mm per pixel) does not count.
+bool depthEdgeInWindow(const cv::Mat& depth, cv::Point2f p, int r, double ratio) {
+  const int cx = static_cast<int>(std::lround(p.x)), cy = static_cast<int>(std::lround(p.y));
+  const int x0 = std::max(0, cx - r), x1 = std::min(depth.cols - 1, cx + r);
+  const int y0 = std::max(0, cy - r), y1 = std::min(depth.rows - 1, cy + r);
+  auto jump = [ratio](float a, float b) {
+    return a > 0.f && b > 0.f && std::fabs(a - b) > ratio * std::min(a, b);  // NaN compares false: skipped
+  };
+  for (int y = y0; y <= y1; ++y) {
+    const float* row = depth.ptr<float>(y);
+    const float* below = y < y1 ? depth.ptr<float>(y + 1) : nullptr;
+    for (int x = x0; x <= x1; ++x) {
+      if (x < x1 && jump(row[x], row[x + 1])) return true;
+      if (below && jump(row[x], below[x])) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+void markLabelledPixels(const cv::Mat& label_map, const std::vector<bool>& marked, cv::Mat& mask) {
+  for (int y = 0; y < mask.rows; ++y) {
+    const int* label = label_map.ptr<int>(y);
+    uchar* m = mask.ptr<uchar>(y);
+    for (int x = 0; x < mask.cols; ++x)
+      if (marked[label[x]]) m[x] = 255;
+  }
+}
+
+std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks, const TrackPoints& lifted,
+                                           const std::vector<std::optional<Eigen::Vector2d>>& residuals,
+                                           const std::vector<double>& epipolar_px, const cv::Mat& last_depth,
+                                           const cv::Mat& depth, const SuperpixelSegmentation& segmentation,
+                                           double static_bar_px, const DynamicOptions& options) {
+  // A track moves with what fills its LK window. When the window (in either frame) holds an occlusion edge
+  // (a depth step beyond the depth-edge ratio) that may be the other side's motion: a wall corner next to a
+  // moving box follows the box. Such a track, or one whose current pixel shows another surface than its last
+  // one, would seed the wrong superpixel; it abstains.
+  const double ratio = options.reprojection.depth_edge_ratio;
+  const int half_window = options.tracking.lk_window / 2;
+  std::vector<TrackEvidence> evidence;
+  evidence.reserve(tracks.size());
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    const PointTrack& t = tracks[i];
+    const float z_last = depthAt(last_depth, t.last), z_now = depthAt(depth, t.current);
+    const int s = labelAt(segmentation.labels, t.current);
+    const float z_superpixel = s >= 0 ? segmentation.superpixels[s].depth : 0.f;
+    if ((z_last > 0 && z_now > 0 && std::fabs(z_now - z_last) > ratio * z_last) ||
+        depthEdgeInWindow(last_depth, t.last, half_window, ratio) ||
+        depthEdgeInWindow(depth, t.current, half_window, ratio)) {
+      // Except when no depth of its window lets it be static: then the edge itself moved, and an edge moves
+      // with its occluding (near) side. It then votes, by its motion only, for its superpixel if that is the
+      // near side.
+      const auto& intervals = lifted.intervals;
+      if (!lifted.points_w[i] && !intervals.empty() && intervals[i] && residuals[i] &&
+          residuals[i]->norm() >= static_bar_px && z_superpixel > 0 &&
+          z_superpixel <= (1 + ratio) * intervals[i]->near_m)
+        evidence.push_back({t.current, residuals[i], 0.0});
+      continue;
+    }
+    // Nor does one that lies off its superpixel's surface: where a superpixel straddles the mover's border (its
+    // outline is found at a coarser scale), the track belongs to the other side.
+    if (z_now > 0 && z_superpixel > 0 && std::fabs(z_now - z_superpixel) > ratio * std::min(z_now, z_superpixel))
+      continue;
+    evidence.push_back({t.current, residuals[i], epipolar_px[i]});
+  }
+  return evidence;
+}
+
+std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
+                                     const std::vector<bool>& dynamic_cluster,
+                                     const std::vector<TrackEvidence>& evidence, double static_bar_px,
+                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options) {
+  const int count = static_cast<int>(segmentation.superpixels.size());
+  const auto neighbours = superpixelNeighbours(segmentation.labels, count);
+  const std::vector<RegionLabel> seeds =
+      seedSuperpixels(segmentation.labels, segmentation.superpixels, neighbours, border, dynamic_cluster, evidence,
+                      static_bar_px, options.epipolar.dynamic_threshold_px,
+                      SeedOptions{seed_outside, options.epipolar.min_dynamic_points});
+  std::vector<bool> may_be_dynamic(count);
+  for (int s = 0; s < count; ++s)
+    may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
+  const std::vector<RegionLabel> labels =
+      growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,
+                  options.superpixel.depth_scale_m,
+                  occlusionEdges(segmentation.labels, neighbours, depth, options.reprojection.depth_edge_ratio));
+  std::vector<bool> dynamic(count);
+  for (int s = 0; s < count; ++s) dynamic[s] = labels[s] == RegionLabel::kDynamic;
+  return dynamic;
+}
+
+DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<PointTrack>& tracks,
+                             const GeometricPartition& partition, const DecisionRegions& regions,
+                             const CandidateScoring& candidates, const PoseConfirmation& confirmation,
+                             const EpipolarEvidence& epipolar, const ClusterVoting& voting,
+                             const PriorRegions& judged_prior, const DynamicOptions& options,
+                             DynamicDiagnostics& diag) {
+  DynamicMask out;
+  out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
+  const SuperpixelSegmentation& segmentation = partition.segmentation;
+  const bool any_dynamic_cluster =
+      std::find(voting.dynamic_cluster.begin(), voting.dynamic_cluster.end(), true) != voting.dynamic_cluster.end();
+  const bool seed_outside = options.boundary.seed_outside_clusters && confirmation.refit.ok;
+  if (options.boundary.superpixel_mask && (any_dynamic_cluster || seed_outside)) {
+    // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
+    const std::vector<TrackEvidence> evidence =
+        seedingEvidence(tracks, candidates.lifted, confirmation.residuals, epipolar.distance_px, in.last_depth,
+                        in.depth, segmentation, confirmation.static_bar_px, options);
+    out.dynamic_superpixel = dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence,
+                                                confirmation.static_bar_px, seed_outside, in.depth, options);
+    diag.dynamic_superpixels =
+        static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
+    markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);
+  } else {
+    // The mask covers whole dynamic clusters, border blocks included (they only abstain from the decision).
+    markLabelledPixels(partition.cluster_map, voting.dynamic_cluster, out.mask);
+  }
+  if (judged_prior.count > 0) markLabelledPixels(judged_prior.components, voting.dynamic_prior_region, out.mask);
+  return out;
+}
+
+}  // namespace amos::dynamic

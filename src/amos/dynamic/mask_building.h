@@ -1,0 +1,59 @@
+#pragma once
+// The dynamic mask from the decisions (paper III-C; boundary_assignment.h): per superpixel in and around the
+// dynamic clusters (Dynamic.Boundary.superpixelMask), so that it follows the mover's outline rather than the
+// clusters' blobs, else the whole dynamic clusters; then the judged prior regions that kept their votes.
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <vector>
+
+#include "amos/dynamic/boundary_assignment.h"
+#include "amos/dynamic/candidate_scoring.h"
+#include "amos/dynamic/cluster_voting.h"
+#include "amos/dynamic/corner_tracking.h"
+#include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/epipolar_evidence.h"
+#include "amos/dynamic/frame_regions.h"
+#include "amos/dynamic/geometric_clustering.h"
+#include "amos/dynamic/pose_confirmation.h"
+
+namespace amos::dynamic {
+
+// Sets to 255 the pixels of mask (CV_8U) whose label in label_map (CV_32S, same size, each label an index into
+// marked) is marked.
+void markLabelledPixels(const cv::Mat& label_map, const std::vector<bool>& marked, cv::Mat& mask);
+
+// What the tracks say about the superpixels they end in (seedSuperpixels), without the tracks that would seed the
+// wrong one: those whose LK window holds an occlusion edge or whose depth jumps between the frames, and those off
+// their superpixel's surface. residuals: per track under the judged pose; epipolar_px: per track;
+// static_bar_px: the residual a static track stays below (PoseConfirmation::static_bar_px). Uses
+// Dynamic.Reprojection.depthEdgeRatio and half of Dynamic.LK.window.
+std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks, const TrackPoints& lifted,
+                                           const std::vector<std::optional<Eigen::Vector2d>>& residuals,
+                                           const std::vector<double>& epipolar_px, const cv::Mat& last_depth,
+                                           const cv::Mat& depth, const SuperpixelSegmentation& segmentation,
+                                           double static_bar_px, const DynamicOptions& options);
+
+// Per superpixel, whether it is dynamic: seeds from the evidence (seedSuperpixels; also away from the dynamic
+// clusters with seed_outside), then seeded region growing (growRegions) that may enter a superpixel as dynamic only
+// in a dynamic cluster or from a dynamic seed, and never across an occlusion edge of depth (CV_32F metres).
+std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
+                                     const std::vector<bool>& dynamic_cluster,
+                                     const std::vector<TrackEvidence>& evidence, double static_bar_px,
+                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options);
+
+struct DynamicMask {
+  cv::Mat mask;                          // CV_8U, 255 = dynamic
+  std::vector<bool> dynamic_superpixel;  // per superpixel (per-superpixel mask only, else empty)
+};
+
+// The geometric stage's mask. judged_prior: the prior regions voted on (cluster_voting.h), empty when they are not
+// judged (the caller then masks every prior region itself). Fills diag.dynamic_superpixels.
+DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<PointTrack>& tracks,
+                             const GeometricPartition& partition, const DecisionRegions& regions,
+                             const CandidateScoring& candidates, const PoseConfirmation& confirmation,
+                             const EpipolarEvidence& epipolar, const ClusterVoting& voting,
+                             const PriorRegions& judged_prior, const DynamicOptions& options,
+                             DynamicDiagnostics& diag);
+
+}  // namespace amos::dynamic

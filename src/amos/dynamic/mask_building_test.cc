@@ -1,0 +1,153 @@
+#include "amos/dynamic/mask_building.h"
+
+#include <gtest/gtest.h>
+
+#include "amos/dynamic/test_scenes.h"
+
+namespace amos::dynamic {
+namespace {
+
+// A 40 x 40 frame of 4 x 4 superpixel blocks of 10 x 10 px, labelled row by row; the left two columns of blocks are
+// cluster 0 (dark, L = 20), the right two cluster 1 (bright, L = 80); every superpixel lies at 2 m.
+GeometricPartition blockPartition() {
+  GeometricPartition partition;
+  SuperpixelSegmentation& segmentation = partition.segmentation;
+  segmentation.labels.create(40, 40, CV_32S);
+  partition.cluster_map.create(40, 40, CV_32S);
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x) {
+      segmentation.labels.at<int>(y, x) = (y / 10) * 4 + x / 10;
+      partition.cluster_map.at<int>(y, x) = x < 20 ? 0 : 1;
+    }
+  segmentation.superpixels.resize(16);
+  for (int s = 0; s < 16; ++s) {
+    Superpixel& sp = segmentation.superpixels[s];
+    sp.cluster = s % 4 < 2 ? 0 : 1;
+    sp.L = sp.cluster == 0 ? 20.f : 80.f;
+    sp.depth = 2.f;
+    sp.x = 10.f * (s % 4) + 4.5f, sp.y = 10.f * (s / 4) + 4.5f;
+  }
+  return partition;
+}
+
+std::vector<bool> leftHalfSuperpixels() {
+  std::vector<bool> left(16);
+  for (int s = 0; s < 16; ++s) left[s] = s % 4 < 2;
+  return left;
+}
+
+PointTrack still(float x, float y) { return {{x, y}, {x, y}}; }
+
+TEST(MaskBuilding, MarksThePixelsOfMarkedLabelsAndKeepsTheRest) {
+  const GeometricPartition partition = blockPartition();
+  cv::Mat mask(40, 40, CV_8U, cv::Scalar(0));
+  mask.at<uchar>(35, 35) = 255;
+  std::vector<bool> marked(16, false);
+  marked[5] = true;
+  markLabelledPixels(partition.segmentation.labels, marked, mask);
+  EXPECT_EQ(cv::countNonZero(mask), 101);
+  EXPECT_EQ(cv::countNonZero(mask(cv::Rect(10, 10, 10, 10))), 100);
+  EXPECT_EQ(mask.at<uchar>(35, 35), 255);
+}
+
+TEST(MaskBuilding, WholeClustersAndTheKeptPriorRegions) {
+  const DynamicFrameInput in = wallFramePair({40, 40}, 2.f);
+  const GeometricPartition partition = blockPartition();
+  const DecisionRegions regions = findDecisionRegions(partition.segmentation, partition.cluster_map, 0);
+  DynamicOptions options;
+  options.boundary.superpixel_mask = false;
+  ClusterVoting voting;
+  voting.dynamic_cluster = {false, true};
+  // Two judged prior regions in the left half; only region 2 kept its votes.
+  PriorRegions prior;
+  prior.count = 2;
+  prior.components = cv::Mat(40, 40, CV_32S, cv::Scalar(0));
+  prior.components(cv::Rect(0, 0, 5, 5)).setTo(1);
+  prior.components(cv::Rect(10, 30, 5, 4)).setTo(2);
+  voting.dynamic_prior_region = {false, false, true};
+  DynamicDiagnostics diag;
+  const DynamicMask mask = buildDynamicMask(in, {}, partition, regions, {}, {}, {}, voting, prior, options, diag);
+  // The right half (border blocks included) and region 2.
+  EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(20, 0, 20, 40))), 800);
+  EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 20);
+  EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(10, 30, 5, 4))), 20);
+  EXPECT_TRUE(mask.dynamic_superpixel.empty());
+  EXPECT_EQ(diag.dynamic_superpixels, 0);
+}
+
+TEST(MaskBuilding, ADynamicSeedGrowsOverItsClusterAndAStaticOneHoldsTheOther) {
+  const GeometricPartition partition = blockPartition();
+  const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);  // all but 5, 6, 9, 10
+  // Two epipolar violators in superpixel 5 (dynamic cluster 0), two still tracks in superpixel 6 (cluster 1).
+  const std::vector<TrackEvidence> evidence = {{{14, 15}, std::nullopt, 10.0},
+                                               {{16, 15}, std::nullopt, 10.0},
+                                               {{24, 15}, Eigen::Vector2d::Zero(), 0.0},
+                                               {{26, 15}, Eigen::Vector2d::Zero(), 0.0}};
+  const std::vector<bool> dynamic =
+      dynamicSuperpixels(partition.segmentation, border, {true, false}, evidence, 1.0, false,
+                         cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)), DynamicOptions{});
+  EXPECT_EQ(dynamic, leftHalfSuperpixels());
+  // Without a dynamic seed a dynamic cluster is not marked whole.
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {true, false}, {evidence[2], evidence[3]}, 1.0,
+                               false, cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)), DynamicOptions{}),
+            std::vector<bool>(16, false));
+}
+
+TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
+  const DynamicFrameInput in = wallFramePair({40, 40}, 2.f);
+  const GeometricPartition partition = blockPartition();
+  const DecisionRegions regions = findDecisionRegions(partition.segmentation, partition.cluster_map, 0);
+  const std::vector<PointTrack> tracks = {still(14, 15), still(16, 15), still(24, 15), still(26, 15)};
+  CandidateScoring candidates;
+  candidates.lifted.points_w.assign(4, std::nullopt);
+  PoseConfirmation confirmation;  // no refit: no seeds away from the dynamic clusters
+  confirmation.residuals = {std::nullopt, std::nullopt, Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  confirmation.static_bar_px = 1.0;
+  EpipolarEvidence epipolar;
+  epipolar.distance_px = {10.0, 10.0, 0.0, 0.0};
+  ClusterVoting voting;
+  voting.dynamic_cluster = {true, false};
+  DynamicDiagnostics diag;
+  const DynamicMask mask = buildDynamicMask(in, tracks, partition, regions, candidates, confirmation, epipolar,
+                                            voting, PriorRegions{}, DynamicOptions{}, diag);
+  EXPECT_EQ(mask.dynamic_superpixel, leftHalfSuperpixels());
+  EXPECT_EQ(diag.dynamic_superpixels, 8);
+  EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 800);
+  EXPECT_EQ(cv::countNonZero(mask.mask), 800);
+}
+
+TEST(MaskBuilding, TracksOnOcclusionEdgesOrOffTheirSurfaceAbstain) {
+  GeometricPartition partition = blockPartition();
+  for (int s = 0; s < 16; ++s)
+    if (s % 4 >= 2) partition.segmentation.superpixels[s].depth = 3.f;
+  partition.segmentation.superpixels[8].depth = 2.5f;  // its tracks (at 2 m) lie off its surface
+  cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
+  depth(cv::Rect(20, 0, 20, 40)).setTo(3.f);  // a 1 m step between x = 19 and x = 20
+  DynamicOptions options;
+  options.tracking.lk_window = 5;  // windows of +-2 px
+  const std::vector<PointTrack> tracks = {still(10, 15), still(18, 15), still(21, 15), still(5, 25)};
+  TrackPoints lifted;
+  lifted.points_w = {Eigen::Vector3d(0, 0, 2), std::nullopt, std::nullopt, Eigen::Vector3d(0, 0, 2)};
+  // The edge tracks' windows allow any depth from the near side (2 m) on: no point, an interval.
+  lifted.intervals = {std::nullopt, DepthInterval{2.0, 3.0}, DepthInterval{2.0, 3.0}, std::nullopt};
+  const std::vector<std::optional<Eigen::Vector2d>> residuals(4, Eigen::Vector2d(5, 0));
+  const std::vector<TrackEvidence> evidence = seedingEvidence(tracks, lifted, residuals, {7.0, 7.0, 7.0, 7.0}, depth,
+                                                              depth, partition.segmentation, 1.0, options);
+  // Kept: the track on the flat part with its epipolar distance, and the edge track that cannot be static whose
+  // superpixel is the near (occluding) side, by its motion only. Abstaining: the edge track whose superpixel is the
+  // far side, and the one off its superpixel's surface.
+  ASSERT_EQ(evidence.size(), 2u);
+  EXPECT_EQ(evidence[0].pixel, cv::Point2f(10, 15));
+  EXPECT_EQ(evidence[0].epipolar_px, 7.0);
+  EXPECT_EQ(evidence[1].pixel, cv::Point2f(18, 15));
+  EXPECT_EQ(evidence[1].epipolar_px, 0.0);
+  // A still edge track (residual below the static bar) abstains too.
+  const std::vector<std::optional<Eigen::Vector2d>> small(4, Eigen::Vector2d(0.5, 0));
+  EXPECT_EQ(seedingEvidence(tracks, lifted, small, {7.0, 7.0, 7.0, 7.0}, depth, depth, partition.segmentation, 1.0,
+                            options)
+                .size(),
+            1u);
+}
+
+}  // namespace
+}  // namespace amos::dynamic
