@@ -137,7 +137,9 @@ TEST(ReprojectionScoring, ResidualsAreTheVectorsBehindTheErrors) {
   ASSERT_EQ(errors.size(), residuals.size());
   for (std::size_t i = 0; i < errors.size(); ++i) {
     ASSERT_EQ(errors[i].has_value(), residuals[i].has_value());
-    if (errors[i]) EXPECT_DOUBLE_EQ(*errors[i], residuals[i]->norm());
+    if (errors[i]) {
+      EXPECT_DOUBLE_EQ(*errors[i], residuals[i]->norm());
+    }
   }
 }
 
