@@ -68,17 +68,15 @@ DynamicFrameOutput DynamicPipeline::process(io::RgbdFrame frame) {
   return processNext();
 }
 
-PreparedFrame DynamicPipeline::takePrepared(FrameSlot& slot) {
+FrameMotionInput DynamicPipeline::takeMotion(FrameSlot& slot) {
   core::Stopwatch wait;
-  PreparedFrame prepared = slot.prepared.get();
+  FrameMotionInput motion = slot.motion.get();
   times_.add("dynamic.prepare_wait", wait.elapsedMs());
-  times_.add("cpu.prepare", prepared.cpu_ms);
-  if (scheduler_.tasks().masked_extraction) times_.add("dynamic.extraction_handoff_wait", prepared.handoff_wait_ms);
-  if (!prepared.pyramid.empty()) {
-    times_.add("dynamic.pyramid", prepared.pyramid_ms);
-    times_.add("dynamic.corner_detection", prepared.corners_ms);
+  if (!motion.pyramid.empty()) {
+    times_.add("dynamic.pyramid", motion.pyramid_ms);
+    times_.add("dynamic.corner_detection", motion.corners_ms);
   }
-  return prepared;
+  return motion;
 }
 
 std::vector<dynamic::PointTrack> DynamicPipeline::trackCorners(const dynamic::ImagePyramid& current) {
@@ -169,7 +167,7 @@ void DynamicPipeline::track(const FrameSlot& slot, const ExtractedFeatures& feat
   removed_fractions_.push_back(out.removed_fraction);
 }
 
-void DynamicPipeline::remember(const DynamicFrameOutput& out, PreparedFrame prepared) {
+void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput motion) {
   const tracking::TrackResult& result = out.slam.track;
   if (result.state != tracking::TrackingState::kOk) {
     state_.last.reset();  // a lost frame's pose would poison the reprojection test of the next one
@@ -177,11 +175,11 @@ void DynamicPipeline::remember(const DynamicFrameOutput& out, PreparedFrame prep
   }
   const bool geometry = scheduler_.tasks().geometry;
   if (geometry && (result.new_keyframe || result.initialized_map)) {
-    state_.keyframe_pyramids.emplace_back(slam_.tracker().referenceKeyFrameView().id, prepared.pyramid);
+    state_.keyframe_pyramids.emplace_back(slam_.tracker().referenceKeyFrameView().id, motion.pyramid);
     if (state_.keyframe_pyramids.size() > kKeyFrameImages) state_.keyframe_pyramids.pop_front();
   }
-  state_.last = LastFrame{prepared.features.gray, out.frame.depth, out.dynamic_mask, std::move(prepared.pyramid),
-                          std::move(prepared.corners), result.T_cw};
+  state_.last = LastFrame{std::move(motion.gray), out.frame.depth, out.dynamic_mask, std::move(motion.pyramid),
+                          std::move(motion.corners), result.T_cw};
 }
 
 FrameNumber DynamicPipeline::firstSlotNeeded() const {
@@ -198,14 +196,14 @@ DynamicFrameOutput DynamicPipeline::processNext() {
   const StageATasks& tasks = scheduler_.tasks();
   if (!tasks.segmentation) slot.dilated_prior_mask.set_value(cv::Mat());
 
-  PreparedFrame prepared = takePrepared(slot);  // 1
+  FrameMotionInput motion = takeMotion(slot);  // 1
+  double stage_a_cpu = motion.cpu_ms;
   FrameExtras extras;
   if (options_.mode != dynamic::DynamicMode::kNone) {
     dynamic::DynamicFrameInput input;
-    input.gray = prepared.features.gray;
+    input.gray = motion.gray;
     input.bgr = slot.frame.bgr;
     input.depth = slot.frame.depth;
-    if (prepared.partition) input.partition = &*prepared.partition;
     std::vector<dynamic::PointTrack> tracks;
     if (state_.last) {
       const LastFrame& last = *state_.last;
@@ -215,9 +213,9 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       input.last_mask = last.dynamic_mask;
       input.T_cw_initial = last.T_cw;
       if (tasks.geometry) {
-        tracks = trackCorners(prepared.pyramid);  // 2
+        tracks = trackCorners(motion.pyramid);  // 2
         std::optional<dynamic::PoseModel> model;
-        extras.initial_T_cw = initialPose(prepared.pyramid, tracks, model);  // 3
+        extras.initial_T_cw = initialPose(motion.pyramid, tracks, model);  // 3
         out.initial_pose_model = model;
         if (extras.initial_T_cw) input.T_cw_initial = *extras.initial_T_cw;
         input.tracks = &tracks;
@@ -229,12 +227,26 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       input.prior_mask = std::move(masks.dilated);
       out.prior_mask = std::move(masks.mask);
     }
+    std::optional<FramePartition> partition;
+    if (tasks.geometry) {
+      core::Stopwatch wait;
+      partition = slot.partition.get();
+      times_.add("dynamic.partition_wait", wait.elapsedMs());
+      stage_a_cpu += partition->cpu_ms;
+      input.partition = &partition->partition;
+    }
     extras.dynamic_mask = judge(std::move(input));  // 5
     out.dynamic_mask = extras.dynamic_mask;
   }
-  track(slot, prepared.features, extras, out);  // 6
+  core::Stopwatch wait;
+  const FrameFeatures features = slot.features.get();
+  times_.add("dynamic.features_wait", wait.elapsedMs());
+  stage_a_cpu += features.cpu_ms;
+  if (tasks.masked_extraction) times_.add("dynamic.extraction_handoff_wait", features.handoff_wait_ms);
+  times_.add("cpu.prepare", stage_a_cpu);
+  track(slot, features.features, extras, out);  // 6
   slot.map_ready.set_value(slam_.tracker().state() != tracking::TrackingState::kNotInitialized);
-  remember(out, std::move(prepared));  // 7
+  remember(out, std::move(motion));  // 7
   ++state_.processed;
   processed_.store(state_.processed);
   scheduler_.release(firstSlotNeeded());

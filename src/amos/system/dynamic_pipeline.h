@@ -9,14 +9,16 @@
 //
 // Stage B, processNext(): the sequential, stateful work, in frame order, on the oldest pushed frame. The steps, in
 // the order they run (each a private member below):
-//   1. takePrepared        wait for the slot's stage-A preparation
+//   1. takeMotion          wait for the slot's motion input (grey image, LK pyramid, corners)
 //   2. trackCorners        LK tracks of the last frame's corners into this one            (geometry)
 //   3. initialPose         three models (Sec. III-D): reference-keyframe LK + EPnP,       (geometry)
 //                          last-frame corners + EPnP, constant velocity; most inliers wins
 //   4. personMasks         this frame's segmentation, or an earlier one carried here       (prior)
 //                          -> hand-off: the dilated mask, for stage A of the next frame
-//   5. judge               the dynamic mask (DynamicFrontEnd, Sec. III-B/C)              (not in none)
-//   6. track               tracking without the dynamic keypoints, with the initial pose
+//   5. judge               the dynamic mask (DynamicFrontEnd, Sec. III-B/C), once the     (not in none)
+//                          slot's superpixel partition is there
+//   6. track               tracking without the dynamic keypoints, with the initial pose, once the slot's ORB
+//                          features are there
 //                          -> hand-off: whether a map exists, for stage A two frames on
 //   7. remember            what the next frame needs from this one (StageBState)
 // A mode is the set of stage-A tasks scheduled and the stage-B steps that run: none = 1, 6, 7; prior adds 4-5;
@@ -120,7 +122,7 @@ class DynamicPipeline {
   };
 
   // The steps of stage B (see the header comment), in order.
-  PreparedFrame takePrepared(FrameSlot& slot);
+  FrameMotionInput takeMotion(FrameSlot& slot);
   std::vector<dynamic::PointTrack> trackCorners(const dynamic::ImagePyramid& current);
   std::optional<core::SE3> initialPose(const dynamic::ImagePyramid& current,
                                        const std::vector<dynamic::PointTrack>& tracks,
@@ -129,7 +131,7 @@ class DynamicPipeline {
   cv::Mat judge(dynamic::DynamicFrameInput input);
   void track(const FrameSlot& slot, const ExtractedFeatures& features, const FrameExtras& extras,
              DynamicFrameOutput& out);
-  void remember(const DynamicFrameOutput& out, PreparedFrame prepared);
+  void remember(const DynamicFrameOutput& out, FrameMotionInput motion);
 
   // The slots that stage B will still read from (the segmentation that serves the next frame, and on).
   FrameNumber firstSlotNeeded() const;

@@ -19,23 +19,27 @@ StageATasks StageATasks::forMode(const dynamic::DynamicOptions& options) {
   return t;
 }
 
-PreparedFrame prepareFrame(const io::RgbdFrame& frame, const StageATasks& tasks, const dynamic::DynamicOptions& options,
-                           const SlamSystem& slam, const PreparationInputs& inputs) {
+FrameMotionInput prepareMotion(const io::RgbdFrame& frame, const StageATasks& tasks,
+                               const dynamic::DynamicOptions& options) {
   const double cpu_start = core::threadCpuMs();
-  PreparedFrame prepared;
-  core::Stopwatch convert;
-  const cv::Mat gray = SlamSystem::toGray(frame);
-  const double convert_ms = convert.elapsedMs();
-  // What does not need the hand-offs first, so that a wait for them comes as late as possible.
+  FrameMotionInput motion;
+  motion.gray = SlamSystem::toGray(frame);
   if (tasks.geometry) {
     core::Stopwatch watch;
-    prepared.pyramid = dynamic::buildPyramid(gray, options.tracking);
-    prepared.pyramid_ms = watch.elapsedMs();
+    motion.pyramid = dynamic::buildPyramid(motion.gray, options.tracking);
+    motion.pyramid_ms = watch.elapsedMs();
     watch.restart();
-    prepared.corners = dynamic::detectCorners(gray, options.tracking);
-    prepared.corners_ms = watch.elapsedMs();
-    prepared.partition = dynamic::computeGeometricPartition(frame.bgr, frame.depth, options.superpixel, options.cluster);
+    motion.corners = dynamic::detectCorners(motion.gray, options.tracking);
+    motion.corners_ms = watch.elapsedMs();
   }
+  motion.cpu_ms = core::threadCpuMs() - cpu_start;
+  return motion;
+}
+
+FrameFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
+                              const SlamSystem& slam, const PreparationInputs& inputs) {
+  const double cpu_start = core::threadCpuMs();
+  FrameFeatures out;
   // The previous frame's mask rather than this frame's: waiting for this frame's segmentation would put the
   // segmenter and the extractor one after the other on every frame. People move a few pixels between frames, well
   // inside the mask's dilation; keypoints that still land on a person are removed with this frame's mask as always.
@@ -44,7 +48,7 @@ PreparedFrame prepareFrame(const io::RgbdFrame& frame, const StageATasks& tasks,
     core::Stopwatch wait;
     const cv::Mat& dynamic = inputs.previous_dilated_mask.get();
     const bool map_ready = inputs.map_ready_two_back.valid() && inputs.map_ready_two_back.get();
-    prepared.handoff_wait_ms = wait.elapsedMs();
+    out.handoff_wait_ms = wait.elapsedMs();
     if (!dynamic.empty()) {
       const bool large = cv::countNonZero(dynamic) >=
                          options.prior_masked_extraction_coverage * static_cast<double>(dynamic.total());
@@ -52,10 +56,17 @@ PreparedFrame prepareFrame(const io::RgbdFrame& frame, const StageATasks& tasks,
       if (large || !map_ready) allowed = dynamic == 0;
     }
   }
-  prepared.features = slam.extractGray(gray, allowed);
-  prepared.features.extract_ms += convert_ms;
-  prepared.cpu_ms = core::threadCpuMs() - cpu_start;
-  return prepared;
+  out.features = slam.extractGray(gray, allowed);
+  out.cpu_ms = core::threadCpuMs() - cpu_start;
+  return out;
+}
+
+FramePartition partitionFrame(const io::RgbdFrame& frame, const dynamic::DynamicOptions& options) {
+  const double cpu_start = core::threadCpuMs();
+  FramePartition out;
+  out.partition = dynamic::computeGeometricPartition(frame.bgr, frame.depth, options.superpixel, options.cluster);
+  out.cpu_ms = core::threadCpuMs() - cpu_start;
+  return out;
 }
 
 FrameScheduler::FrameScheduler(const SlamSystem& slam, const dynamic::DynamicOptions& options,
@@ -64,8 +75,10 @@ FrameScheduler::FrameScheduler(const SlamSystem& slam, const dynamic::DynamicOpt
       options_(options),
       tasks_(StageATasks::forMode(options)),
       segmentation_(std::move(segmentation)),
-      // Room for every frame that may be ahead, so that push() never blocks on a task waiting for stage B.
-      preparation_(std::make_unique<core::SerialExecutor>(kMaxAhead + 1)) {
+      // Room for every task of every frame that may be ahead, so that push() never blocks on a task waiting for
+      // stage B.
+      frame_lane_(std::make_unique<core::SerialExecutor>(2 * (kMaxAhead + 1))) {
+  if (tasks_.geometry) partition_lane_ = std::make_unique<core::SerialExecutor>(kMaxAhead + 1);
   core::require(!tasks_.segmentation || segmentation_ != nullptr,
                 "mode " + dynamic::toString(options_.mode) + " needs the person segmenter, but none was created");
 }
@@ -73,7 +86,8 @@ FrameScheduler::FrameScheduler(const SlamSystem& slam, const dynamic::DynamicOpt
 FrameScheduler::~FrameScheduler() {
   slots_.clear();  // breaks the hand-off promises, so a task that waits for one returns
   recent_handoffs_.clear();
-  preparation_.reset();
+  partition_lane_.reset();
+  frame_lane_.reset();
   closeSegmentation();
 }
 
@@ -98,9 +112,13 @@ FrameNumber FrameScheduler::push(io::RgbdFrame frame, FrameNumber processed) {
   PreparationInputs inputs;
   if (!recent_handoffs_.empty()) inputs.previous_dilated_mask = recent_handoffs_.back().dilated_prior_mask;
   if (recent_handoffs_.size() == 2) inputs.map_ready_two_back = recent_handoffs_.front().map_ready;
-  // The task holds its own copies of what it reads (cv::Mat headers share the pixels), never the slot.
-  slot->prepared = preparation_->submit(
-      [frame = f, inputs, tasks = tasks_, this] { return prepareFrame(frame, tasks, options_, slam_, inputs); });
+  // Each task holds its own copies of what it reads (cv::Mat headers share the pixels), never the slot.
+  slot->motion = frame_lane_->submit([frame = f, tasks = tasks_, this] { return prepareMotion(frame, tasks, options_); })
+                     .share();
+  slot->features = frame_lane_->submit([motion = slot->motion, inputs, tasks = tasks_, this] {
+    return extractFeatures(motion.get().gray, tasks, options_, slam_, inputs);
+  });
+  if (partition_lane_) slot->partition = partition_lane_->submit([frame = f, this] { return partitionFrame(frame, options_); });
   recent_handoffs_.push_back(slot->handoff);
   if (recent_handoffs_.size() > 2) recent_handoffs_.pop_front();
   std::lock_guard<std::mutex> lock(mutex_);

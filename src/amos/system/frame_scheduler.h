@@ -1,20 +1,24 @@
 #pragma once
 // Stage A of the pipeline (dynamic_pipeline.h): the per-frame work that needs nothing but the frame, scheduled
 // ahead into frame slots as soon as a frame is pushed. The tasks a mode schedules (StageATasks::forMode):
-//   none      preparation: grey image, ORB features
+//   none      motion (grey image only), features (ORB)
 //   prior     + segmentation (the person network) on the frames Dynamic.Prior.* names
-//   geometry  preparation + LK pyramid, corners, superpixel partition (Sec. III-B)
+//   geometry  motion with the LK pyramid and corners, features, partition (superpixels + clusters, Sec. III-B)
 //   full      all of them
+// Lanes, each a core::SerialExecutor running its tasks in push order:
+//   segmentation lane   segmentation(k)                     (the segmentation worker's)
+//   frame lane          motion(k), then features(k)         (features reads motion's grey image)
+//   partition lane      partition(k)
+// so that stage B can start on a frame's tracks (which need the motion input only) while its partition and
+// features are still being made, and a frame's stage A costs the time of its longest lane, not of their sum.
 // Declared dependencies on stage B of earlier frames (StageBHandoff), used only by the masked ORB extraction
-// (Dynamic.priorMaskedExtraction; see prepareFrame):
-//   preparation(k)  <- the dilated person mask of frame k-1
-//                   <- whether a map exists after frame k-2
-// Frame k-1's mask is known early in its stage B, before its judgement and tracking, so preparation(k) overlaps
+// (Dynamic.priorMaskedExtraction; see extractFeatures):
+//   features(k)  <- the dilated person mask of frame k-1
+//                <- whether a map exists after frame k-2
+// Frame k-1's mask is known early in its stage B, before its judgement and tracking, so features(k) overlaps
 // them; the map state after k-2 is the newest one surely known when frame k is pushed with one frame of
 // look-ahead. Each input is named by its frame number and waited for through a future, so the results are the
 // same however far ahead stage A runs: determinism follows from the dependencies, not from the timing.
-// Lanes: the segmentation network runs in the segmentation worker's executor, the preparation in this class's
-// executor (core::SerialExecutor), each in push order.
 //
 // Thread safety: push() may be called from one thread (a feeder of a paced source) while another reads and
 // releases slots (the pipeline's stage B): the slot list is guarded by a mutex, and a slot's reference stays
@@ -41,15 +45,18 @@ struct StageATasks {
   static StageATasks forMode(const dynamic::DynamicOptions& options);
 };
 
-// The hand-offs of earlier frames that preparation(k) reads (invalid future: none, e.g. for the first frames).
+// The hand-offs of earlier frames that features(k) reads (invalid future: none, e.g. for the first frames).
 struct PreparationInputs {
   std::shared_future<cv::Mat> previous_dilated_mask;  // frame k-1's
   std::shared_future<bool> map_ready_two_back;        // after frame k-2
 };
 
-// Stage A's preparation of one frame: a pure function of the frame, the options and `inputs`.
-PreparedFrame prepareFrame(const io::RgbdFrame& frame, const StageATasks& tasks, const dynamic::DynamicOptions& options,
-                           const SlamSystem& slam, const PreparationInputs& inputs);
+// The tasks of stage A, each a pure function of the frame, the options and its declared inputs.
+FrameMotionInput prepareMotion(const io::RgbdFrame& frame, const StageATasks& tasks,
+                               const dynamic::DynamicOptions& options);
+FrameFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
+                              const SlamSystem& slam, const PreparationInputs& inputs);
+FramePartition partitionFrame(const io::RgbdFrame& frame, const dynamic::DynamicOptions& options);
 
 class FrameScheduler {
  public:
@@ -93,8 +100,9 @@ class FrameScheduler {
   // The hand-offs of the last two frames pushed (oldest first): what preparation of the next frame declares.
   // Touched by push() only.
   std::deque<StageBHandoff> recent_handoffs_;
-  // Last member: stopped and joined first, before anything its tasks use goes away.
-  std::unique_ptr<core::SerialExecutor> preparation_;
+  // Last members: stopped and joined first, before anything their tasks use goes away.
+  std::unique_ptr<core::SerialExecutor> frame_lane_;
+  std::unique_ptr<core::SerialExecutor> partition_lane_;  // geometric stage only
 };
 
 }  // namespace amos::system

@@ -62,24 +62,25 @@ TEST(FrameScheduler, MaskedExtractionWaitsForThePreviousFramesMask) {
   options.mode = DynamicMode::kGeometry;  // no segmenter needed; the dependency is what is tested
   StageATasks tasks = StageATasks::forMode(options);
   tasks.masked_extraction = true;
-  // Drive prepareFrame through a promise, as the scheduler wires it.
+  // Drive extractFeatures through a promise, as the scheduler wires it.
   std::promise<cv::Mat> mask0;
   std::promise<bool> map_ready;
   PreparationInputs inputs{mask0.get_future().share(), map_ready.get_future().share()};
   core::SerialExecutor lane;
   const io::RgbdFrame frame = texturedFrame(1);
-  auto prepared = lane.submit([&] { return prepareFrame(frame, tasks, options, slam, inputs); });
+  const FrameMotionInput motion = prepareMotion(frame, tasks, options);
+  EXPECT_FALSE(motion.pyramid.empty());
+  EXPECT_FALSE(motion.corners.empty());
+  auto prepared = lane.submit([&] { return extractFeatures(motion.gray, tasks, options, slam, inputs); });
   EXPECT_EQ(prepared.wait_for(std::chrono::milliseconds(300)), std::future_status::timeout)
       << "the preparation did not wait for the previous frame's mask";
   cv::Mat left(480, 640, CV_8U, cv::Scalar(0));
   left.colRange(0, 448).setTo(255);  // 70 % of the view
   mask0.set_value(left);
   map_ready.set_value(true);
-  const PreparedFrame p = prepared.get();
+  const FrameFeatures p = prepared.get();
   ASSERT_GT(p.features.keypoints.size(), 50u);
   for (const cv::KeyPoint& k : p.features.keypoints) EXPECT_GE(k.pt.x, 448.f - 1.f) << "a keypoint inside the mask";
-  EXPECT_FALSE(p.pyramid.empty());
-  EXPECT_TRUE(p.partition.has_value());
 }
 
 // Mode geometry: no segmentation lane; slots are found by number until released; at most kMaxAhead wait.
@@ -92,8 +93,9 @@ TEST(FrameScheduler, SlotsByNumber) {
   EXPECT_EQ(scheduler.push(texturedFrame(11), 0), 1u);
   EXPECT_EQ(scheduler.slot(1).frame.index, 11u);
   EXPECT_FALSE(scheduler.slot(0).segmentation.valid());
-  const PreparedFrame p0 = scheduler.slot(0).prepared.get();  // frame 0 needs no hand-off
-  EXPECT_FALSE(p0.features.keypoints.empty());
+  EXPECT_FALSE(scheduler.slot(0).features.get().features.keypoints.empty());  // frame 0 needs no hand-off
+  EXPECT_FALSE(scheduler.slot(0).partition.get().partition.segmentation.superpixels.empty());
+  EXPECT_FALSE(scheduler.slot(0).motion.get().pyramid.empty());
   scheduler.release(1);
   EXPECT_THROW(scheduler.slot(0), core::Error);
   EXPECT_EQ(scheduler.slot(1).frame.index, 11u);

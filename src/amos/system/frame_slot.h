@@ -22,16 +22,23 @@ namespace amos::system {
 
 using FrameNumber = std::size_t;
 
-// Stage A's product for one frame: everything that depends on nothing but the frame itself (and the declared
-// hand-offs of earlier frames).
-struct PreparedFrame {
-  ExtractedFeatures features;
-  dynamic::ImagePyramid pyramid;     // LK pyramid of features.gray (geometric stage only)
+// Stage A's products for one frame, each made by its own task (frame_scheduler.h says which lane runs which):
+// everything that depends on nothing but the frame itself (and the declared hand-offs of earlier frames).
+struct FrameMotionInput {
+  cv::Mat gray;                      // the grey image (every mode)
+  dynamic::ImagePyramid pyramid;     // LK pyramid of gray (geometric stage only)
   std::vector<cv::Point2f> corners;  // its corners, tracked into the next frame (geometric stage only)
-  std::optional<dynamic::GeometricPartition> partition;  // superpixels and clusters (geometric stage only)
   double pyramid_ms = 0, corners_ms = 0;
+  double cpu_ms = 0;  // CPU time of the task
+};
+struct FrameFeatures {
+  ExtractedFeatures features;  // ORB keypoints and descriptors of the grey image
   double handoff_wait_ms = 0;  // waiting for the hand-offs of earlier frames (masked extraction only)
-  double cpu_ms = 0;           // CPU time of the preparing thread
+  double cpu_ms = 0;
+};
+struct FramePartition {
+  dynamic::GeometricPartition partition;  // superpixels and clusters (Sec. III-B)
+  double cpu_ms = 0;
 };
 
 // What stage B of frame k publishes for stage A of later frames. Futures, so that a stage-A task that needs one
@@ -48,10 +55,12 @@ struct StageBHandoff {
 struct FrameSlot {
   FrameNumber number = 0;
   io::RgbdFrame frame;
-  // Stage A (valid when the mode schedules the task): the network's segmentation of this frame, and the
-  // preparation.
+  // Stage A (valid when the mode schedules the task): the network's segmentation of this frame, the motion
+  // input (always), the ORB features (always) and the superpixel partition.
   std::shared_future<segmentation::SegmentationResult> segmentation;
-  std::future<PreparedFrame> prepared;
+  std::shared_future<FrameMotionInput> motion;
+  std::future<FrameFeatures> features;
+  std::future<FramePartition> partition;
   // Stage B's hand-offs: set by stage B of this frame, read through `handoff` by stage A of later frames.
   std::promise<cv::Mat> dilated_prior_mask;
   std::promise<bool> map_ready;
