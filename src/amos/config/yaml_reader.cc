@@ -43,7 +43,20 @@ YamlReader YamlReader::fromText(const std::string& text, const std::string& virt
 }
 
 YamlReader::YamlReader(YAML::Node root, std::string path) : root_(std::move(root)), path_(std::move(path)) {
-  for (const auto& kv : root_) entries_[kv.first.as<std::string>()] = kv.second;
+  // yaml-cpp keeps every pair of a map, duplicates included, in file order: a key set twice would silently take
+  // one of its values.
+  std::map<std::string, int> first_line;
+  for (const auto& kv : root_) {
+    const int line = kv.first.Mark().line + 1;
+    if (!kv.first.IsScalar()) throw core::Error(fmt::format("{}:{}: a key must be a plain name", path_, line));
+    const std::string key = kv.first.Scalar();
+    const auto [first, inserted] = first_line.emplace(key, line);
+    if (!inserted) {
+      throw core::Error(fmt::format("{}:{}: key '{}' is set again (first on line {}); keep one of the two lines", path_,
+                                    line, key, first->second));
+    }
+    entries_[key] = kv.second;
+  }
 }
 
 bool YamlReader::has(const std::string& key) const { return entries_.count(key) > 0; }
