@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "amos/core/error.h"
@@ -95,6 +96,14 @@ void YamlReader::read(const std::string& key, float& value) {
   value = static_cast<float>(v);
 }
 void YamlReader::read(const std::string& key, int& value) { readScalar(key, value, "a whole number"); }
+void YamlReader::read(const std::string& key, unsigned& value) {
+  long long v = value;
+  readScalar(key, v, "a whole number >= 0");
+  if (v < 0 || v > static_cast<long long>(std::numeric_limits<unsigned>::max())) {
+    throw core::Error(fmt::format("{}: key '{}' must be a whole number >= 0, got {}", where(key), key, v));
+  }
+  value = static_cast<unsigned>(v);
+}
 void YamlReader::read(const std::string& key, bool& value) {
   if (!has(key)) return;
   // ORB-SLAM2 files write flags as 0/1; accept those as well as true/false.

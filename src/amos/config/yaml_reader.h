@@ -24,6 +24,7 @@ class YamlReader {
   void read(const std::string& key, double& value);
   void read(const std::string& key, float& value);
   void read(const std::string& key, int& value);
+  void read(const std::string& key, unsigned& value);
   void read(const std::string& key, bool& value);
   void read(const std::string& key, std::string& value);
   void read(const std::string& key, std::vector<std::string>& value);

@@ -1,16 +1,14 @@
 #include "amos/io/dataset.h"
 
 #include <gtest/gtest.h>
-#include <spdlog/sinks/ostream_sink.h>
-#include <spdlog/spdlog.h>
 
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 
 #include "amos/core/error.h"
+#include "amos/core/log_capture.h"
 
 namespace amos::io {
 namespace {
@@ -47,27 +45,6 @@ class TinySequence : public ::testing::Test {
 };
 
 using Pair = std::pair<std::size_t, std::size_t>;
-
-// Collects what is logged while it lives (the default logger is put back afterwards).
-class LogCapture {
- public:
-  LogCapture() : previous_(spdlog::default_logger()) {
-    auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(text_);
-    sink->set_pattern("%l %v");
-    spdlog::set_default_logger(std::make_shared<spdlog::logger>("capture", sink));
-  }
-  ~LogCapture() { spdlog::set_default_logger(previous_); }
-  std::vector<std::string> lines() const {
-    std::vector<std::string> out;
-    std::istringstream in(text_.str());
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-  }
-
- private:
-  std::shared_ptr<spdlog::logger> previous_;
-  std::ostringstream text_;
-};
 
 std::string errorOf(const std::function<void()>& f) {
   try {
@@ -169,7 +146,7 @@ TEST_F(TinySequence, AssociationRowsBeyondTheWindowAreWarnedAboutOnceAndCounted)
             "1.033 rgb/1.0.png 1.083 depth/1.0.png\n"
             "1.066 rgb/1.0.png 1.085 depth/1.0.png\n"  // 0.019 s: inside the window
             "1.100 rgb/1.0.png 1.200 depth/1.0.png\n");
-  LogCapture log;
+  core::LogCapture log;
   const SequenceIndex index = indexSequence(dir_.string(), 0.02);
   EXPECT_EQ(index.frames.size(), 4u);  // kept: the run decides what to make of them
   EXPECT_EQ(index.association.file, (dir_ / "associations.txt").string());
