@@ -45,7 +45,8 @@ void runConfig(const ConfigArgs& args, int& exit_code) {
 
 void addConfigCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<ConfigArgs>();
-  auto* cmd = app.add_subcommand("config", "The settings keys: print their tables, update configs/README.md, check a file");
+  auto* cmd =
+      app.add_subcommand("config", "The settings keys: print their tables, update configs/README.md, check a file");
   cmd->add_flag("--keys-markdown", args->keys_markdown,
                 "Print every settings key with its default and meaning, as the markdown tables of configs/README.md");
   cmd->add_option("--update-readme", args->readme,

@@ -38,7 +38,8 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "also segment every frame and score the carried masks against it (for measurement only)");
 
   s.add("Dynamic.Superpixel.count", &o.superpixel.num_superpixels, "superpixels over the image");
-  s.add("Dynamic.Superpixel.scale", &o.superpixel.scale, "working resolution of the superpixels, relative to the image");
+  s.add("Dynamic.Superpixel.scale", &o.superpixel.scale,
+        "working resolution of the superpixels, relative to the image");
   s.add("Dynamic.Superpixel.colourScale", &o.superpixel.colour_scale, "Lab distance weighing as much as one grid step");
   s.add("Dynamic.Superpixel.depthScale", &o.superpixel.depth_scale_m,
         "depth difference (m) weighing as much as one grid step");
@@ -66,7 +67,8 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "scale of the Cauchy loss on the reprojection errors (px)");
   s.add("Dynamic.Reprojection.threshold", &o.reprojection.candidate_threshold_px,
         "a cluster whose equivalent error exceeds this is a candidate (px)");
-  s.add("Dynamic.Reprojection.minPoints", &o.reprojection.min_points_per_cluster, "errors a cluster needs to be scored");
+  s.add("Dynamic.Reprojection.minPoints", &o.reprojection.min_points_per_cluster,
+        "errors a cluster needs to be scored");
   s.add("Dynamic.Reprojection.maxDepth", &o.reprojection.max_depth_m, "depths beyond this are not used (m)");
   s.add("Dynamic.Reprojection.depthEdgeRatio", &o.reprojection.depth_edge_ratio,
         "depth spread around a point, as a share of its depth, that puts it on a depth edge");
@@ -85,7 +87,8 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "a track is dynamic beyond this distance from its epipolar line (px, at least `ransacThreshold`)");
   s.add("Dynamic.Epipolar.confidence", &o.epipolar.confidence, "RANSAC confidence");
   s.add("Dynamic.Epipolar.maxIterations", &o.epipolar.max_iterations, "RANSAC iterations at most");
-  s.add("Dynamic.Epipolar.minDynamicPoints", &o.epipolar.min_dynamic_points, "epipolar violators that make a region dynamic");
+  s.add("Dynamic.Epipolar.minDynamicPoints", &o.epipolar.min_dynamic_points,
+        "epipolar violators that make a region dynamic");
   s.add("Dynamic.Epipolar.minFitPoints", &o.epipolar.min_fit_points,
         "tracks outside the potential motion regions needed to fit F on them alone");
   s.add("Dynamic.Epipolar.seed", &o.epipolar.seed, "RANSAC seed");

@@ -73,8 +73,9 @@ TEST(DynamicSection, ShippedConfigsSpellTheDefaults) {
 }
 
 TEST(DynamicSection, InvalidValuesNameTheirKeyAndLine) {
-  for (const char* line : {"Dynamic.Reprojection.confirmThreshold: -1\n", "Dynamic.priorMaskedExtractionCoverage: 1.5\n",
-                           "Dynamic.InitialPose.keyframeMaxPoints: -3\n"}) {
+  for (const char* line :
+       {"Dynamic.Reprojection.confirmThreshold: -1\n", "Dynamic.priorMaskedExtractionCoverage: 1.5\n",
+        "Dynamic.InitialPose.keyframeMaxPoints: -3\n"}) {
     const std::string key = std::string(line).substr(0, std::string(line).find(':'));
     try {
       parseSettings(kCamera + line, "bad.yaml");

@@ -130,6 +130,70 @@ TEST(SettingsKeys, EveryListedKeyIsReadIntoItsOwnMember) {
   EXPECT_EQ(checked, listedNames().size());
 }
 
+// Values that are likely invalid for a key of this kind.
+std::vector<std::string> badValues(const SettingsKey& key) {
+  switch (key.kind()) {
+    case SettingsKey::Kind::kNumber:
+      return {"-1", "0", "-1000", "1e9", "many"};
+    case SettingsKey::Kind::kWholeNumber:
+      return {"-1", "0", "100000", "1.5", "many"};
+    case SettingsKey::Kind::kFlag:
+      return {"2", "maybe"};
+    case SettingsKey::Kind::kText:
+    case SettingsKey::Kind::kChoice:
+      return {"bogus", "[a, b]"};
+    case SettingsKey::Kind::kList:
+      return {"[unicorn]", "[]", "{a: 1}"};
+  }
+  return {};
+}
+
+// Whatever a key's invalid value breaks (its type, its own rule or a rule relating it to another key), the error
+// names the file, the key's line and the key; related members are named by their keys too.
+TEST(SettingsKeys, EveryInvalidValueIsAnErrorNamingFileLineAndKey) {
+  Settings s;
+  std::size_t rejected = 0;
+  for (const auto& section : settingsKeys(s)) {
+    for (const SettingsKey& key : section.keys) {
+      for (const std::string& bad : badValues(key)) {
+        std::map<std::string, std::string> file = kRequired;
+        file[key.name()] = bad;
+        const auto line = std::distance(file.begin(), file.find(key.name())) + 1;
+        try {
+          parseSettings(yamlOf(file), "t.yaml");
+        } catch (const core::Error& e) {
+          const std::string message = e.what();
+          EXPECT_EQ(message.rfind(fmt::format("t.yaml:{}: ", line), 0), 0u)
+              << key.name() << ": " << bad << ": " << message;
+          EXPECT_NE(message.find(key.name()), std::string::npos) << key.name() << ": " << bad << ": " << message;
+          ++rejected;
+        }
+      }
+    }
+  }
+  EXPECT_GT(rejected, listedNames().size());
+}
+
+TEST(SettingsKeys, ARuleRelatingTwoKeysNamesBoth) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"Dynamic.Prior.lag: 5\n", "t.yaml:5: Dynamic.Prior.lag (5) must not exceed Dynamic.Prior.interval (3)"},
+      {"Dynamic.Prior.interval: 1\n", "t.yaml:5: Dynamic.Prior.lag (2) must not exceed Dynamic.Prior.interval (1)"},
+      {"Tracking.localMinInliers: 60\n",
+       "t.yaml:5: Tracking.relocMinInliers must be >= Tracking.localMinInliers = 60, got 50"},
+      {"Camera.width: 300\n",
+       "t.yaml:1: Camera.cx must lie in [0, Camera.width = 300], got 320 (see Camera.width at "
+       "t.yaml:5)"},
+  };
+  for (const auto& [line, expected] : cases) {
+    try {
+      parseSettings(yamlOf(kRequired) + line, "t.yaml");
+      ADD_FAILURE() << line << " passed";
+    } catch (const core::Error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(expected, 0), 0u) << e.what();
+    }
+  }
+}
+
 TEST(SettingsKeys, NamesAreUniqueMembersTooAndOfOneStyle) {
   Settings s;
   std::set<std::string> names;

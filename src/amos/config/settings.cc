@@ -73,7 +73,8 @@ std::string replaceName(std::string text, const std::string& word, const std::st
 }
 
 // Runs s.check() and reports what it rejects by key: "file:line: Key rule", at the line of the key (or of a related
-// key the file sets, or just the file when it sets neither), with the related members' names replaced by their keys.
+// key the file sets, or just the file when it sets neither), with the related members' names replaced by their keys
+// and the lines of the related keys the file sets too.
 void checkByKey(const Settings& s, const std::vector<KeySection>& sections, const YamlReader& in) {
   try {
     s.check();
@@ -86,16 +87,17 @@ void checkByKey(const Settings& s, const std::vector<KeySection>& sections, cons
       const SettingsKey* other = keyOf(sections, related.address);
       if (other == nullptr) continue;
       rule = replaceName(rule, related.name, other->name());
-      if (where.empty()) where = other->nameIn(in);
+      const std::string other_name = other->nameIn(in);
+      if (other_name.empty()) continue;
+      if (where.empty()) {
+        where = other_name;
+      } else {
+        rule += fmt::format(" (see {} at {})", other_name, in.where(other_name));
+      }
     }
     throw core::Error(fmt::format("{}: {} {}", where.empty() ? in.path() : in.where(where), key->name(), rule));
   } catch (const core::Error& e) {
-    // A check that names a key in its message: add the file and line of that key.
-    const std::string message = e.what();
-    for (const auto& key : in.keys()) {
-      if (message.find(key) != std::string::npos) throw core::Error(fmt::format("{}: {}", in.where(key), message));
-    }
-    throw core::Error(fmt::format("{}: {}", in.path(), message));
+    throw core::Error(fmt::format("{}: {}", in.path(), e.what()));
   }
 }
 
@@ -138,8 +140,8 @@ std::string keysMarkdown() {
 std::string withKeyTables(const std::string& readme) {
   const auto begin = readme.find(kTablesBegin), end = readme.find(kTablesEnd);
   core::require(begin != std::string::npos && end != std::string::npos && begin < end,
-                fmt::format("the settings README has no '{}' ... '{}' lines to put the key tables between", kTablesBegin,
-                            kTablesEnd));
+                fmt::format("the settings README has no '{}' ... '{}' lines to put the key tables between",
+                            kTablesBegin, kTablesEnd));
   const auto after_begin = readme.find('\n', begin) + 1;
   return readme.substr(0, after_begin) + "\n" + keysMarkdown() + readme.substr(end);
 }

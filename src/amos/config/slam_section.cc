@@ -40,7 +40,8 @@ KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps) {
   s.add("Tracking.externalPose", &o.external_pose,
         {{"replace", tracking::ExternalPosePolicy::kReplace}, {"compete", tracking::ExternalPosePolicy::kCompete}},
         "the front end's initial pose competes with the motion model or replaces it");
-  s.add("Tracking.chi2Mono", &o.pose.chi2_mono, "outlier threshold of pose optimisation without depth (chi-square 95 %)");
+  s.add("Tracking.chi2Mono", &o.pose.chi2_mono,
+        "outlier threshold of pose optimisation without depth (chi-square 95 %)");
   s.add("Tracking.chi2Stereo", &o.pose.chi2_stereo, "... with depth (chi-square 95 %, 3 dof)");
   s.add("Tracking.poseRounds", &o.pose.rounds, "outlier classification rounds of pose optimisation");
   s.add("Tracking.poseIterations", &o.pose.iterations_per_round, "iterations per round");
@@ -73,7 +74,8 @@ KeySection mappingKeys(mapping::LocalMappingOptions& o, map::CovisibilityOptions
   s.add("Mapping.redundantRatio", &o.redundant_ratio, "a keyframe whose close points are this often seen ...");
   s.add("Mapping.redundantObservers", &o.redundant_observers, "... by this many other keyframes is culled");
   s.add("Mapping.cullKeyFrames", &o.cull_keyframes, "cull redundant keyframes");
-  s.add("Mapping.triangulationNeighbors", &o.new_points.neighbors, "covisible keyframes new points are triangulated with");
+  s.add("Mapping.triangulationNeighbors", &o.new_points.neighbors,
+        "covisible keyframes new points are triangulated with");
   s.add("Mapping.triangulationMaxDistance", &o.new_points.max_distance, "Hamming distance limit of those matches");
   s.add("Mapping.triangulationRatio", &o.new_points.ratio, "best / second best along the epipolar line");
   s.add("Mapping.maxCosParallax", &o.new_points.max_cos_parallax, "cosine of the smallest parallax of a new point");

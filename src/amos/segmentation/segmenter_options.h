@@ -1,6 +1,7 @@
 #pragma once
 // Settings of the prior-dynamic-object segmenter (YAML section `Segmentation.`). Plain values with the defaults
-// that reproduce the paper's setting as closely as the available models allow; check() names the key at fault.
+// that reproduce the paper's setting as closely as the available models allow; check() names the member at fault
+// (core/option_error.h).
 #include <string>
 #include <vector>
 
@@ -60,7 +61,7 @@ struct SegmenterOptions {
   // thread pool's slots taken waits for them).
   int threads = 1;
 
-  // Throws core::Error naming the Segmentation.* key whose value is invalid.
+  // Throws core::InvalidOption naming the member whose value is invalid.
   void check() const;
 };
 
