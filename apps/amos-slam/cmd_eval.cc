@@ -50,9 +50,9 @@ std::string table(const EvalArgs& args, const eval::EvaluationResult& r) {
 }
 
 void runEval(const EvalArgs& args, int& exit_code) {
-  std::vector<io::StampedPose> gt = io::readTumTrajectory(args.gt_file);
+  std::vector<io::StampedPose> gt = io::readTumTrajectoryWithPoses(args.gt_file, "ground-truth file");
   if (args.bonn_gt) gt = eval::bonnMarkerToCamera(gt);
-  const std::vector<io::StampedPose> est = io::readTumTrajectory(args.est_file);
+  const std::vector<io::StampedPose> est = io::readTumTrajectoryWithPoses(args.est_file, "estimate file");
   const eval::EvaluationResult result = eval::evaluate(gt, est, args.options);
   if (!args.plot_file.empty()) {
     const std::string title = fmt::format("{} vs {}{}", fs::path(args.est_file).filename().string(),

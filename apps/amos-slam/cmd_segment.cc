@@ -224,9 +224,9 @@ void addSegmentCommand(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--output", args->output, "Output folder (masks/, overlays/, contact_sheet.png)")->required();
   cmd->add_option("--models", args->models,
-                  "Folder with the ONNX models (else Segmentation.models_dir, $AMOS_MODELS, ./models, "
+                  "Folder with the ONNX models (else Segmentation.modelsDir, $AMOS_MODELS, ./models, "
                   "../shared/models)");
-  cmd->add_option("--settings", args->settings, "Settings YAML (for Segmentation.models_dir)");
+  cmd->add_option("--settings", args->settings, "Settings YAML (for Segmentation.modelsDir)");
   cmd->add_option("--backend", args->segmenter.backend, "Segmentation backend")->capture_default_str();
   cmd->add_option("--input-size", args->segmenter.input_size, "Detector input size: 320 or 416")
       ->capture_default_str();

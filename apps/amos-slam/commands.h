@@ -9,5 +9,6 @@ void addRunCommand(CLI::App& app, int& exit_code);
 void addEvalCommand(CLI::App& app, int& exit_code);
 void addSynthCommand(CLI::App& app, int& exit_code);
 void addSegmentCommand(CLI::App& app, int& exit_code);
+void addConfigCommand(CLI::App& app, int& exit_code);
 
 }  // namespace amos::app

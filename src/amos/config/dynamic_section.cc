@@ -2,89 +2,158 @@
 
 namespace amos::config {
 
-void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o) {
-  std::string mode = dynamic::toString(o.mode);
-  in.read("Dynamic.mode", mode);
-  o.mode = dynamic::parseDynamicMode(mode);
-  in.read("Dynamic.judgePriorRegions", o.judge_prior_regions);
-  in.read("Dynamic.priorMaskedExtraction", o.prior_masked_extraction);
-  in.read("Dynamic.priorMaskedExtractionCoverage", o.prior_masked_extraction_coverage);
-  in.read("Dynamic.Prior.interval", o.prior.interval);
-  in.read("Dynamic.Prior.lag", o.prior.lag);
-  in.read("Dynamic.Prior.minTracks", o.prior.min_tracks);
-  in.read("Dynamic.Prior.holdMissed", o.prior.hold_missed);
-  in.read("Dynamic.Prior.auditPredictions", o.prior.audit_predictions);
+namespace {
 
-  in.read("Dynamic.Superpixel.count", o.superpixel.num_superpixels);
-  in.read("Dynamic.Superpixel.scale", o.superpixel.scale);
-  in.read("Dynamic.Superpixel.colourScale", o.superpixel.colour_scale);
-  in.read("Dynamic.Superpixel.depthScale", o.superpixel.depth_scale_m);
-  in.read("Dynamic.Superpixel.iterations", o.superpixel.iterations);
-
-  in.read("Dynamic.Cluster.count", o.cluster.num_clusters);
-  in.read("Dynamic.Cluster.depthScale", o.cluster.depth_scale_m);
-  in.read("Dynamic.Cluster.maxIterations", o.cluster.max_iterations);
-  int cluster_seed = static_cast<int>(o.cluster.seed);
-  in.read("Dynamic.Cluster.seed", cluster_seed);
-  o.cluster.seed = static_cast<unsigned>(cluster_seed);
-
-  in.read("Dynamic.Corners.maxCorners", o.tracking.max_corners);
-  in.read("Dynamic.Corners.qualityLevel", o.tracking.quality_level);
-  in.read("Dynamic.Corners.minDistance", o.tracking.min_distance_px);
-  in.read("Dynamic.Corners.detectionScale", o.tracking.detection_scale);
-  in.read("Dynamic.LK.window", o.tracking.lk_window);
-  in.read("Dynamic.LK.pyramidLevels", o.tracking.lk_levels);
-  in.read("Dynamic.LK.maxIterations", o.tracking.lk_max_iterations);
-  in.read("Dynamic.LK.forwardBackwardThreshold", o.tracking.forward_backward_px);
-
-  in.read("Dynamic.Reprojection.cauchyScale", o.reprojection.cauchy_scale_px);
-  in.read("Dynamic.Reprojection.threshold", o.reprojection.candidate_threshold_px);
-  in.read("Dynamic.Reprojection.minPoints", o.reprojection.min_points_per_cluster);
-  in.read("Dynamic.Reprojection.maxDepth", o.reprojection.max_depth_m);
-  in.read("Dynamic.Reprojection.depthEdgeRatio", o.reprojection.depth_edge_ratio);
-  in.read("Dynamic.Reprojection.refitPose", o.reprojection.refit_pose);
-  in.read("Dynamic.Reprojection.refitMinPoints", o.reprojection.refit_min_points);
-  in.read("Dynamic.Reprojection.confirmSigmas", o.reprojection.confirm_sigmas);
-  in.read("Dynamic.Reprojection.confirmThreshold", o.reprojection.confirm_threshold_px);
-  in.read("Dynamic.Reprojection.intervalErrors", o.reprojection.interval_errors);
-
-  in.read("Dynamic.Epipolar.ransacThreshold", o.epipolar.ransac_threshold_px);
-  in.read("Dynamic.Epipolar.threshold", o.epipolar.dynamic_threshold_px);
-  in.read("Dynamic.Epipolar.confidence", o.epipolar.confidence);
-  in.read("Dynamic.Epipolar.minDynamicPoints", o.epipolar.min_dynamic_points);
-  in.read("Dynamic.Epipolar.minFitPoints", o.epipolar.min_fit_points);
-  in.read("Dynamic.Epipolar.seed", o.epipolar.seed);
-
-  in.read("Dynamic.Boundary.radius", o.boundary.search_radius_px);
-  in.read("Dynamic.Boundary.borderMargin", o.boundary.border_margin_px);
-  in.read("Dynamic.Boundary.superpixelMask", o.boundary.superpixel_mask);
-  in.read("Dynamic.Boundary.seedOutsideClusters", o.boundary.seed_outside_clusters);
-  in.read("Dynamic.Temporal.excludeFromFits", o.temporal.exclude_last_mask_from_fits);
-
-  in.read("Dynamic.InitialPose.inlierThreshold", o.initial_pose.inlier_threshold_px);
-  in.read("Dynamic.InitialPose.keyframeForwardBackward", o.initial_pose.keyframe_forward_backward);
-  in.read("Dynamic.InitialPose.keyframeMaxPoints", o.initial_pose.keyframe_max_points);
+std::vector<std::pair<std::string, dynamic::DynamicMode>> dynamicModes() {
+  std::vector<std::pair<std::string, dynamic::DynamicMode>> out;
+  for (auto mode : {dynamic::DynamicMode::kNone, dynamic::DynamicMode::kPrior, dynamic::DynamicMode::kGeometry,
+                    dynamic::DynamicMode::kFull}) {
+    out.emplace_back(dynamic::toString(mode), mode);
+  }
+  return out;
 }
 
-void readSegmentationSection(YamlReader& in, segmentation::SegmenterOptions& o) {
-  in.read("Segmentation.backend", o.backend);
-  in.read("Segmentation.models_dir", o.models_dir);
-  in.read("Segmentation.input_size", o.input_size);
-  in.read("Segmentation.input_shape", o.input_shape);
-  in.read("Segmentation.mask_input_size", o.mask_input_size);
-  in.read("Segmentation.score_threshold", o.score_threshold);
-  in.read("Segmentation.nms_iou", o.nms_iou);
-  in.read("Segmentation.classes", o.classes);
-  in.read("Segmentation.box_widen_x", o.box_widen_x);
-  in.read("Segmentation.box_widen_y", o.box_widen_y);
-  in.read("Segmentation.mask_threshold", o.mask_threshold);
-  in.read("Segmentation.border_crop_aspect", o.border_crop_aspect);
-  in.read("Segmentation.min_mask_fill", o.min_mask_fill);
-  in.read("Segmentation.depth_tolerance", o.depth_tolerance);
-  in.read("Segmentation.max_instances", o.max_instances);
-  in.read("Segmentation.dilation_size", o.dilation.size);
-  in.read("Segmentation.dilation_shape", o.dilation.shape);
-  in.read("Segmentation.threads", o.threads);
+}  // namespace
+
+KeySection dynamicKeys(dynamic::DynamicOptions& o) {
+  KeySection s{"Front end"};
+  s.add("Dynamic.mode", &o.mode, dynamicModes(),
+        "which stages make the dynamic mask: none (plain SLAM), prior (person segmentation), geometry (superpixel "
+        "clusters judged by reprojection and epipolar tests), full (both, the paper's system)");
+  s.add("Dynamic.judgePriorRegions", &o.judge_prior_regions,
+        "1 = a segmented region stays masked only with `Dynamic.Epipolar.minDynamicPoints` epipolar violators; 0 = "
+        "every one is masked (the paper)");
+  s.add("Dynamic.priorMaskedExtraction", &o.prior_masked_extraction,
+        "ORB features are detected outside the (previous frame's) person masks in the first place");
+  s.add("Dynamic.priorMaskedExtractionCoverage", &o.prior_masked_extraction_coverage,
+        "... once the mask covers at least this share of the image (at any coverage before the map exists)");
+  s.add("Dynamic.Prior.interval", &o.prior.interval,
+        "the network segments every interval-th frame (1 = every frame, the paper)");
+  s.add("Dynamic.Prior.lag", &o.prior.lag,
+        "a segmentation is used this many frames later, carried there by the tracks (0 = wait for it)");
+  s.add("Dynamic.Prior.minTracks", &o.prior.min_tracks, "tracks inside a person needed to measure its motion");
+  s.add("Dynamic.Prior.holdMissed", &o.prior.hold_missed,
+        "segmentations a person is carried on for after the network no longer finds it");
+  s.add("Dynamic.Prior.auditPredictions", &o.prior.audit_predictions,
+        "also segment every frame and score the carried masks against it (for measurement only)");
+
+  s.add("Dynamic.Superpixel.count", &o.superpixel.num_superpixels, "superpixels over the image");
+  s.add("Dynamic.Superpixel.scale", &o.superpixel.scale,
+        "working resolution of the superpixels, relative to the image");
+  s.add("Dynamic.Superpixel.colourScale", &o.superpixel.colour_scale, "Lab distance weighing as much as one grid step");
+  s.add("Dynamic.Superpixel.depthScale", &o.superpixel.depth_scale_m,
+        "depth difference (m) weighing as much as one grid step");
+  s.add("Dynamic.Superpixel.iterations", &o.superpixel.iterations, "SLIC rounds");
+
+  s.add("Dynamic.Cluster.count", &o.cluster.num_clusters, "k-means clusters of the superpixels");
+  s.add("Dynamic.Cluster.depthScale", &o.cluster.depth_scale_m,
+        "depth difference (m) weighing as much as one cluster cell of image distance");
+  s.add("Dynamic.Cluster.maxIterations", &o.cluster.max_iterations, "Lloyd rounds at most");
+  s.add("Dynamic.Cluster.seed", &o.cluster.seed, "k-means++ seed");
+
+  s.add("Dynamic.Corners.maxCorners", &o.tracking.max_corners, "Shi-Tomasi corners tracked per frame at most");
+  s.add("Dynamic.Corners.qualityLevel", &o.tracking.quality_level, "corner response relative to the best corner's");
+  s.add("Dynamic.Corners.minDistance", &o.tracking.min_distance_px, "distance between corners at least (px)");
+  s.add("Dynamic.Corners.detectionScale", &o.tracking.detection_scale,
+        "corners are detected on the image scaled by this, and tracked at full resolution");
+  s.add("Dynamic.LK.window", &o.tracking.lk_window, "side of the LK window (px, odd)");
+  s.add("Dynamic.LK.pyramidLevels", &o.tracking.lk_levels, "LK pyramid levels above the image");
+  s.add("Dynamic.LK.maxIterations", &o.tracking.lk_max_iterations, "LK iterations per level at most");
+  s.add("Dynamic.LK.epsilon", &o.tracking.lk_epsilon, "LK stops on a level when its step is below this (px)");
+  s.add("Dynamic.LK.forwardBackwardThreshold", &o.tracking.forward_backward_px,
+        "a track must come back this close to where it started (px)");
+
+  s.add("Dynamic.Reprojection.cauchyScale", &o.reprojection.cauchy_scale_px,
+        "scale of the Cauchy loss on the reprojection errors (px)");
+  s.add("Dynamic.Reprojection.threshold", &o.reprojection.candidate_threshold_px,
+        "a cluster whose equivalent error exceeds this is a candidate (px)");
+  s.add("Dynamic.Reprojection.minPoints", &o.reprojection.min_points_per_cluster,
+        "errors a cluster needs to be scored");
+  s.add("Dynamic.Reprojection.maxDepth", &o.reprojection.max_depth_m, "depths beyond this are not used (m)");
+  s.add("Dynamic.Reprojection.depthEdgeRatio", &o.reprojection.depth_edge_ratio,
+        "depth spread around a point, as a share of its depth, that puts it on a depth edge");
+  s.add("Dynamic.Reprojection.refitPose", &o.reprojection.refit_pose,
+        "refit the pose on the tracks outside the candidate and prior regions and judge every cluster under it");
+  s.add("Dynamic.Reprojection.refitMinPoints", &o.reprojection.refit_min_points, "inliers the refit needs");
+  s.add("Dynamic.Reprojection.confirmSigmas", &o.reprojection.confirm_sigmas,
+        "under the refitted pose a cluster is dynamic above this many times the static tracks' noise ...");
+  s.add("Dynamic.Reprojection.confirmThreshold", &o.reprojection.confirm_threshold_px, "... and above this (px)");
+  s.add("Dynamic.Reprojection.intervalErrors", &o.reprojection.interval_errors,
+        "tracks without a trusted depth score the smallest error their window's depths allow (0 = left out)");
+
+  s.add("Dynamic.Epipolar.ransacThreshold", &o.epipolar.ransac_threshold_px,
+        "inlier distance of the fundamental-matrix fit (px)");
+  s.add("Dynamic.Epipolar.threshold", &o.epipolar.dynamic_threshold_px,
+        "a track is dynamic beyond this distance from its epipolar line (px, at least `ransacThreshold`)");
+  s.add("Dynamic.Epipolar.confidence", &o.epipolar.confidence, "RANSAC confidence");
+  s.add("Dynamic.Epipolar.maxIterations", &o.epipolar.max_iterations, "RANSAC iterations at most");
+  s.add("Dynamic.Epipolar.minDynamicPoints", &o.epipolar.min_dynamic_points,
+        "epipolar violators that make a region dynamic");
+  s.add("Dynamic.Epipolar.minFitPoints", &o.epipolar.min_fit_points,
+        "tracks outside the potential motion regions needed to fit F on them alone");
+  s.add("Dynamic.Epipolar.seed", &o.epipolar.seed, "RANSAC seed");
+
+  s.add("Dynamic.Boundary.radius", &o.boundary.search_radius_px,
+        "search radius for the cluster on the other side of a border (px)");
+  s.add("Dynamic.Boundary.borderMargin", &o.boundary.border_margin_px,
+        "a superpixel this close to the image edge is a border block (px)");
+  s.add("Dynamic.Boundary.superpixelMask", &o.boundary.superpixel_mask,
+        "1 = the mask is decided per superpixel, 0 = it is the union of the dynamic clusters");
+  s.add("Dynamic.Boundary.seedOutsideClusters", &o.boundary.seed_outside_clusters,
+        "superpixels outside the dynamic clusters whose own tracks move under the refitted pose are seeds too");
+  s.add("Dynamic.Temporal.excludeFromFits", &o.temporal.exclude_last_mask_from_fits,
+        "tracks starting in the last frame's mask take no part in the pose refit and the F fit");
+
+  s.add("Dynamic.InitialPose.inlierThreshold", &o.initial_pose.inlier_threshold_px,
+        "reprojection error of an inlier of the initial-pose models (px)");
+  s.add("Dynamic.InitialPose.keyframeForwardBackward", &o.initial_pose.keyframe_forward_backward,
+        "the reference-keyframe model's tracks pass the forward-backward check too");
+  s.add("Dynamic.InitialPose.keyframeMaxPoints", &o.initial_pose.keyframe_max_points,
+        "reference-keyframe points that model tracks at most (0 = all)");
+  return s;
+}
+
+KeySection segmentationKeys(segmentation::SegmenterOptions& o) {
+  KeySection s{"Segmentation"};
+  s.add("Segmentation.backend", &o.backend, "segmenter backend, by the name it is registered under");
+  s.add("Segmentation.modelsDir", &o.models_dir,
+        "folder with the ONNX models; empty = found from `--models`, `$AMOS_MODELS`, `./models`, `../shared/models`")
+      .formerly("Segmentation.models_dir");
+  s.add("Segmentation.inputSize", &o.input_size, "side of the detector input: 320 or 416")
+      .formerly("Segmentation.input_size");
+  s.add("Segmentation.inputShape", &o.input_shape,
+        "`square` (the frame letterboxed) or `frame` (the frame's aspect ratio)")
+      .formerly("Segmentation.input_shape");
+  s.add("Segmentation.maskInputSize", &o.mask_input_size,
+        "side of the person crop the mask network sees (a multiple of 32 in [64, 256])")
+      .formerly("Segmentation.mask_input_size");
+  s.add("Segmentation.scoreThreshold", &o.score_threshold, "detector confidence at least")
+      .formerly("Segmentation.score_threshold");
+  s.add("Segmentation.nmsIou", &o.nms_iou, "overlap of the per-class non-maximum suppression")
+      .formerly("Segmentation.nms_iou");
+  s.add("Segmentation.classes", &o.classes, "COCO classes to mask: people get a learned mask, others box + depth");
+  s.add("Segmentation.boxWidenX", &o.box_widen_x, "widening of a person crop, share of the box's width")
+      .formerly("Segmentation.box_widen_x");
+  s.add("Segmentation.boxWidenY", &o.box_widen_y, "... and of its height").formerly("Segmentation.box_widen_y");
+  s.add("Segmentation.maskThreshold", &o.mask_threshold, "person probability above which a pixel is masked")
+      .formerly("Segmentation.mask_threshold");
+  s.add("Segmentation.borderCropAspect", &o.border_crop_aspect,
+        "a crop at the image border narrower than this times its height is extended beyond the border; 0 = off")
+      .formerly("Segmentation.border_crop_aspect");
+  s.add("Segmentation.minMaskFill", &o.min_mask_fill,
+        "a person whose learned mask covers less of its box gets the box + depth mask; 0 = off")
+      .formerly("Segmentation.min_mask_fill");
+  s.add("Segmentation.depthTolerance", &o.depth_tolerance,
+        "a box + depth mask holds the pixels this close to the object's median depth (m)")
+      .formerly("Segmentation.depth_tolerance");
+  s.add("Segmentation.maxInstances", &o.max_instances, "instances kept at most, highest score first")
+      .formerly("Segmentation.max_instances");
+  s.add("Segmentation.dilationSize", &o.dilation.size, "side of the dilation of the masks (odd px; 0 or 1 = none)")
+      .formerly("Segmentation.dilation_size");
+  s.add("Segmentation.dilationShape", &o.dilation.shape, "shape of that dilation: `ellipse`, `rect` or `cross`")
+      .formerly("Segmentation.dilation_shape");
+  s.add("Segmentation.threads", &o.threads, "OpenCV worker threads (process-wide); 0 = leave OpenCV's setting alone");
+  return s;
 }
 
 }  // namespace amos::config

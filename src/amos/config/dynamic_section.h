@@ -1,12 +1,12 @@
 #pragma once
-// Reads the `Dynamic.*` (paper Sec. III front end) and `Segmentation.*` (prior-object segmenter) keys.
-#include "amos/config/yaml_reader.h"
+// The `Dynamic.*` (paper Sec. III front end) and `Segmentation.*` (prior-object segmenter) keys.
+#include "amos/config/key_list.h"
 #include "amos/dynamic/dynamic_options.h"
 #include "amos/segmentation/segmenter_options.h"
 
 namespace amos::config {
 
-void readDynamicSection(YamlReader& in, dynamic::DynamicOptions& o);
-void readSegmentationSection(YamlReader& in, segmentation::SegmenterOptions& o);
+KeySection dynamicKeys(dynamic::DynamicOptions& o);
+KeySection segmentationKeys(segmentation::SegmenterOptions& o);
 
 }  // namespace amos::config

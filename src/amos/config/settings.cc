@@ -3,97 +3,163 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cctype>
+
 #include "amos/config/dynamic_section.h"
 #include "amos/config/slam_section.h"
 #include "amos/config/yaml_reader.h"
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::config {
 
 namespace {
 
-void readCamera(YamlReader& in, Settings& s) {
+KeySection cameraKeys(Settings& s) {
+  KeySection section{"Camera (ORB-SLAM2's keys)"};
   auto& c = s.camera;
-  in.read("Camera.fx", c.fx);
-  in.read("Camera.fy", c.fy);
-  in.read("Camera.cx", c.cx);
-  in.read("Camera.cy", c.cy);
-  in.read("Camera.k1", c.k1);
-  in.read("Camera.k2", c.k2);
-  in.read("Camera.p1", c.p1);
-  in.read("Camera.p2", c.p2);
-  in.read("Camera.k3", c.k3);
-  in.read("Camera.width", c.width);
-  in.read("Camera.height", c.height);
-  in.read("Camera.fps", s.fps);
-  in.read("Camera.RGB", s.rgb_order);
-  in.read("Camera.bf", s.bf);
-  in.read("ThDepth", s.th_depth);
-  in.read("DepthMapFactor", s.depth_factor);
-  for (const char* key : {"Camera.fx", "Camera.fy", "Camera.cx", "Camera.cy"}) {
-    core::require(in.has(key), fmt::format("{}: required key '{}' is missing", in.path(), key));
+  section.add("Camera.fx", &c.fx, "focal length along x (px)").required();
+  section.add("Camera.fy", &c.fy, "focal length along y (px)").required();
+  section.add("Camera.cx", &c.cx, "principal point, x (px)").required();
+  section.add("Camera.cy", &c.cy, "principal point, y (px)").required();
+  section.add("Camera.k1", &c.k1, "radial distortion (OpenCV's radial-tangential model)");
+  section.add("Camera.k2", &c.k2, "radial distortion");
+  section.add("Camera.p1", &c.p1, "tangential distortion");
+  section.add("Camera.p2", &c.p2, "tangential distortion");
+  section.add("Camera.k3", &c.k3, "radial distortion");
+  section.add("Camera.width", &c.width, "image width (px); every frame must have it");
+  section.add("Camera.height", &c.height, "image height (px)");
+  section.add("Camera.fps", &s.fps, "frame rate (Hz)");
+  section.add("Camera.RGB", &s.rgb_order, "1 = colour images are RGB (TUM and Bonn PNGs; OpenCV decodes them to BGR)");
+  section.add("Camera.bf", &s.bf, "baseline (m) times fx of the virtual stereo camera RGB-D tracking uses");
+  section.add("ThDepth", &s.th_depth, "close/far threshold in baselines: close below ThDepth x bf / fx metres");
+  section.add("DepthMapFactor", &s.depth_factor, "raw 16-bit depth / DepthMapFactor = metres");
+  return section;
+}
+
+KeySection orbKeys(feature::OrbOptions& o) {
+  KeySection section{"ORB extractor (ORB-SLAM2's keys)"};
+  section.add("ORBextractor.nFeatures", &o.num_features, "features per image");
+  section.add("ORBextractor.scaleFactor", &o.scale_factor, "scale between pyramid levels");
+  section.add("ORBextractor.nLevels", &o.num_levels, "pyramid levels");
+  section.add("ORBextractor.iniThFAST", &o.ini_fast_threshold, "FAST threshold tried first");
+  section.add("ORBextractor.minThFAST", &o.min_fast_threshold,
+              "FAST threshold of the cells where `iniThFAST` finds no corner");
+  return section;
+}
+
+KeySection datasetKeys(Settings& s) {
+  KeySection section{"Dataset"};
+  section.add("Dataset.groundtruth", &s.groundtruth_format,
+              {{"tum", GroundTruthFormat::kTum}, {"bonn", GroundTruthFormat::kBonn}},
+              "ground truth of sequences recorded with this camera: TUM camera poses or Bonn marker poses");
+  return section;
+}
+
+// Replaces `word` in `text` where it stands alone (not inside a longer name).
+std::string replaceName(std::string text, const std::string& word, const std::string& by) {
+  auto part_of_name = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.'; };
+  for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at)) {
+    const bool alone = (at == 0 || !part_of_name(text[at - 1])) &&
+                       (at + word.size() == text.size() || !part_of_name(text[at + word.size()]));
+    if (!alone) {
+      at += word.size();
+      continue;
+    }
+    text.replace(at, word.size(), by);
+    at += by.size();
   }
+  return text;
 }
 
-void readOrb(YamlReader& in, feature::OrbOptions& o) {
-  in.read("ORBextractor.nFeatures", o.num_features);
-  in.read("ORBextractor.scaleFactor", o.scale_factor);
-  in.read("ORBextractor.nLevels", o.num_levels);
-  in.read("ORBextractor.iniThFAST", o.ini_fast_threshold);
-  in.read("ORBextractor.minThFAST", o.min_fast_threshold);
-}
-
-void readProjectKeys(YamlReader& in, Settings& s) {
-  std::string gt = "tum";
-  in.read("Dataset.groundtruth", gt);
-  if (gt == "tum") s.groundtruth_format = GroundTruthFormat::kTum;
-  else if (gt == "bonn") s.groundtruth_format = GroundTruthFormat::kBonn;
-  else throw core::Error(fmt::format("{}: Dataset.groundtruth must be 'tum' or 'bonn', got '{}'",
-                                     in.where("Dataset.groundtruth"), gt));
-}
-
-// Option structs name the key they reject; add the file and line of that key to the message.
-void checkWithLocation(const Settings& s, const YamlReader& in) {
+// Runs s.check() and reports what it rejects by key: "file:line: Key rule", at the line of the key (or of a related
+// key the file sets, or just the file when it sets neither), with the related members' names replaced by their keys
+// and the lines of the related keys the file sets too.
+void checkByKey(const Settings& s, const std::vector<KeySection>& sections, const YamlReader& in) {
   try {
     s.check();
-  } catch (const core::Error& e) {
-    const std::string message = e.what();
-    for (const auto& key : in.keys()) {
-      if (message.find(key) != std::string::npos) throw core::Error(fmt::format("{}: {}", in.where(key), message));
+  } catch (const core::InvalidOption& e) {
+    const SettingsKey* key = keyOf(sections, e.field().address);
+    if (key == nullptr) throw core::Error(fmt::format("{}: {}", in.path(), e.what()));  // no key sets that member
+    std::string rule = e.rule();
+    std::string where = key->nameIn(in);
+    for (const core::OptionField& related : e.related()) {
+      const SettingsKey* other = keyOf(sections, related.address);
+      if (other == nullptr) continue;
+      rule = replaceName(rule, related.name, other->name());
+      const std::string other_name = other->nameIn(in);
+      if (other_name.empty()) continue;
+      if (where.empty()) {
+        where = other_name;
+      } else {
+        rule += fmt::format(" (see {} at {})", other_name, in.where(other_name));
+      }
     }
-    throw core::Error(fmt::format("{}: {}", in.path(), message));
+    throw core::Error(fmt::format("{}: {} {}", where.empty() ? in.path() : in.where(where), key->name(), rule));
+  } catch (const core::Error& e) {
+    throw core::Error(fmt::format("{}: {}", in.path(), e.what()));
   }
 }
 
 Settings parse(YamlReader in) {
   Settings s;
   s.source_file = in.path();
-  readCamera(in, s);
-  readOrb(in, s.orb);
-  readProjectKeys(in, s);
-  readTrackingSection(in, s.fps, s.tracking);
-  readMappingSection(in, s.mapping, s.covisibility);
-  readLoopSection(in, s.mapping, s.loop);
-  readDynamicSection(in, s.dynamic);
-  readSegmentationSection(in, s.segmentation);
-  checkWithLocation(s, in);
+  const std::vector<KeySection> sections = settingsKeys(s);
+  for (const auto& section : sections) {
+    if (section.prepare) section.prepare();
+    for (const auto& key : section.keys) key.read(in);
+  }
+  checkByKey(s, sections, in);
   for (const auto& key : in.unreadKeys()) spdlog::warn("{}: unknown key '{}' ignored", in.where(key), key);
   return s;
 }
 
+constexpr const char* kTablesBegin = "<!-- key tables: made by `amos-slam config --keys-markdown`, do not edit -->";
+constexpr const char* kTablesEnd = "<!-- end of key tables -->";
+
 }  // namespace
 
+std::vector<KeySection> settingsKeys(Settings& s) {
+  std::vector<KeySection> sections;
+  sections.push_back(cameraKeys(s));
+  sections.push_back(orbKeys(s.orb));
+  sections.push_back(datasetKeys(s));
+  sections.push_back(trackingKeys(s.tracking, s.fps));
+  sections.push_back(mappingKeys(s.mapping, s.covisibility));
+  sections.push_back(loopKeys(s.loop, s.mapping));
+  sections.push_back(dynamicKeys(s.dynamic));
+  sections.push_back(segmentationKeys(s.segmentation));
+  return sections;
+}
+
+std::string keysMarkdown() {
+  Settings defaults;
+  return keyTablesMarkdown(settingsKeys(defaults));
+}
+
+std::string withKeyTables(const std::string& readme) {
+  const auto begin = readme.find(kTablesBegin), end = readme.find(kTablesEnd);
+  core::require(begin != std::string::npos && end != std::string::npos && begin < end,
+                fmt::format("the settings README has no '{}' ... '{}' lines to put the key tables between",
+                            kTablesBegin, kTablesEnd));
+  const auto after_begin = readme.find('\n', begin) + 1;
+  return readme.substr(0, after_begin) + "\n" + keysMarkdown() + readme.substr(end);
+}
+
 void Settings::check() const {
+  using core::option;
   camera.check();
-  core::require(fps > 0, fmt::format("Camera.fps must be positive, got {}", fps));
-  core::require(bf > 0, fmt::format("Camera.bf must be positive, got {}", bf));
-  core::require(th_depth > 0, fmt::format("ThDepth must be positive, got {}", th_depth));
-  core::require(depth_factor > 0, fmt::format("DepthMapFactor must be positive, got {}", depth_factor));
+  core::requireOption(fps > 0, option(fps, "fps"), fmt::format("must be positive, got {}", fps));
+  core::requireOption(bf > 0, option(bf, "bf"), fmt::format("must be positive, got {}", bf));
+  core::requireOption(th_depth > 0, option(th_depth, "th_depth"), fmt::format("must be positive, got {}", th_depth));
+  core::requireOption(depth_factor > 0, option(depth_factor, "depth_factor"),
+                      fmt::format("must be positive, got {}", depth_factor));
   orb.check();
   tracking.check();
   mapping.check();
   this->loop.check();
-  core::require(covisibility.min_weight >= 1, "Mapping.covisibilityMinWeight must be >= 1");
+  core::requireOption(covisibility.min_weight >= 1, option(covisibility.min_weight, "covisibility.min_weight"),
+                      fmt::format("must be >= 1, got {}", covisibility.min_weight));
   dynamic.check();
   segmentation.check();
 }

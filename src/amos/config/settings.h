@@ -1,10 +1,11 @@
 #pragma once
 // All settings of a run, parsed once from one YAML file into the typed option structs of each module.
-// Keys: ORB-SLAM2's (Camera.*, ThDepth, DepthMapFactor, ORBextractor.*) plus this project's own sections.
-// See configs/*.yaml for every key with its default and meaning.
+// Keys: ORB-SLAM2's (Camera.*, ThDepth, DepthMapFactor, ORBextractor.*) plus this project's own sections, each
+// named once in the key lists of this module (settingsKeys); configs/README.md lists them with default and meaning.
 #include <string>
 #include <vector>
 
+#include "amos/config/key_list.h"
 #include "amos/core/camera.h"
 #include "amos/dynamic/dynamic_options.h"
 #include "amos/segmentation/segmenter_options.h"
@@ -50,7 +51,17 @@ struct Settings {
   void check() const;
 };
 
-// Parses `path`. Unknown keys are warned about (with their line); an invalid value throws core::Error naming
+// Every settings key, section by section, bound to the members of `s`; the defaults they document are the values
+// of `s` when called.
+std::vector<KeySection> settingsKeys(Settings& s);
+// The key tables of configs/README.md (key, default, meaning), made from settingsKeys of default Settings.
+std::string keysMarkdown();
+// `readme` (configs/README.md) with the key tables between its marker lines made anew; throws core::Error when the
+// markers are missing.
+std::string withKeyTables(const std::string& readme);
+
+// Parses `path`: every key of settingsKeys that the file sets is read, a deprecated name with a warning. Unknown keys
+// are warned about (with their line); a key set twice, a wrong type or an invalid value throws core::Error naming
 // file, line and key.
 Settings loadSettings(const std::string& path);
 // Same, from text (tests).

@@ -119,6 +119,16 @@ TEST(YamlReader, ReportsUnknownKeys) {
   EXPECT_EQ(in.where("Camera.fz"), "t.yaml:6");
 }
 
+TEST(YamlReader, AKeySetTwiceIsAnErrorNamingBothLines) {
+  // The last value used to win silently: a second Camera.fx moved fr2's ATE from 4.3 to 10.3 mm.
+  const std::string e = errorOf(std::string(kMinimal) + "ORBextractor.nFeatures: 900\nCamera.fx: 525.0\n");
+  EXPECT_NE(e.find("test.yaml:7: key 'Camera.fx' is set again (first on line 2)"), std::string::npos) << e;
+  EXPECT_NE(errorOf(std::string(kMinimal) + "\"Camera.fy\": 1\n").find("test.yaml:6: key 'Camera.fy'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(std::string(kMinimal) + "? [a, b]\n: 1\n").find("test.yaml:6: a key must be a plain name"),
+            std::string::npos);
+}
+
 TEST(YamlReader, MissingFileIsAnError) {
   EXPECT_THROW(YamlReader::fromFile("/nonexistent/settings.yaml"), core::Error);
 }

@@ -1,112 +1,125 @@
 #include "amos/config/slam_section.h"
 
-#include <fmt/format.h>
-
+#include <algorithm>
 #include <cmath>
-#include <string>
-
-#include "amos/core/error.h"
 
 namespace amos::config {
 
-namespace {
+KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps) {
+  KeySection s{"Tracking"};
+  s.prepare = [&o, &fps] {
+    if (fps > 0) o.max_frames_between_keyframes = std::max(1, static_cast<int>(std::lround(fps)));
+  };
+  s.add("Tracking.initMinDepthPoints", &o.init_min_depth_points, "keypoints with depth needed to start the map");
+  s.add("Tracking.motionSearchRadius", &o.motion_search_radius, "window of the motion-model search (px at level 0)");
+  s.add("Tracking.motionMinMatches", &o.motion_min_matches,
+        "motion-model matches below which the window is doubled, then the model fails");
+  s.add("Tracking.minMapMatches", &o.min_map_matches, "inliers with map points to accept a frame-to-frame step");
+  s.add("Tracking.referenceMinMatches", &o.reference_min_matches,
+        "brute-force matches needed to try the reference keyframe");
+  s.add("Tracking.localSearchRadius", &o.local_search_radius, "window of the local-map search (px at level 0)");
+  s.add("Tracking.relocSearchRadius", &o.reloc_search_radius,
+        "window of the local-map search in the frames right after a relocalisation");
+  s.add("Tracking.localMinInliers", &o.local_min_inliers, "inliers for a tracked frame");
+  s.add("Tracking.relocMinInliers", &o.reloc_min_inliers,
+        "inliers for a tracked frame right after a relocalisation (at least `localMinInliers`)");
+  s.add("Tracking.maxLocalKeyFrames", &o.max_local_keyframes, "keyframes in the local map at most");
+  s.add("Tracking.maxFrames", &o.max_frames_between_keyframes, "a keyframe at least this often when tracking is weak")
+      .defaultIs("Camera.fps");
+  s.add("Tracking.minFrames", &o.min_frames_between_keyframes, "frames between keyframes at least");
+  s.add("Tracking.keyFrameRefRatio", &o.keyframe_ref_ratio,
+        "new keyframe when the frame tracks fewer points than this share of the reference keyframe's");
+  s.add("Tracking.closeTrackedMax", &o.close_tracked_max, "... or when fewer close points than this are tracked");
+  s.add("Tracking.closeUntrackedMin", &o.close_untracked_min, "... and at least this many close points are not");
+  s.add("Tracking.newPointsMin", &o.new_points_min, "depth points a new keyframe creates at least, closest first");
+  s.add("Tracking.voPointsMin", &o.vo_points_min, "temporary points made from the last frame's depth");
+  s.add("Tracking.recoveryFrames", &o.recovery_frames,
+        "for this many frames after a loss, first search the last local map around the last tracked pose (wide "
+        "window, PnP RANSAC, `relocMinInliers`), then the global relocaliser; 0 = off");
+  s.add("Tracking.recoverySearchRadius", &o.recovery_search_radius, "window of that search (ORB-SLAM2 radius units)");
+  s.add("Tracking.externalPose", &o.external_pose,
+        {{"replace", tracking::ExternalPosePolicy::kReplace}, {"compete", tracking::ExternalPosePolicy::kCompete}},
+        "the front end's initial pose competes with the motion model or replaces it");
+  s.add("Tracking.chi2Mono", &o.pose.chi2_mono,
+        "outlier threshold of pose optimisation without depth (chi-square 95 %)");
+  s.add("Tracking.chi2Stereo", &o.pose.chi2_stereo, "... with depth (chi-square 95 %, 3 dof)");
+  s.add("Tracking.poseRounds", &o.pose.rounds, "outlier classification rounds of pose optimisation");
+  s.add("Tracking.poseIterations", &o.pose.iterations_per_round, "iterations per round");
+  s.add("Tracking.poseRobustRounds", &o.pose.robust_rounds, "first rounds with the Huber kernel");
 
-tracking::ExternalPosePolicy parseExternalPose(const YamlReader& in, const std::string& text) {
-  if (text == "replace") return tracking::ExternalPosePolicy::kReplace;
-  if (text == "compete") return tracking::ExternalPosePolicy::kCompete;
-  throw core::Error(fmt::format("{}: Tracking.externalPose must be 'replace' or 'compete', got '{}'",
-                                in.where("Tracking.externalPose"), text));
+  s.add("Matching.thHigh", &o.matching.th_high, "Hamming distance limit of projection matches");
+  s.add("Matching.thLow", &o.matching.th_low, "Hamming distance limit of brute-force matches (at most `thHigh`)");
+  s.add("Matching.localRatio", &o.matching.local_ratio, "best / second best on the same level in the local-map search");
+  s.add("Matching.bruteForceRatio", &o.matching.brute_force_ratio, "Lowe ratio of brute-force matches to a keyframe");
+  s.add("Matching.checkOrientation", &o.matching.check_orientation, "keep matches in the three dominant rotation bins");
+
+  s.add("Relocalization.candidates", &o.relocalization.num_candidates, "keyframes tried, best thumbnails first");
+  s.add("Relocalization.minMatches", &o.relocalization.min_matches, "brute-force matches to try PnP on a keyframe");
+  s.add("Relocalization.matchRatio", &o.relocalization.match_ratio, "Lowe ratio of those matches");
+  s.add("Relocalization.minInliers", &o.relocalization.min_inliers, "inliers needed to accept a pose");
+  s.add("Relocalization.reprojectionThreshold", &o.relocalization.pnp.reprojection_threshold_px,
+        "PnP RANSAC inlier threshold (undistorted px)");
+  s.add("Relocalization.ransacIterations", &o.relocalization.pnp.max_iterations, "PnP RANSAC iterations at most");
+  s.add("Relocalization.seed", &o.relocalization.pnp.seed, "PnP RANSAC seed");
+  return s;
 }
 
-}  // namespace
+KeySection mappingKeys(mapping::LocalMappingOptions& o, map::CovisibilityOptions& covisibility) {
+  KeySection s{"Local mapping"};
+  s.add("Mapping.covisibilityMinWeight", &covisibility.min_weight, "shared points for a covisibility link");
+  s.add("Mapping.recentFoundRatio", &o.recent_found_ratio,
+        "a new point found in fewer than this share of the frames that should see it is culled");
+  s.add("Mapping.recentMinObservations", &o.recent_min_observations,
+        "... and one with fewer observations two keyframes later");
+  s.add("Mapping.redundantRatio", &o.redundant_ratio, "a keyframe whose close points are this often seen ...");
+  s.add("Mapping.redundantObservers", &o.redundant_observers, "... by this many other keyframes is culled");
+  s.add("Mapping.cullKeyFrames", &o.cull_keyframes, "cull redundant keyframes");
+  s.add("Mapping.triangulationNeighbors", &o.new_points.neighbors,
+        "covisible keyframes new points are triangulated with");
+  s.add("Mapping.triangulationMaxDistance", &o.new_points.max_distance, "Hamming distance limit of those matches");
+  s.add("Mapping.triangulationRatio", &o.new_points.ratio, "best / second best along the epipolar line");
+  s.add("Mapping.maxCosParallax", &o.new_points.max_cos_parallax, "cosine of the smallest parallax of a new point");
+  s.add("Mapping.fuseNeighbors", &o.fusion.neighbors, "covisible keyframes whose points are fused with the new one's");
+  s.add("Mapping.fuseSecondNeighbors", &o.fusion.second_neighbors, "neighbours of each of those also fused");
+  s.add("Mapping.fuseRadius", &o.fusion.radius, "fusion window (px x scale)");
+  s.add("Mapping.fuseMaxDistance", &o.fusion.max_distance, "Hamming distance limit of fusion");
+  s.add("Mapping.dynamicCullMinHits", &o.dynamic_culling.min_hits,
+        "a point seen visible inside dynamic regions in at least this many frames ...");
+  s.add("Mapping.dynamicCullRatio", &o.dynamic_culling.min_ratio, "... and this share of its masked views is removed");
 
-void readTrackingSection(YamlReader& in, double fps, tracking::TrackerOptions& o) {
-  if (fps > 0) o.max_frames_between_keyframes = std::max(1, static_cast<int>(std::lround(fps)));
-  in.read("Tracking.initMinDepthPoints", o.init_min_depth_points);
-  in.read("Tracking.motionSearchRadius", o.motion_search_radius);
-  in.read("Tracking.motionMinMatches", o.motion_min_matches);
-  in.read("Tracking.minMapMatches", o.min_map_matches);
-  in.read("Tracking.referenceMinMatches", o.reference_min_matches);
-  in.read("Tracking.localSearchRadius", o.local_search_radius);
-  in.read("Tracking.relocSearchRadius", o.reloc_search_radius);
-  in.read("Tracking.localMinInliers", o.local_min_inliers);
-  in.read("Tracking.relocMinInliers", o.reloc_min_inliers);
-  in.read("Tracking.maxLocalKeyFrames", o.max_local_keyframes);
-  in.read("Tracking.maxFrames", o.max_frames_between_keyframes);
-  in.read("Tracking.minFrames", o.min_frames_between_keyframes);
-  in.read("Tracking.keyFrameRefRatio", o.keyframe_ref_ratio);
-  in.read("Tracking.closeTrackedMax", o.close_tracked_max);
-  in.read("Tracking.closeUntrackedMin", o.close_untracked_min);
-  in.read("Tracking.newPointsMin", o.new_points_min);
-  in.read("Tracking.voPointsMin", o.vo_points_min);
-  in.read("Tracking.recoveryFrames", o.recovery_frames);
-  in.read("Tracking.recoverySearchRadius", o.recovery_search_radius);
-  std::string external = o.external_pose == tracking::ExternalPosePolicy::kReplace ? "replace" : "compete";
-  in.read("Tracking.externalPose", external);
-  o.external_pose = parseExternalPose(in, external);
-  in.read("Tracking.chi2Mono", o.pose.chi2_mono);
-  in.read("Tracking.chi2Stereo", o.pose.chi2_stereo);
-  in.read("Tracking.poseRounds", o.pose.rounds);
-  in.read("Tracking.poseIterations", o.pose.iterations_per_round);
-  in.read("Tracking.poseRobustRounds", o.pose.robust_rounds);
-
-  in.read("Matching.thHigh", o.matching.th_high);
-  in.read("Matching.thLow", o.matching.th_low);
-  in.read("Matching.localRatio", o.matching.local_ratio);
-  in.read("Matching.bruteForceRatio", o.matching.brute_force_ratio);
-  in.read("Matching.checkOrientation", o.matching.check_orientation);
-
-  in.read("Relocalization.candidates", o.relocalization.num_candidates);
-  in.read("Relocalization.minMatches", o.relocalization.min_matches);
-  in.read("Relocalization.matchRatio", o.relocalization.match_ratio);
-  in.read("Relocalization.minInliers", o.relocalization.min_inliers);
-  in.read("Relocalization.reprojectionThreshold", o.relocalization.pnp.reprojection_threshold_px);
-  in.read("Relocalization.ransacIterations", o.relocalization.pnp.max_iterations);
-  int seed = static_cast<int>(o.relocalization.pnp.seed);
-  in.read("Relocalization.seed", seed);
-  o.relocalization.pnp.seed = static_cast<unsigned>(seed);
+  s.add("LocalBA.enabled", &o.local_ba, "local bundle adjustment in the mapping thread");
+  s.add("LocalBA.iterationsRobust", &o.ba.iterations_robust, "iterations with the Huber loss");
+  s.add("LocalBA.iterationsRefine", &o.ba.iterations_refine, "then iterations without the outliers and robust loss");
+  s.add("LocalBA.maxKeyFrames", &o.ba.max_keyframes,
+        "the new keyframe and at most this many of its most covisible neighbours are adjusted; other observers stay "
+        "fixed (0 = every covisible keyframe, ORB-SLAM2's window)");
+  s.add("LocalBA.chi2Mono", &o.ba.chi2_mono, "outlier threshold without depth (chi-square 95 %)");
+  s.add("LocalBA.chi2Stereo", &o.ba.chi2_stereo, "outlier threshold with depth (chi-square 95 %, 3 dof)");
+  s.add("LocalBA.threads", &o.ba.num_threads, "Ceres threads (1 keeps `--deterministic` runs bit-identical)");
+  return s;
 }
 
-void readMappingSection(YamlReader& in, mapping::LocalMappingOptions& o, map::CovisibilityOptions& covisibility) {
-  in.read("Mapping.covisibilityMinWeight", covisibility.min_weight);
-  in.read("Mapping.recentFoundRatio", o.recent_found_ratio);
-  in.read("Mapping.recentMinObservations", o.recent_min_observations);
-  in.read("Mapping.redundantRatio", o.redundant_ratio);
-  in.read("Mapping.redundantObservers", o.redundant_observers);
-  in.read("Mapping.cullKeyFrames", o.cull_keyframes);
-  in.read("Mapping.triangulationNeighbors", o.new_points.neighbors);
-  in.read("Mapping.triangulationMaxDistance", o.new_points.max_distance);
-  in.read("Mapping.triangulationRatio", o.new_points.ratio);
-  in.read("Mapping.maxCosParallax", o.new_points.max_cos_parallax);
-  in.read("Mapping.fuseNeighbors", o.fusion.neighbors);
-  in.read("Mapping.fuseSecondNeighbors", o.fusion.second_neighbors);
-  in.read("Mapping.fuseRadius", o.fusion.radius);
-  in.read("Mapping.fuseMaxDistance", o.fusion.max_distance);
-  in.read("Mapping.dynamicCullMinHits", o.dynamic_culling.min_hits);
-  in.read("Mapping.dynamicCullRatio", o.dynamic_culling.min_ratio);
-
-  in.read("LocalBA.enabled", o.local_ba);
-  in.read("LocalBA.iterationsRobust", o.ba.iterations_robust);
-  in.read("LocalBA.iterationsRefine", o.ba.iterations_refine);
-  in.read("LocalBA.maxKeyFrames", o.ba.max_keyframes);
-  in.read("LocalBA.chi2Mono", o.ba.chi2_mono);
-  in.read("LocalBA.chi2Stereo", o.ba.chi2_stereo);
-  in.read("LocalBA.threads", o.ba.num_threads);
-}
-
-void readLoopSection(YamlReader& in, const mapping::LocalMappingOptions& mapping, loop::LoopClosingOptions& o) {
-  o.fusion = mapping.fusion;
-  in.read("Loop.enabled", o.enabled);
-  in.read("Loop.essentialMinWeight", o.essential_min_weight);
-  in.read("Loop.poseGraphIterations", o.pose_graph.max_iterations);
-  in.read("Loop.minKeyFrames", o.detector.min_keyframes);
-  in.read("Loop.minKeyFrameGap", o.detector.min_keyframe_gap);
-  in.read("Loop.candidates", o.detector.candidates);
-  in.read("Loop.minMatches", o.detector.min_matches);
-  in.read("Loop.matchRatio", o.detector.match_ratio);
-  in.read("Loop.minInliers", o.detector.min_inliers);
-  in.read("Loop.consistency", o.detector.consistency);
-  in.read("Loop.reprojectionThreshold", o.detector.pnp.reprojection_threshold_px);
+KeySection loopKeys(loop::LoopClosingOptions& o, const mapping::LocalMappingOptions& mapping) {
+  KeySection s{"Loop closing"};
+  s.prepare = [&o, &mapping] { o.fusion = mapping.fusion; };
+  s.add("Loop.enabled", &o.enabled, "look for loops after every keyframe (in the mapping thread)");
+  s.add("Loop.essentialMinWeight", &o.essential_min_weight,
+        "covisibility links kept in the pose graph (with the spanning tree and the loop links)");
+  s.add("Loop.poseGraphIterations", &o.pose_graph.max_iterations, "Levenberg-Marquardt iterations of the pose graph");
+  s.add("Loop.minKeyFrames", &o.detector.min_keyframes, "map size before the first search");
+  s.add("Loop.minKeyFrameGap", &o.detector.min_keyframe_gap, "keyframes between two closures");
+  s.add("Loop.candidates", &o.detector.candidates,
+        "keyframes verified per search (best thumbnails among those not covisible)");
+  s.add("Loop.minMatches", &o.detector.min_matches, "descriptor matches needed to try PnP on a candidate");
+  s.add("Loop.matchRatio", &o.detector.match_ratio, "Lowe ratio of those matches");
+  s.add("Loop.minInliers", &o.detector.min_inliers,
+        "inliers after projecting the loop neighbourhood (at least `minMatches`): stricter than relocalisation, "
+        "since a false loop bends the whole map");
+  s.add("Loop.consistency", &o.detector.consistency,
+        "consecutive keyframes whose loop candidates must point at the same place before one is verified; 0 = off");
+  s.add("Loop.reprojectionThreshold", &o.detector.pnp.reprojection_threshold_px,
+        "PnP RANSAC inlier threshold (undistorted px)");
+  return s;
 }
 
 }  // namespace amos::config

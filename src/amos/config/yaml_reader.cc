@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "amos/core/error.h"
@@ -43,7 +44,20 @@ YamlReader YamlReader::fromText(const std::string& text, const std::string& virt
 }
 
 YamlReader::YamlReader(YAML::Node root, std::string path) : root_(std::move(root)), path_(std::move(path)) {
-  for (const auto& kv : root_) entries_[kv.first.as<std::string>()] = kv.second;
+  // yaml-cpp keeps every pair of a map, duplicates included, in file order: a key set twice would silently take
+  // one of its values.
+  std::map<std::string, int> first_line;
+  for (const auto& kv : root_) {
+    const int line = kv.first.Mark().line + 1;
+    if (!kv.first.IsScalar()) throw core::Error(fmt::format("{}:{}: a key must be a plain name", path_, line));
+    const std::string key = kv.first.Scalar();
+    const auto [first, inserted] = first_line.emplace(key, line);
+    if (!inserted) {
+      throw core::Error(fmt::format("{}:{}: key '{}' is set again (first on line {}); keep one of the two lines", path_,
+                                    line, key, first->second));
+    }
+    entries_[key] = kv.second;
+  }
 }
 
 bool YamlReader::has(const std::string& key) const { return entries_.count(key) > 0; }
@@ -82,6 +96,14 @@ void YamlReader::read(const std::string& key, float& value) {
   value = static_cast<float>(v);
 }
 void YamlReader::read(const std::string& key, int& value) { readScalar(key, value, "a whole number"); }
+void YamlReader::read(const std::string& key, unsigned& value) {
+  long long v = value;
+  readScalar(key, v, "a whole number >= 0");
+  if (v < 0 || v > static_cast<long long>(std::numeric_limits<unsigned>::max())) {
+    throw core::Error(fmt::format("{}: key '{}' must be a whole number >= 0, got {}", where(key), key, v));
+  }
+  value = static_cast<unsigned>(v);
+}
 void YamlReader::read(const std::string& key, bool& value) {
   if (!has(key)) return;
   // ORB-SLAM2 files write flags as 0/1; accept those as well as true/false.

@@ -1,6 +1,7 @@
 #pragma once
 // Reads one flat YAML settings file (ORB-SLAM2 style: top-level keys such as `Camera.fx`), remembering the line
-// of every key so that every error can name file and line. Also accepts OpenCV's `%YAML:1.0` header.
+// of every key so that every error can name file and line. Also accepts OpenCV's `%YAML:1.0` header. A key set twice
+// is an error naming both lines.
 #include <yaml-cpp/yaml.h>
 
 #include <map>
@@ -23,6 +24,7 @@ class YamlReader {
   void read(const std::string& key, double& value);
   void read(const std::string& key, float& value);
   void read(const std::string& key, int& value);
+  void read(const std::string& key, unsigned& value);
   void read(const std::string& key, bool& value);
   void read(const std::string& key, std::string& value);
   void read(const std::string& key, std::vector<std::string>& value);

@@ -7,21 +7,22 @@
 #include <cmath>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::core {
 
 void CameraIntrinsics::check() const {
-  auto positive = [](double v, const char* key) {
-    require(std::isfinite(v) && v > 0, fmt::format("Camera.{} must be a positive number, got {}", key, v));
-  };
-  positive(fx, "fx");
-  positive(fy, "fy");
-  require(width > 0 && height > 0, fmt::format("Camera.width/height must be positive, got {}x{}", width, height));
-  require(std::isfinite(cx) && cx >= 0 && cx <= width,
-          fmt::format("Camera.cx = {} lies outside the image width {}", cx, width));
-  require(std::isfinite(cy) && cy >= 0 && cy <= height,
-          fmt::format("Camera.cy = {} lies outside the image height {}", cy, height));
-  for (double d : {k1, k2, p1, p2, k3}) require(std::isfinite(d), "Camera distortion coefficients must be finite");
+  requirePositive(fx, "fx");
+  requirePositive(fy, "fy");
+  requirePositive(width, "width");
+  requirePositive(height, "height");
+  requireOption(std::isfinite(cx) && cx >= 0 && cx <= width, option(cx, "cx"),
+                fmt::format("must lie in [0, width = {}], got {}", width, cx), {option(width, "width")});
+  requireOption(std::isfinite(cy) && cy >= 0 && cy <= height, option(cy, "cy"),
+                fmt::format("must lie in [0, height = {}], got {}", height, cy), {option(height, "height")});
+  for (const double* d : {&k1, &k2, &p1, &p2, &k3}) {
+    requireOption(std::isfinite(*d), option(*d, "distortion coefficient"), fmt::format("must be finite, got {}", *d));
+  }
 }
 
 PinholeCamera::PinholeCamera(const CameraIntrinsics& intrinsics) : intr_(intrinsics) {

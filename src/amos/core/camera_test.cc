@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::core {
 namespace {
@@ -22,14 +23,16 @@ TEST(Camera, ProjectInvertsBackProject) {
   EXPECT_NEAR(p.z(), 2.5, 1e-12);
 }
 
-TEST(Camera, RejectsNonPositiveFocalLengthNamingTheKey) {
+TEST(Camera, RejectsNonPositiveFocalLengthNamingTheMember) {
   CameraIntrinsics c = fr3();
   c.fy = 0;
+  EXPECT_THROW(PinholeCamera{c}, InvalidOption);
   try {
-    PinholeCamera cam(c);
+    c.check();
     FAIL() << "expected an error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("Camera.fy"), std::string::npos);
+  } catch (const InvalidOption& e) {
+    EXPECT_EQ(e.field().address, &c.fy);  // how the settings reader finds the key, Camera.fy
+    EXPECT_STREQ(e.what(), "fy must be > 0, got 0");
   }
 }
 

@@ -8,13 +8,13 @@
 #include <tuple>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::dynamic {
 
 void BoundaryOptions::check() const {
-  core::require(search_radius_px >= 0, fmt::format("Dynamic.Boundary.radius must be >= 0, got {}", search_radius_px));
-  core::require(border_margin_px >= 0,
-                fmt::format("Dynamic.Boundary.borderMargin must be >= 0, got {}", border_margin_px));
+  core::requireAtLeast(search_radius_px, "search_radius_px", 0);
+  core::requireAtLeast(border_margin_px, "border_margin_px", 0);
 }
 
 std::vector<bool> borderSuperpixels(const cv::Mat& superpixel_labels, int count, int margin_px) {

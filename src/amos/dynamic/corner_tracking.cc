@@ -7,25 +7,24 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::dynamic {
 
 void CornerTrackingOptions::check() const {
-  core::require(max_corners >= 8, fmt::format("Dynamic.Corners.maxCorners must be >= 8, got {}", max_corners));
-  core::require(quality_level > 0 && quality_level < 1,
-                fmt::format("Dynamic.Corners.qualityLevel must lie in (0, 1), got {}", quality_level));
-  core::require(min_distance_px >= 0, fmt::format("Dynamic.Corners.minDistance must be >= 0, got {}", min_distance_px));
-  core::require(detection_scale > 0 && detection_scale <= 1,
-                fmt::format("Dynamic.Corners.detectionScale must lie in (0, 1], got {}", detection_scale));
-  core::require(lk_window >= 5 && lk_window % 2 == 1,
-                fmt::format("Dynamic.LK.window must be an odd number >= 5, got {}", lk_window));
-  core::require(lk_levels >= 0 && lk_levels <= 6,
-                fmt::format("Dynamic.LK.pyramidLevels must lie in [0, 6], got {}", lk_levels));
-  core::require(lk_max_iterations >= 1,
-                fmt::format("Dynamic.LK.maxIterations must be >= 1, got {}", lk_max_iterations));
-  core::require(lk_epsilon > 0, fmt::format("Dynamic.LK.epsilon must be positive, got {}", lk_epsilon));
-  core::require(forward_backward_px > 0,
-                fmt::format("Dynamic.LK.forwardBackwardThreshold must be positive, got {}", forward_backward_px));
+  core::requireAtLeast(max_corners, "max_corners", 8);
+  core::requireOption(quality_level > 0 && quality_level < 1, core::option(quality_level, "quality_level"),
+                      fmt::format("must lie in (0, 1), got {}", quality_level));
+  core::requireAtLeast(min_distance_px, "min_distance_px", 0);
+  core::requireOption(detection_scale > 0 && detection_scale <= 1, core::option(detection_scale, "detection_scale"),
+                      fmt::format("must lie in (0, 1], got {}", detection_scale));
+  core::requireOption(lk_window >= 5 && lk_window % 2 == 1, core::option(lk_window, "lk_window"),
+                      fmt::format("must be an odd number >= 5, got {}", lk_window));
+  core::requireOption(lk_levels >= 0 && lk_levels <= 6, core::option(lk_levels, "lk_levels"),
+                      fmt::format("must lie in [0, 6], got {}", lk_levels));
+  core::requireAtLeast(lk_max_iterations, "lk_max_iterations", 1);
+  core::requirePositive(lk_epsilon, "lk_epsilon");
+  core::requirePositive(forward_backward_px, "forward_backward_px");
 }
 
 ImagePyramid buildPyramid(const cv::Mat& gray, const CornerTrackingOptions& options) {

@@ -20,19 +20,18 @@
 #endif
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::dynamic {
 
 void DepthSlicOptions::check() const {
-  core::require(num_superpixels >= 4,
-                fmt::format("Dynamic.Superpixel.count must be at least 4, got {}", num_superpixels));
-  core::require(std::isfinite(scale) && scale > 0 && scale <= 1,
-                fmt::format("Dynamic.Superpixel.scale must lie in (0, 1], got {}", scale));
-  core::require(std::isfinite(colour_scale) && colour_scale > 0,
-                fmt::format("Dynamic.Superpixel.colourScale must be positive, got {}", colour_scale));
-  core::require(std::isfinite(depth_scale_m) && depth_scale_m > 0,
-                fmt::format("Dynamic.Superpixel.depthScale must be positive, got {}", depth_scale_m));
-  core::require(iterations >= 1, fmt::format("Dynamic.Superpixel.iterations must be >= 1, got {}", iterations));
+  core::requireOption(num_superpixels >= 4, core::option(num_superpixels, "num_superpixels"),
+                      fmt::format("must be at least 4, got {}", num_superpixels));
+  core::requireOption(std::isfinite(scale) && scale > 0 && scale <= 1, core::option(scale, "scale"),
+                      fmt::format("must lie in (0, 1], got {}", scale));
+  core::requirePositive(colour_scale, "colour_scale");
+  core::requirePositive(depth_scale_m, "depth_scale_m");
+  core::requireAtLeast(iterations, "iterations", 1);
 }
 
 namespace {

@@ -28,7 +28,7 @@ struct DepthSlicOptions {
   double depth_scale_m = 0.10;
   // Dynamic.Superpixel.iterations: SLIC assignment/update rounds; the centres move < 1 px after ~5 rounds.
   int iterations = 5;
-  // Throws core::Error naming the Dynamic.Superpixel.* key at fault.
+  // Throws core::InvalidOption naming the member at fault.
   void check() const;
 };
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::dynamic {
 
@@ -37,9 +38,9 @@ void DynamicOptions::check() const {
   boundary.check();
   initial_pose.check();
   prior.check();
-  core::require(prior_masked_extraction_coverage >= 0 && prior_masked_extraction_coverage <= 1,
-                fmt::format("Dynamic.priorMaskedExtractionCoverage must be in [0, 1], got {}",
-                            prior_masked_extraction_coverage));
+  core::requireOption(prior_masked_extraction_coverage >= 0 && prior_masked_extraction_coverage <= 1,
+                      core::option(prior_masked_extraction_coverage, "prior_masked_extraction_coverage"),
+                      fmt::format("must be in [0, 1], got {}", prior_masked_extraction_coverage));
 }
 
 }  // namespace amos::dynamic

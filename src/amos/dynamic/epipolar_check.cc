@@ -7,23 +7,22 @@
 #include <opencv2/core/eigen.hpp>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::dynamic {
 
 void EpipolarOptions::check() const {
-  core::require(std::isfinite(ransac_threshold_px) && ransac_threshold_px > 0,
-                fmt::format("Dynamic.Epipolar.ransacThreshold must be positive, got {}", ransac_threshold_px));
-  core::require(std::isfinite(dynamic_threshold_px) && dynamic_threshold_px >= ransac_threshold_px,
-                fmt::format("Dynamic.Epipolar.threshold must be >= Dynamic.Epipolar.ransacThreshold, got {}",
-                            dynamic_threshold_px));
-  core::require(confidence > 0 && confidence < 1,
-                fmt::format("Dynamic.Epipolar.confidence must lie in (0, 1), got {}", confidence));
-  core::require(max_iterations >= 1,
-                fmt::format("Dynamic.Epipolar.maxIterations must be >= 1, got {}", max_iterations));
-  core::require(min_fit_points >= 15,
-                fmt::format("Dynamic.Epipolar.minFitPoints must be >= 15, got {}", min_fit_points));
-  core::require(min_dynamic_points >= 1,
-                fmt::format("Dynamic.Epipolar.minDynamicPoints must be >= 1, got {}", min_dynamic_points));
+  core::requirePositive(ransac_threshold_px, "ransac_threshold_px");
+  core::requireOption(
+      std::isfinite(dynamic_threshold_px) && dynamic_threshold_px >= ransac_threshold_px,
+      core::option(dynamic_threshold_px, "dynamic_threshold_px"),
+      fmt::format("must be >= ransac_threshold_px = {}, got {}", ransac_threshold_px, dynamic_threshold_px),
+      {core::option(ransac_threshold_px, "ransac_threshold_px")});
+  core::requireOption(confidence > 0 && confidence < 1, core::option(confidence, "confidence"),
+                      fmt::format("must lie in (0, 1), got {}", confidence));
+  core::requireAtLeast(max_iterations, "max_iterations", 1);
+  core::requireAtLeast(min_fit_points, "min_fit_points", 15);
+  core::requireAtLeast(min_dynamic_points, "min_dynamic_points", 1);
 }
 
 double epipolarDistance(const Eigen::Matrix3d& F, const Eigen::Vector2d& p_last, const Eigen::Vector2d& p_current) {

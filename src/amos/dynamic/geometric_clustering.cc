@@ -8,15 +8,15 @@
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/core/stage_timer.h"
 
 namespace amos::dynamic {
 
 void ClusteringOptions::check() const {
-  core::require(num_clusters >= 1, fmt::format("Dynamic.Cluster.count must be >= 1, got {}", num_clusters));
-  core::require(std::isfinite(depth_scale_m) && depth_scale_m > 0,
-                fmt::format("Dynamic.Cluster.depthScale must be positive, got {}", depth_scale_m));
-  core::require(max_iterations >= 1, fmt::format("Dynamic.Cluster.maxIterations must be >= 1, got {}", max_iterations));
+  core::requireAtLeast(num_clusters, "num_clusters", 1);
+  core::requirePositive(depth_scale_m, "depth_scale_m");
+  core::requireAtLeast(max_iterations, "max_iterations", 1);
 }
 
 namespace {

@@ -5,14 +5,13 @@
 #include <cmath>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::dynamic {
 
 void InitialPoseOptions::check() const {
-  core::require(std::isfinite(inlier_threshold_px) && inlier_threshold_px > 0,
-                fmt::format("Dynamic.InitialPose.inlierThreshold must be positive, got {}", inlier_threshold_px));
-  core::require(keyframe_max_points >= 0,
-                fmt::format("Dynamic.InitialPose.keyframeMaxPoints must be >= 0, got {}", keyframe_max_points));
+  core::requirePositive(inlier_threshold_px, "inlier_threshold_px");
+  core::requireAtLeast(keyframe_max_points, "keyframe_max_points", 0);
   pnp.check();
 }
 

@@ -26,7 +26,7 @@ struct InitialPoseOptions {
   // sqrt(5.99) * 1 px = 2.45 px: the 95% chi-square bound for a 2-D error with ~1 px per-axis noise (LK track
   // noise plus the depth noise of the lifted point seen from a slightly moved camera).
   double inlier_threshold_px = 2.45;
-  // Dynamic.InitialPose.pnp*: EPnP RANSAC for models 1 and 2 (geometry::PnpRansacOptions keys).
+  // EPnP RANSAC for models 1 and 2 (its defaults; not read from the settings).
   geometry::PnpRansacOptions pnp;
   // Dynamic.InitialPose.keyframeForwardBackward: 1 = model 1's LK tracks (reference keyframe -> current frame) pass
   // the forward-backward check like the corner tracks; 0 = only the forward pass runs (half the LK cost of model 1)

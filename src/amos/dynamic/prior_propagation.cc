@@ -7,19 +7,22 @@
 #include <cmath>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/segmentation/segment_masks.h"
 
 namespace amos::dynamic {
 
 void PriorScheduleOptions::check() const {
-  core::require(interval >= 1, fmt::format("Dynamic.Prior.interval must be >= 1, got {}", interval));
-  core::require(lag >= 0, fmt::format("Dynamic.Prior.lag must be >= 0, got {}", lag));
-  core::require(lag <= interval,
-                fmt::format("Dynamic.Prior.lag ({}) must not exceed Dynamic.Prior.interval ({}): a segmentation would "
-                            "then be needed before the one of the frame it replaces is used",
-                            lag, interval));
-  core::require(hold_missed >= 0, fmt::format("Dynamic.Prior.holdMissed must be >= 0, got {}", hold_missed));
-  core::require(min_tracks >= 1, fmt::format("Dynamic.Prior.minTracks must be >= 1, got {}", min_tracks));
+  core::requireAtLeast(interval, "interval", 1);
+  core::requireAtLeast(lag, "lag", 0);
+  core::requireOption(
+      lag <= interval, core::option(lag, "lag"),
+      fmt::format("({}) must not exceed interval ({}): a segmentation would then be needed before the one "
+                  "of the frame it replaces is used",
+                  lag, interval),
+      {core::option(interval, "interval")});
+  core::requireAtLeast(hold_missed, "hold_missed", 0);
+  core::requireAtLeast(min_tracks, "min_tracks", 1);
 }
 
 std::size_t PriorScheduleOptions::baseFor(std::size_t frame) const {

@@ -6,7 +6,7 @@
 // paper's.
 //
 // Why a per-instance translation: between two frames 33 ms apart a walking person's silhouette moves a few to
-// ~20 px and changes its shape by much less than the 15 px that the mask dilation (Segmentation.dilation_size 31)
+// ~20 px and changes its shape by much less than the 15 px that the mask dilation (Segmentation.dilationSize 31)
 // adds on every side; a median of the tracks inside the instance follows the body and ignores the few tracks that
 // slip onto the background at its outline.
 #include <opencv2/core.hpp>

@@ -7,26 +7,21 @@
 #include <limits>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::dynamic {
 
 void ReprojectionOptions::check() const {
-  core::require(std::isfinite(cauchy_scale_px) && cauchy_scale_px > 0,
-                fmt::format("Dynamic.Reprojection.cauchyScale must be positive, got {}", cauchy_scale_px));
-  core::require(std::isfinite(candidate_threshold_px) && candidate_threshold_px > 0,
-                fmt::format("Dynamic.Reprojection.threshold must be positive, got {}", candidate_threshold_px));
-  core::require(min_points_per_cluster >= 1,
-                fmt::format("Dynamic.Reprojection.minPoints must be >= 1, got {}", min_points_per_cluster));
-  core::require(std::isfinite(max_depth_m) && max_depth_m > 0,
-                fmt::format("Dynamic.Reprojection.maxDepth must be positive, got {}", max_depth_m));
-  core::require(std::isfinite(depth_edge_ratio) && depth_edge_ratio > 0,
-                fmt::format("Dynamic.Reprojection.depthEdgeRatio must be positive, got {}", depth_edge_ratio));
-  core::require(refit_min_points >= 6,
-                fmt::format("Dynamic.Reprojection.refitMinPoints must be >= 6, got {}", refit_min_points));
-  core::require(std::isfinite(confirm_threshold_px) && confirm_threshold_px > 0,
-                fmt::format("Dynamic.Reprojection.confirmThreshold must be positive, got {}", confirm_threshold_px));
-  core::require(std::isfinite(confirm_sigmas) && confirm_sigmas >= 0,
-                fmt::format("Dynamic.Reprojection.confirmSigmas must be >= 0, got {}", confirm_sigmas));
+  core::requirePositive(cauchy_scale_px, "cauchy_scale_px");
+  core::requirePositive(candidate_threshold_px, "candidate_threshold_px");
+  core::requireAtLeast(min_points_per_cluster, "min_points_per_cluster", 1);
+  core::requirePositive(max_depth_m, "max_depth_m");
+  core::requirePositive(depth_edge_ratio, "depth_edge_ratio");
+  core::requireAtLeast(refit_min_points, "refit_min_points", 6);
+  core::requirePositive(confirm_threshold_px, "confirm_threshold_px");
+  core::requireOption(std::isfinite(confirm_sigmas) && confirm_sigmas >= 0,
+                      core::option(confirm_sigmas, "confirm_sigmas"),
+                      fmt::format("must be >= 0, got {}", confirm_sigmas));
 }
 
 double cauchyRho(double squared_error, double scale) {

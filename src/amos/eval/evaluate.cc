@@ -23,6 +23,8 @@ void EvaluationOptions::check() const {
 EvaluationResult evaluate(const std::vector<io::StampedPose>& gt, const std::vector<io::StampedPose>& est,
                           const EvaluationOptions& options) {
   options.check();
+  core::require(!gt.empty(), "the ground truth has no pose to compare with");
+  core::require(!est.empty(), "the estimate has no pose to evaluate");
   EvaluationResult r;
   r.gt_poses = sortedUniqueByTimestamp(gt).size();
   r.est_poses = sortedUniqueByTimestamp(est).size();

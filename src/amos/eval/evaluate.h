@@ -44,7 +44,7 @@ struct EvaluationResult {
   RpeResult rpe;
 };
 
-// Throws core::Error when fewer than two estimated poses associate with ground truth.
+// Throws core::Error when either trajectory is empty, or fewer than two estimated poses associate with ground truth.
 EvaluationResult evaluate(const std::vector<io::StampedPose>& gt, const std::vector<io::StampedPose>& est,
                           const EvaluationOptions& options = {});
 

@@ -70,6 +70,20 @@ TEST(Evaluate, DisjointTimeRangesAreAnError) {
   }
 }
 
+TEST(Evaluate, AnEmptyTrajectoryIsNamedEmptyNotAWrongTimeOffset) {
+  const auto poses = circle(50, 2, 50.0);
+  auto errorOf = [](const std::vector<io::StampedPose>& gt, const std::vector<io::StampedPose>& est) {
+    try {
+      evaluate(gt, est);
+    } catch (const core::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(errorOf({}, poses), "the ground truth has no pose to compare with");
+  EXPECT_EQ(errorOf(poses, {}), "the estimate has no pose to evaluate");
+}
+
 TEST(Evaluate, OptionsAreChecked) {
   EvaluationOptions options;
   options.rpe_delta_s = 0;

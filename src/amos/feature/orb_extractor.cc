@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/feature/fast_cells.h"
 #include "amos/feature/image_pyramid.h"
 #include "amos/feature/quadtree_distribution.h"
@@ -14,17 +15,21 @@
 namespace amos::feature {
 
 void OrbOptions::check() const {
-  core::require(num_features > 0,
-                fmt::format("ORBextractor.nFeatures must be a positive number of features, got {}", num_features));
-  core::require(std::isfinite(scale_factor) && scale_factor > 1.0 && scale_factor <= 4.0,
-                fmt::format("ORBextractor.scaleFactor must be in (1, 4], got {}", scale_factor));
-  core::require(num_levels >= 1 && num_levels <= 32,
-                fmt::format("ORBextractor.nLevels must be in [1, 32], got {}", num_levels));
-  core::require(ini_fast_threshold >= 1 && ini_fast_threshold <= 254,
-                fmt::format("ORBextractor.iniThFAST must be in [1, 254], got {}", ini_fast_threshold));
-  core::require(min_fast_threshold >= 1 && min_fast_threshold <= ini_fast_threshold,
-                fmt::format("ORBextractor.minThFAST must be in [1, iniThFAST = {}], got {}", ini_fast_threshold,
-                            min_fast_threshold));
+  core::requireOption(num_features > 0, core::option(num_features, "num_features"),
+                      fmt::format("must be a positive number of features, got {}", num_features));
+  core::requireOption(std::isfinite(scale_factor) && scale_factor > 1.0 && scale_factor <= 4.0,
+                      core::option(scale_factor, "scale_factor"),
+                      fmt::format("must be in (1, 4], got {}", scale_factor));
+  core::requireOption(num_levels >= 1 && num_levels <= 32, core::option(num_levels, "num_levels"),
+                      fmt::format("must be in [1, 32], got {}", num_levels));
+  core::requireOption(ini_fast_threshold >= 1 && ini_fast_threshold <= 254,
+                      core::option(ini_fast_threshold, "ini_fast_threshold"),
+                      fmt::format("must be in [1, 254], got {}", ini_fast_threshold));
+  core::requireOption(
+      min_fast_threshold >= 1 && min_fast_threshold <= ini_fast_threshold,
+      core::option(min_fast_threshold, "min_fast_threshold"),
+      fmt::format("must be in [1, ini_fast_threshold = {}], got {}", ini_fast_threshold, min_fast_threshold),
+      {core::option(ini_fast_threshold, "ini_fast_threshold")});
 }
 
 namespace {

@@ -16,7 +16,7 @@ struct OrbOptions {
   int num_levels = 8;           // ORBextractor.nLevels
   int ini_fast_threshold = 20;  // ORBextractor.iniThFAST
   int min_fast_threshold = 7;   // ORBextractor.minThFAST
-  // Throws core::Error naming the ORBextractor.* key whose value is invalid.
+  // Throws core::InvalidOption naming the member whose value is invalid.
   void check() const;
 };
 

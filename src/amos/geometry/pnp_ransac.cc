@@ -11,16 +11,17 @@
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/geometry/epnp.h"
 
 namespace amos::geometry {
 
 void PnpRansacOptions::check() const {
-  core::require(std::isfinite(reprojection_threshold_px) && reprojection_threshold_px > 0,
-                fmt::format("PnP.reprojectionThreshold must be > 0, got {}", reprojection_threshold_px));
-  core::require(confidence > 0 && confidence < 1, fmt::format("PnP.confidence must be in (0, 1), got {}", confidence));
-  core::require(max_iterations > 0, fmt::format("PnP.maxIterations must be > 0, got {}", max_iterations));
-  core::require(min_inliers >= 4, fmt::format("PnP.minInliers must be >= 4, got {}", min_inliers));
+  core::requirePositive(reprojection_threshold_px, "reprojection_threshold_px");
+  core::requireOption(confidence > 0 && confidence < 1, core::option(confidence, "confidence"),
+                      fmt::format("must be in (0, 1), got {}", confidence));
+  core::requirePositive(max_iterations, "max_iterations");
+  core::requireAtLeast(min_inliers, "min_inliers", 4);
 }
 
 namespace {

@@ -1,20 +1,21 @@
 #include "amos/geometry/pose_optimizer.h"
 
+#include <fmt/format.h>
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <string>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::geometry {
 
 void PoseOptimizerOptions::check() const {
-  core::require(chi2_mono > 0, "Tracking.chi2Mono must be > 0, got " + std::to_string(chi2_mono));
-  core::require(chi2_stereo > 0, "Tracking.chi2Stereo must be > 0, got " + std::to_string(chi2_stereo));
-  core::require(rounds >= 1, "Tracking.poseRounds must be >= 1, got " + std::to_string(rounds));
-  core::require(iterations_per_round >= 1,
-                "Tracking.poseIterations must be >= 1, got " + std::to_string(iterations_per_round));
-  core::require(robust_rounds >= 0, "Tracking.poseRobustRounds must be >= 0, got " + std::to_string(robust_rounds));
+  core::requirePositive(chi2_mono, "chi2_mono");
+  core::requirePositive(chi2_stereo, "chi2_stereo");
+  core::requireAtLeast(rounds, "rounds", 1);
+  core::requireAtLeast(iterations_per_round, "iterations_per_round", 1);
+  core::requireAtLeast(robust_rounds, "robust_rounds", 0);
 }
 
 bool poseObservationResidual(const PoseObservation& obs, const core::SE3& T_cw, const StereoProjection& proj,

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
@@ -39,8 +40,19 @@ std::vector<StampedFile> readStampedList(const std::string& path) {
   return out;
 }
 
-std::vector<AssociatedFrame> readAssociationFile(const std::string& path) {
+// The rows of an association file; each of its two stamp columns must increase from row to row.
+std::vector<AssociatedFrame> readAssociationFile(const std::string& path, AssociationStats& stats) {
   std::vector<AssociatedFrame> out;
+  int previous_line = 0;
+  int first_beyond_line = 0;
+  double first_beyond_s = 0;
+  auto requireIncreasing = [&](double stamp, double previous, int line, const char* what) {
+    if (stamp <= previous) {
+      throw core::Error(fmt::format("{}:{}: {} timestamp {:.6f} does not increase (line {} has {:.6f}); the rows of an "
+                                    "association file must be in time order",
+                                    path, line, what, stamp, previous_line, previous));
+    }
+  };
   for (const auto& line : readTextLines(path)) {
     if (line.fields.size() < 4) {
       throw core::Error(fmt::format("{}:{}: expected 't_rgb rgb_file t_depth depth_file', got {} field(s)", path,
@@ -51,7 +63,24 @@ std::vector<AssociatedFrame> readAssociationFile(const std::string& path) {
     f.rgb_file = line.fields[1];
     f.t_depth = parseNumber(line.fields[2], path, line.number, "depth timestamp");
     f.depth_file = line.fields[3];
+    if (!out.empty()) {
+      requireIncreasing(f.t_rgb, out.back().t_rgb, line.number, "RGB");
+      requireIncreasing(f.t_depth, out.back().t_depth, line.number, "depth");
+    }
+    previous_line = line.number;
+    const double difference = std::abs(f.t_rgb - f.t_depth);
+    if (difference > stats.window_s) {
+      if (stats.rows_beyond_window == 0) first_beyond_line = line.number, first_beyond_s = difference;
+      ++stats.rows_beyond_window;
+    }
     out.push_back(std::move(f));
+  }
+  stats.file = path;
+  stats.rows = out.size();
+  if (stats.rows_beyond_window > 0) {
+    spdlog::warn("{}: {} of {} rows pair RGB and depth stamps more than {} s apart (first: line {}, {:.3f} s); their "
+                 "depth images may not show what their colour images show",
+                 path, stats.rows_beyond_window, stats.rows, stats.window_s, first_beyond_line, first_beyond_s);
   }
   return out;
 }
@@ -85,9 +114,10 @@ SequenceIndex indexSequence(const std::string& dir, double max_dt) {
   core::require(fs::is_directory(root), fmt::format("sequence folder '{}' does not exist", dir));
   SequenceIndex index;
   index.dir = dir;
+  index.association.window_s = max_dt;
   const std::string association = firstExisting(root, {"associations.txt", "associate.txt", "association.txt"});
   if (!association.empty()) {
-    index.frames = readAssociationFile(association);
+    index.frames = readAssociationFile(association, index.association);
   } else {
     const std::string rgb_list = (root / "rgb.txt").string(), depth_list = (root / "depth.txt").string();
     core::require(fs::is_regular_file(rgb_list) && fs::is_regular_file(depth_list),

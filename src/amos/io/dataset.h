@@ -2,7 +2,8 @@
 // Reader for RGB-D sequences in the TUM RGB-D / Bonn layout:
 //   rgb/ depth/ rgb.txt depth.txt [groundtruth.txt] [associations.txt | associate.txt]
 // Frames are associated one-to-one by nearest timestamp within max_dt (as the TUM benchmark's associate.py
-// does), or taken from an association file (`t_rgb rgb/x.png t_depth depth/y.png [...]`) when there is one.
+// does), or taken from an association file (`t_rgb rgb/x.png t_depth depth/y.png [...]`) when there is one, whose
+// rows must go forward in time and should pair stamps within max_dt.
 // Frames stream lazily through a prefetch thread, so a long sequence never sits in memory.
 #include <opencv2/core.hpp>
 
@@ -23,14 +24,27 @@ struct AssociatedFrame {
   std::string rgb_file, depth_file;  // absolute or relative to the working directory
 };
 
+// How well the sequence's RGB and depth stamps pair up. Frames associated from rgb.txt + depth.txt pair only
+// stamps within the window; an association file may pair any, and its rows beyond the window are counted here.
+struct AssociationStats {
+  std::string file;                    // the association file read; empty when rgb.txt + depth.txt were associated
+  std::size_t rows = 0;                // rows of that file
+  std::size_t rows_beyond_window = 0;  // rows whose RGB and depth stamps differ by more than window_s
+  double window_s = 0;                 // the association window (indexSequence's max_dt)
+};
+
 struct SequenceIndex {
   std::string dir;
   std::vector<AssociatedFrame> frames;
   std::string groundtruth_file;  // empty when the sequence has none
+  AssociationStats association;
 };
 
 // Lists the frames of the sequence in `dir`. Listed files that do not exist are skipped with one warning naming
-// them; malformed lines throw core::Error naming file and line; an empty result throws.
+// them; malformed lines throw core::Error naming file and line; an empty result throws. An association file's RGB
+// and depth stamps must each increase from row to row (core::Error naming file and line otherwise); rows whose two
+// stamps differ by more than max_dt are kept, warned about once (count and first row) and counted in
+// `association`.
 SequenceIndex indexSequence(const std::string& dir, double max_dt = 0.02);
 
 struct ReaderOptions {

@@ -4,9 +4,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <opencv2/imgcodecs.hpp>
 
 #include "amos/core/error.h"
+#include "amos/core/log_capture.h"
 
 namespace amos::io {
 namespace {
@@ -43,6 +45,15 @@ class TinySequence : public ::testing::Test {
 };
 
 using Pair = std::pair<std::size_t, std::size_t>;
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const core::Error& e) {
+    return e.what();
+  }
+  return "";
+}
 
 TEST(AssociateStamps, GreedyNearestWithinWindowLikeAssociatePy) {
   const std::vector<double> rgb = {0.00, 0.033, 0.066, 0.5};
@@ -111,6 +122,54 @@ TEST_F(TinySequence, AssociationFileWithTooFewFieldsIsAnError) {
   EXPECT_THROW(indexSequence(dir_.string()), core::Error);
 }
 
+TEST_F(TinySequence, AssociationRowsThatDoNotGoForwardInTimeAreAnErrorNamingTheLine) {
+  writeImages("1.0");
+  const std::string ok = "# rgb depth\n1.000 rgb/1.0.png 1.001 depth/1.0.png\n1.033 rgb/1.0.png 1.034 depth/1.0.png\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"1.020 rgb/1.0.png 1.050 depth/1.0.png\n", "RGB timestamp 1.020000 does not increase (line 3 has 1.033000)"},
+      {"1.033 rgb/1.0.png 1.050 depth/1.0.png\n", "RGB timestamp 1.033000 does not increase"},
+      {"1.066 rgb/1.0.png 1.020 depth/1.0.png\n", "depth timestamp 1.020000 does not increase"},
+  };
+  for (const auto& [row, expected] : cases) {
+    writeFile("associations.txt", ok + row);
+    const std::string e = errorOf([&] { indexSequence(dir_.string()); });
+    EXPECT_NE(e.find("associations.txt:4: " + expected), std::string::npos) << e;
+  }
+  writeFile("associations.txt", ok);
+  EXPECT_EQ(indexSequence(dir_.string()).frames.size(), 2u);
+}
+
+TEST_F(TinySequence, AssociationRowsBeyondTheWindowAreWarnedAboutOnceAndCounted) {
+  writeImages("1.0");
+  writeFile("associations.txt",
+            "1.000 rgb/1.0.png 1.010 depth/1.0.png\n"
+            "1.033 rgb/1.0.png 1.083 depth/1.0.png\n"
+            "1.066 rgb/1.0.png 1.085 depth/1.0.png\n"  // 0.019 s: inside the window
+            "1.100 rgb/1.0.png 1.200 depth/1.0.png\n");
+  core::LogCapture log;
+  const SequenceIndex index = indexSequence(dir_.string(), 0.02);
+  EXPECT_EQ(index.frames.size(), 4u);  // kept: the run decides what to make of them
+  EXPECT_EQ(index.association.file, (dir_ / "associations.txt").string());
+  EXPECT_EQ(index.association.rows, 4u);
+  EXPECT_EQ(index.association.rows_beyond_window, 2u);
+  EXPECT_DOUBLE_EQ(index.association.window_s, 0.02);
+  const auto lines = log.lines();
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("warning"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[0].find("2 of 4 rows"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[0].find("first: line 2, 0.050 s"), std::string::npos) << lines[0];
+}
+
+TEST_F(TinySequence, AssociatedListsHaveNoRowsBeyondTheWindow) {
+  writeImages("1.0");
+  writeFile("rgb.txt", "1.0 rgb/1.0.png\n1.5 rgb/1.0.png\n");
+  writeFile("depth.txt", "1.01 depth/1.0.png\n1.6 depth/1.0.png\n");
+  const SequenceIndex index = indexSequence(dir_.string());
+  EXPECT_EQ(index.frames.size(), 1u);
+  EXPECT_TRUE(index.association.file.empty());
+  EXPECT_EQ(index.association.rows_beyond_window, 0u);
+}
+
 TEST_F(TinySequence, EmptySequenceIsAnError) {
   writeFile("rgb.txt", "# nothing\n");
   writeFile("depth.txt", "# nothing\n");
@@ -151,6 +210,7 @@ TEST(RealSequences, ReadsTheSharedTumAndBonnSlices) {
   const std::string data = std::string(AMOS_SHARED_DIR) + "/data/";
   const auto fr2 = indexSequence(data + "tum_fr2_desk_first50");
   EXPECT_EQ(fr2.frames.size(), 50u);
+  EXPECT_EQ(fr2.association.rows_beyond_window, 0u);
   EXPECT_FALSE(fr2.groundtruth_file.empty());
   // fr1's association file lists the whole sequence; only 9 frames' files are there.
   EXPECT_EQ(indexSequence(data + "tum_fr1_desk_first9").frames.size(), 9u);

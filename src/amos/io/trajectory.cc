@@ -7,8 +7,11 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 #include "amos/core/error.h"
@@ -26,15 +29,23 @@ bool parseDouble(const std::string& token, double& value) {
   return ec == std::errc() && ptr == end;
 }
 
-}  // namespace
-
-std::vector<StampedPose> readTumTrajectory(const std::string& path) {
-  core::require(std::filesystem::is_regular_file(path),
-                fmt::format("trajectory file '{}' does not exist (or is not a regular file)", path));
+struct PoseLines {
   std::vector<StampedPose> poses;
+  int lines = 0;  // pose lines read, skipped ones included
+};
+
+PoseLines readPoseLines(const std::string& path, const std::string& role) {
+  core::require(std::filesystem::is_regular_file(path),
+                fmt::format("{} '{}' does not exist (or is not a regular file)", role, path));
+  if (!std::ifstream(path).good()) {
+    throw core::Error(fmt::format("{} '{}' cannot be read: {}", role, path, std::strerror(errno)));
+  }
+  PoseLines out;
+  std::vector<StampedPose>& poses = out.poses;
   int skipped = 0;
   // readTextLines splits on blanks, tabs and commas and drops '#' comments and blank lines, like the TUM scripts.
   for (const TextLine& line : readTextLines(path)) {
+    ++out.lines;
     const std::vector<std::string>& fields = line.fields;
     if (fields.size() != 8) {
       throw core::Error(fmt::format("{}:{}: expected 8 numbers 'timestamp tx ty tz qx qy qz qw', found {} fields",
@@ -60,7 +71,23 @@ std::vector<StampedPose> readTumTrajectory(const std::string& path) {
     poses.push_back(pose);
   }
   if (skipped > 0) spdlog::warn("{}: {} line(s) skipped", path, skipped);
-  return poses;
+  return out;
+}
+
+}  // namespace
+
+std::vector<StampedPose> readTumTrajectory(const std::string& path) {
+  return readPoseLines(path, "trajectory file").poses;
+}
+
+std::vector<StampedPose> readTumTrajectoryWithPoses(const std::string& path, const std::string& role) {
+  PoseLines read = readPoseLines(path, role);
+  core::require(read.lines > 0, fmt::format("{} '{}' is empty: it has no pose line", role, path));
+  core::require(!read.poses.empty(),
+                fmt::format("{} '{}' has no usable pose: all {} of its pose lines were skipped (non-finite values or "
+                            "all-zero quaternions)",
+                            role, path, read.lines));
+  return std::move(read.poses);
 }
 
 void writeTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses) {

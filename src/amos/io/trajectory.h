@@ -23,6 +23,12 @@ struct StampedPose {
 // the file and the 1-based line number.
 std::vector<StampedPose> readTumTrajectory(const std::string& path);
 
+// readTumTrajectory for a file that must hold poses, such as the ground truth or the estimate an evaluation
+// compares: errors call the file by its `role` ("ground-truth file"), one that cannot be opened is named
+// unreadable (with the system's reason), and one without a usable pose (empty, only comments, or every line
+// skipped) is an error saying so instead of an empty trajectory.
+std::vector<StampedPose> readTumTrajectoryWithPoses(const std::string& path, const std::string& role);
+
 // Writes poses in the TUM format with a header comment: timestamps with %.6f, translations and quaternions with
 // %.9f, enough for a lossless round trip of the TUM data (microsecond stamps). Throws core::Error when the file
 // cannot be written.

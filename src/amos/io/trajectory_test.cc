@@ -70,6 +70,43 @@ TEST(TumTrajectory, AcceptsCommentsBlankLinesCommasAndTabs) {
   EXPECT_DOUBLE_EQ(poses[3].T_wc.translation().x(), 0.1);
 }
 
+std::string errorOf(const std::string& path, const std::string& role) {
+  try {
+    readTumTrajectoryWithPoses(path, role);
+  } catch (const core::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TumTrajectory, AFileThatMustHoldPosesNamesItselfWhenEmptyOrUnusable) {
+  const std::string empty = scratchPath("empty_gt.txt"), comments = scratchPath("comments_gt.txt"),
+                    unusable = scratchPath("unusable_gt.txt"), good = scratchPath("good_gt.txt");
+  writeText(empty, "");
+  writeText(comments, "# timestamp tx ty tz qx qy qz qw\n\n");
+  writeText(unusable, "1 0 0 0 0 0 0 0\n2 nan 0 0 0 0 0 1\n");
+  writeText(good, "1 0 0 0 0 0 0 1\n");
+  EXPECT_TRUE(readTumTrajectory(empty).empty());  // a run that tracked nothing writes such a file
+  for (const std::string& path : {empty, comments}) {
+    EXPECT_EQ(errorOf(path, "ground-truth file"), "ground-truth file '" + path + "' is empty: it has no pose line");
+  }
+  EXPECT_NE(errorOf(unusable, "estimate file").find("estimate file '" + unusable + "' has no usable pose: all 2"),
+            std::string::npos);
+  EXPECT_NE(errorOf(scratchPath("missing_gt.txt"), "ground-truth file").find("ground-truth file"), std::string::npos);
+  EXPECT_NE(errorOf(fs::path(good).parent_path().string(), "ground-truth file").find("not a regular file"),
+            std::string::npos);
+  EXPECT_EQ(readTumTrajectoryWithPoses(good, "ground-truth file").size(), 1u);
+}
+
+TEST(TumTrajectory, AnUnreadableFileIsNamedUnreadable) {
+  const std::string path = scratchPath("unreadable_gt.txt");
+  writeText(path, "1 0 0 0 0 0 0 1\n");
+  fs::permissions(path, fs::perms::none);
+  if (std::ifstream(path).good()) GTEST_SKIP() << "permissions do not apply to this user (root)";
+  EXPECT_NE(errorOf(path, "ground-truth file").find("ground-truth file '" + path + "' cannot be read: "),
+            std::string::npos);
+}
+
 TEST(TumTrajectory, SkipsZeroQuaternionAndNanLinesLikeTheBenchmark) {
   const std::string path = scratchPath("zero_q.txt");
   writeText(path, "1 0 0 0 0 0 0 0\n2 nan 0 0 0 0 0 1\n3 1 1 1 0 0 0 1\n");

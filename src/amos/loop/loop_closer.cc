@@ -1,5 +1,6 @@
 #include "amos/loop/loop_closer.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <map>
@@ -10,12 +11,14 @@
 #include <unordered_set>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/core/stage_timer.h"
 
 namespace amos::loop {
 
 void LoopClosingOptions::check() const {
-  core::require(essential_min_weight >= 1, "Loop.essentialMinWeight must be >= 1");
+  core::requireOption(essential_min_weight >= 1, core::option(essential_min_weight, "essential_min_weight"),
+                      fmt::format("must be >= 1, got {}", essential_min_weight));
   detector.check();
   pose_graph.check();
   fusion.check();

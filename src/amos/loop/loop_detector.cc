@@ -1,11 +1,13 @@
 #include "amos/loop/loop_detector.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <unordered_set>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/match/brute_force_search.h"
 #include "amos/match/pose_from_matches.h"
 #include "amos/match/projection_search.h"
@@ -13,13 +15,16 @@
 namespace amos::loop {
 
 void LoopDetectorOptions::check() const {
-  core::require(min_keyframes >= 2, "Loop.minKeyFrames must be >= 2");
-  core::require(min_keyframe_gap >= 0, "Loop.minKeyFrameGap must be >= 0");
-  core::require(candidates >= 1, "Loop.candidates must be >= 1");
-  core::require(min_matches >= 6, "Loop.minMatches must be >= 6");
-  core::require(match_ratio > 0 && match_ratio <= 1, "Loop.matchRatio must be in (0, 1]");
-  core::require(min_inliers >= min_matches, "Loop.minInliers must be >= Loop.minMatches");
-  core::require(consistency >= 0, "Loop.consistency must be >= 0");
+  core::requireAtLeast(min_keyframes, "min_keyframes", 2);
+  core::requireAtLeast(min_keyframe_gap, "min_keyframe_gap", 0);
+  core::requireAtLeast(candidates, "candidates", 1);
+  core::requireAtLeast(min_matches, "min_matches", 6);
+  core::requireOption(match_ratio > 0 && match_ratio <= 1, core::option(match_ratio, "match_ratio"),
+                      fmt::format("must be in (0, 1], got {}", match_ratio));
+  core::requireOption(min_inliers >= min_matches, core::option(min_inliers, "min_inliers"),
+                      fmt::format("must be >= min_matches = {}, got {}", min_matches, min_inliers),
+                      {core::option(min_matches, "min_matches")});
+  core::requireAtLeast(consistency, "consistency", 0);
   pnp.check();
   pose.check();
   matching.check();

@@ -1,5 +1,6 @@
 #include "amos/loop/pose_graph.h"
 
+#include <fmt/format.h>
 #include <ceres/ceres.h>
 
 #include <Eigen/Geometry>
@@ -7,11 +8,13 @@
 #include <array>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::loop {
 
 void PoseGraphOptions::check() const {
-  core::require(max_iterations >= 1, "Loop.poseGraphIterations must be >= 1");
+  core::requireOption(max_iterations >= 1, core::option(max_iterations, "max_iterations"),
+                      fmt::format("must be >= 1, got {}", max_iterations));
 }
 
 namespace {

@@ -1,15 +1,17 @@
 #include "amos/map/sensor.h"
 
+#include <fmt/format.h>
 #include <cmath>
 #include <string>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::map {
 
 void SensorOptions::check() const {
-  core::require(bf > 0, "Camera.bf must be > 0, got " + std::to_string(bf));
-  core::require(th_depth > 0, "ThDepth must be > 0, got " + std::to_string(th_depth));
+  core::requireOption(bf > 0, core::option(bf, "bf"), fmt::format("must be > 0, got {}", bf));
+  core::requireOption(th_depth > 0, core::option(th_depth, "th_depth"), fmt::format("must be > 0, got {}", th_depth));
 }
 
 Sensor::Sensor(const core::CameraIntrinsics& intrinsics, const SensorOptions& options,

@@ -1,5 +1,6 @@
 #include "amos/mapping/bundle_adjustment.h"
 
+#include <fmt/format.h>
 #include <ceres/ceres.h>
 
 #include <algorithm>
@@ -9,15 +10,17 @@
 #include <string>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::mapping {
 
 void BundleAdjustmentOptions::check() const {
-  core::require(iterations_robust >= 1, "LocalBA.iterationsRobust must be >= 1");
-  core::require(iterations_refine >= 0, "LocalBA.iterationsRefine must be >= 0");
-  core::require(chi2_mono > 0 && chi2_stereo > 0, "LocalBA.chi2Mono/chi2Stereo must be > 0");
-  core::require(num_threads >= 1, "LocalBA.threads must be >= 1");
-  core::require(max_keyframes >= 0, "LocalBA.maxKeyFrames must be >= 0");
+  core::requireAtLeast(iterations_robust, "iterations_robust", 1);
+  core::requireAtLeast(iterations_refine, "iterations_refine", 0);
+  core::requirePositive(chi2_mono, "chi2_mono");
+  core::requirePositive(chi2_stereo, "chi2_stereo");
+  core::requireAtLeast(num_threads, "num_threads", 1);
+  core::requireAtLeast(max_keyframes, "max_keyframes", 0);
 }
 
 namespace {

@@ -1,12 +1,16 @@
 #include "amos/mapping/dynamic_culling.h"
 
+#include <fmt/format.h>
+
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::mapping {
 
 void DynamicCullingOptions::check() const {
-  core::require(min_hits >= 1, "Mapping.dynamicCullMinHits must be >= 1");
-  core::require(min_ratio > 0 && min_ratio <= 1, "Mapping.dynamicCullRatio must be in (0, 1]");
+  core::requireAtLeast(min_hits, "min_hits", 1);
+  core::requireOption(min_ratio > 0 && min_ratio <= 1, core::option(min_ratio, "min_ratio"),
+                      fmt::format("must be in (0, 1], got {}", min_ratio));
 }
 
 int cullDynamicPoints(map::Map& map, const DynamicCullingOptions& options) {

@@ -1,20 +1,25 @@
 #include "amos/mapping/local_mapper.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <shared_mutex>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/core/stage_timer.h"
 #include "amos/mapping/local_bundle_adjustment.h"
 
 namespace amos::mapping {
 
 void LocalMappingOptions::check() const {
-  core::require(recent_found_ratio >= 0 && recent_found_ratio <= 1, "Mapping.recentFoundRatio must be in [0, 1]");
-  core::require(recent_min_observations >= 0, "Mapping.recentMinObservations must be >= 0");
-  core::require(redundant_ratio > 0 && redundant_ratio <= 1, "Mapping.redundantRatio must be in (0, 1]");
-  core::require(redundant_observers >= 1, "Mapping.redundantObservers must be >= 1");
+  core::requireOption(recent_found_ratio >= 0 && recent_found_ratio <= 1,
+                      core::option(recent_found_ratio, "recent_found_ratio"),
+                      fmt::format("must be in [0, 1], got {}", recent_found_ratio));
+  core::requireAtLeast(recent_min_observations, "recent_min_observations", 0);
+  core::requireOption(redundant_ratio > 0 && redundant_ratio <= 1, core::option(redundant_ratio, "redundant_ratio"),
+                      fmt::format("must be in (0, 1], got {}", redundant_ratio));
+  core::requireAtLeast(redundant_observers, "redundant_observers", 1);
   new_points.check();
   fusion.check();
   dynamic_culling.check();

@@ -1,8 +1,10 @@
 #include "amos/mapping/new_points.h"
 
+#include <fmt/format.h>
 #include <cmath>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/feature/descriptor_distance.h"
 #include "amos/geometry/triangulation.h"
 #include "amos/match/rotation_consistency.h"
@@ -10,10 +12,13 @@
 namespace amos::mapping {
 
 void NewPointsOptions::check() const {
-  core::require(neighbors >= 1, "Mapping.triangulationNeighbors must be >= 1");
-  core::require(max_distance > 0 && max_distance <= 256, "Mapping.triangulationMaxDistance must be in (0, 256]");
-  core::require(ratio > 0 && ratio <= 1, "Mapping.triangulationRatio must be in (0, 1]");
-  core::require(max_cos_parallax > 0 && max_cos_parallax < 1, "Mapping.maxCosParallax must be in (0, 1)");
+  core::requireAtLeast(neighbors, "neighbors", 1);
+  core::requireOption(max_distance > 0 && max_distance <= 256, core::option(max_distance, "max_distance"),
+                      fmt::format("must be in (0, 256], got {}", max_distance));
+  core::requireOption(ratio > 0 && ratio <= 1, core::option(ratio, "ratio"),
+                      fmt::format("must be in (0, 1], got {}", ratio));
+  core::requireOption(max_cos_parallax > 0 && max_cos_parallax < 1, core::option(max_cos_parallax, "max_cos_parallax"),
+                      fmt::format("must be in (0, 1), got {}", max_cos_parallax));
 }
 
 namespace {

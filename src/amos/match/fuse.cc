@@ -1,16 +1,20 @@
 #include "amos/match/fuse.h"
 
+#include <fmt/format.h>
 #include <unordered_set>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/feature/descriptor_distance.h"
 
 namespace amos::match {
 
 void FusionOptions::check() const {
-  core::require(neighbors >= 1 && second_neighbors >= 0, "Mapping.fuseNeighbors must be >= 1, fuseSecondNeighbors >= 0");
-  core::require(radius > 0, "Mapping.fuseRadius must be > 0");
-  core::require(max_distance > 0 && max_distance <= 256, "Mapping.fuseMaxDistance must be in (0, 256]");
+  core::requireAtLeast(neighbors, "neighbors", 1);
+  core::requireAtLeast(second_neighbors, "second_neighbors", 0);
+  core::requirePositive(radius, "radius");
+  core::requireOption(max_distance > 0 && max_distance <= 256, core::option(max_distance, "max_distance"),
+                      fmt::format("must be in (0, 256], got {}", max_distance));
 }
 
 int fusePoints(map::Map& map, const map::KeyFramePtr& kf, const std::vector<map::MapPointPtr>& points,

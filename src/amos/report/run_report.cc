@@ -24,6 +24,13 @@ nlohmann::json toJson(const SourceReport& source) {
   return j;
 }
 
+nlohmann::json toJson(const io::AssociationStats& association) {
+  return {{"file", association.file},
+          {"rows", association.rows},
+          {"rows_beyond_window", association.rows_beyond_window},
+          {"window_s", association.window_s}};
+}
+
 nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& times, const RunInfo& info) {
   nlohmann::json j;
   j["sequence"] = info.sequence;
@@ -68,6 +75,7 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
   if (info.evaluation) j["evaluation"] = eval::toJson(*info.evaluation);
   if (info.mask_accuracy) j["mask_accuracy"] = eval::toJson(*info.mask_accuracy);
   if (info.source) j["source"] = toJson(*info.source);
+  if (info.association) j["association"] = toJson(*info.association);
   return j;
 }
 

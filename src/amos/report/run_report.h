@@ -6,7 +6,8 @@
 //   stats.json      frame counts, map size, median / p95 ms per stage and per frame, wall time, frames per second,
 //                   ATE / RPE when the sequence has ground truth, and the dynamic mask's pixel precision / recall /
 //                   IoU when it has ground-truth mover masks, and where the frames came from ("source": kind,
-//                   frames delivered / processed / dropped, latency from a frame's arrival to its pose)
+//                   frames delivered / processed / dropped, latency from a frame's arrival to its pose) and how
+//                   its association file paired RGB and depth ("association": rows, rows_beyond_window)
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -15,6 +16,7 @@
 
 #include "amos/eval/evaluate.h"
 #include "amos/eval/mask_metrics.h"
+#include "amos/io/dataset.h"
 #include "amos/system/slam_system.h"
 
 namespace amos::report {
@@ -43,9 +45,14 @@ struct RunInfo {
   // Time spent on --save-masks outputs and mask scoring (not part of wall_time_s).
   double mask_outputs_s = 0;
   std::optional<SourceReport> source;  // absent when the caller did not read frames from a FrameSource
+  // The sequence's association file (io::SequenceIndex::association); absent for a live camera or when the frames
+  // were associated from rgb.txt + depth.txt.
+  std::optional<io::AssociationStats> association;
 };
 
 nlohmann::json toJson(const SourceReport& source);
+// {"file", "rows", "rows_beyond_window", "window_s"}
+nlohmann::json toJson(const io::AssociationStats& association);
 
 nlohmann::json statsJson(const system::SlamStats& stats, const core::StageTimes& times, const RunInfo& info);
 void writeMapPly(const std::string& path, const std::vector<Eigen::Vector3d>& points);

@@ -21,7 +21,7 @@ std::vector<std::string> missingFiles(const std::string& dir, const std::vector<
 
 std::string whatToDo(const std::vector<std::string>& files) {
   return fmt::format(
-      "Pass --models DIR, set Segmentation.models_dir in the settings file or the environment variable AMOS_MODELS to "
+      "Pass --models DIR, set Segmentation.modelsDir in the settings file or the environment variable AMOS_MODELS to "
       "a folder holding {} (the shared models are in ../shared/models, see its README.md), or run without prior "
       "dynamic object segmentation (--mode geometry or --mode none).",
       fmt::join(files, ", "));
@@ -42,7 +42,7 @@ ModelLocation locateModelDir(const ModelSources& sources, const std::vector<std:
   if (sources.environment) env_dir = sources.environment("AMOS_MODELS");
   const std::pair<std::string, std::string> explicit_sources[] = {
       {"--models", sources.cli_dir},
-      {"Segmentation.models_dir", sources.settings_dir},
+      {"Segmentation.modelsDir", sources.settings_dir},
       {"AMOS_MODELS", env_dir.value_or("")}};
   for (const auto& [source, dir] : explicit_sources) {
     if (dir.empty()) continue;
@@ -55,7 +55,7 @@ ModelLocation locateModelDir(const ModelSources& sources, const std::vector<std:
   for (const auto& dir : sources.default_dirs)
     if (missingFiles(dir, required_files, exists).empty()) return {dir, "default " + dir};
   throw core::Error(fmt::format(
-      "segmentation models not found: --models, Segmentation.models_dir and AMOS_MODELS are not set and none of {} "
+      "segmentation models not found: --models, Segmentation.modelsDir and AMOS_MODELS are not set and none of {} "
       "holds {}. {}",
       fmt::join(sources.default_dirs, ", "), fmt::join(required_files, ", "), whatToDo(required_files)));
 }

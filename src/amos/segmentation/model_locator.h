@@ -1,5 +1,5 @@
 #pragma once
-// Where the segmentation models are: the first of --models, the settings file (Segmentation.models_dir), the
+// Where the segmentation models are: the first of --models, the settings file (Segmentation.modelsDir), the
 // environment variable AMOS_MODELS, ./models, ../shared/models. A pure function of its sources (the environment
 // and the file system are injected) so the order and the error messages are testable.
 //
@@ -18,17 +18,17 @@ using FileExists = std::function<bool(const std::string& path)>;
 
 struct ModelSources {
   std::string cli_dir;       // --models (empty = not given)
-  std::string settings_dir;  // Segmentation.models_dir from the settings file (empty = not given)
+  std::string settings_dir;  // Segmentation.modelsDir from the settings file (empty = not given)
   EnvironmentLookup environment;  // e.g. processEnvironment(); may be empty (= no environment)
   std::vector<std::string> default_dirs = {"./models", "../shared/models"};
 };
 
 struct ModelLocation {
   std::string dir;     // folder holding every required file
-  std::string source;  // where it came from: "--models", "Segmentation.models_dir", "AMOS_MODELS", "default ./models"
+  std::string source;  // where it came from: "--models", "Segmentation.modelsDir", "AMOS_MODELS", "default ./models"
 };
 
-// Throws core::Error saying what was tried and what to do (pass --models DIR, set Segmentation.models_dir or
+// Throws core::Error saying what was tried and what to do (pass --models DIR, set Segmentation.modelsDir or
 // AMOS_MODELS, or run without prior-object segmentation: --mode none | geometry).
 ModelLocation locateModelDir(const ModelSources& sources, const std::vector<std::string>& required_files,
                              const FileExists& exists);

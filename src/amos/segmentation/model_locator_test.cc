@@ -47,7 +47,7 @@ TEST(ModelLocator, OrderIsCliSettingsEnvironmentThenDefaults) {
   EXPECT_EQ(locateModelDir(s, kFiles, all).source, "--models");
   s.cli_dir.clear();
   EXPECT_EQ(locateModelDir(s, kFiles, all).dir, "/settings");
-  EXPECT_EQ(locateModelDir(s, kFiles, all).source, "Segmentation.models_dir");
+  EXPECT_EQ(locateModelDir(s, kFiles, all).source, "Segmentation.modelsDir");
   s.settings_dir.clear();
   EXPECT_EQ(locateModelDir(s, kFiles, all).dir, "/env");
   EXPECT_EQ(locateModelDir(s, kFiles, all).source, "AMOS_MODELS");
@@ -74,7 +74,7 @@ TEST(ModelLocator, AnExplicitFolderWithoutTheModelIsAnErrorNotAFallThrough) {
 TEST(ModelLocator, NoModelAnywhereSaysWhatToDo) {
   const std::string message = errorOf({"", "", nullptr}, filesIn({}));
   ASSERT_FALSE(message.empty());
-  for (const char* hint : {"--models", "Segmentation.models_dir", "AMOS_MODELS", "./models", "../shared/models",
+  for (const char* hint : {"--models", "Segmentation.modelsDir", "AMOS_MODELS", "./models", "../shared/models",
                            "--mode geometry", "det.onnx, mask.onnx"})
     EXPECT_NE(message.find(hint), std::string::npos) << hint << " missing in: " << message;
 }

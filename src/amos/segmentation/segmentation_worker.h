@@ -30,7 +30,7 @@ struct SegmentationResult {
   std::uint64_t frame_id = 0;
   std::vector<SegmentedInstance> instances;
   cv::Mat mask;          // CV_8UC1 frame, 255 = prior dynamic object, undilated (what `segment` writes)
-  cv::Mat dilated_mask;  // mask grown by Segmentation.dilation_* (what removes keypoints)
+  cv::Mat dilated_mask;  // mask grown by Segmentation.dilationSize / dilationShape (what removes keypoints)
   double segment_ms = 0;  // time spent in the segmenter and mask operations
   double segment_cpu_ms = 0;  // CPU time of the segmenting thread in them (OpenCV single-threaded: all of it)
   double latency_ms = 0;  // from submit() to the result being ready, queueing included

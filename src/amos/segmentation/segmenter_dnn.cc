@@ -169,7 +169,7 @@ class NanoDetSelfieSegmenter : public Segmenter {
       throw core::Error(fmt::format("segmentation model {} fails on a test input: {}", detector_path_, e.what()));
     } catch (const core::Error& e) {
       throw core::Error(fmt::format("segmentation model {} is not a NanoDet-m {}x{} export (or cannot run on the "
-                                    "{} input shape; try Segmentation.input_shape: square): {}",
+                                    "{} input shape; try Segmentation.inputShape: square): {}",
                                     detector_path_, options_.input_size, options_.input_size, options_.input_shape,
                                     e.what()));
     }

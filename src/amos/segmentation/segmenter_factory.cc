@@ -37,7 +37,7 @@ const SegmenterBackend& SegmenterFactory::backend(const std::string& name) const
 
 std::unique_ptr<Segmenter> SegmenterFactory::create(const SegmenterOptions& options) const {
   options.check();
-  core::require(!options.models_dir.empty(), "Segmentation.models_dir must be resolved before creating a segmenter");
+  core::require(!options.models_dir.empty(), "Segmentation.modelsDir must be resolved before creating a segmenter");
   return backend(options.backend).create(options);
 }
 

@@ -47,7 +47,7 @@ TEST(SegmenterFactory, AnotherBackendFitsWithoutTouchingCallers) {
   EXPECT_EQ(segmenter->name(), "box_only:" + (dir / "box_only.onnx").string());
   EXPECT_EQ(segmenter->segment(cv::Mat(10, 20, CV_8UC3), cv::Mat()).size(), 1u);
 
-  // The settings file's Segmentation.models_dir is used when there is no --models.
+  // The settings file's Segmentation.modelsDir is used when there is no --models.
   options.models_dir = dir.string();
   EXPECT_NO_THROW(createSegmenter(options, ModelSources{}, factory));
   fs::remove_all(dir);

@@ -2,46 +2,58 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/segmentation/segmenter_classes.h"
 
 namespace amos::segmentation {
 
-using core::require;
-
 void MaskDilationOptions::check() const {
-  require(size >= 0 && size <= 255 && (size <= 1 || size % 2 == 1),
-          fmt::format("Segmentation.dilation_size must be 0, 1 or an odd number up to 255, got {}", size));
-  require(shape == "ellipse" || shape == "rect" || shape == "cross",
-          fmt::format("Segmentation.dilation_shape must be ellipse, rect or cross, got '{}'", shape));
+  core::requireOption(size >= 0 && size <= 255 && (size <= 1 || size % 2 == 1), core::option(size, "size"),
+                      fmt::format("must be 0, 1 or an odd number up to 255, got {}", size));
+  core::requireOption(shape == "ellipse" || shape == "rect" || shape == "cross", core::option(shape, "shape"),
+                      fmt::format("must be ellipse, rect or cross, got '{}'", shape));
 }
 
 void SegmenterOptions::check() const {
-  require(!backend.empty(), "Segmentation.backend must not be empty");
-  require(input_size == 320 || input_size == 416,
-          fmt::format("Segmentation.input_size must be 320 or 416 (the available NanoDet exports), got {}", input_size));
-  require(input_shape == "frame" || input_shape == "square",
-          fmt::format("Segmentation.input_shape must be frame or square, got '{}'", input_shape));
-  require(mask_input_size >= 64 && mask_input_size <= 256 && mask_input_size % 32 == 0,
-          fmt::format("Segmentation.mask_input_size must be a multiple of 32 in [64, 256], got {}", mask_input_size));
-  require(score_threshold > 0.f && score_threshold < 1.f,
-          fmt::format("Segmentation.score_threshold must be in (0, 1), got {}", score_threshold));
-  require(nms_iou > 0.f && nms_iou <= 1.f, fmt::format("Segmentation.nms_iou must be in (0, 1], got {}", nms_iou));
-  require(!classes.empty(), "Segmentation.classes must name at least one class (e.g. [person])");
-  for (const auto& name : classes) cocoClassId(name);  // throws naming Segmentation.classes
-  require(box_widen_x >= 0.f && box_widen_x <= 1.f,
-          fmt::format("Segmentation.box_widen_x must be in [0, 1], got {}", box_widen_x));
-  require(box_widen_y >= 0.f && box_widen_y <= 1.f,
-          fmt::format("Segmentation.box_widen_y must be in [0, 1], got {}", box_widen_y));
-  require(mask_threshold > 0.f && mask_threshold < 1.f,
-          fmt::format("Segmentation.mask_threshold must be in (0, 1), got {}", mask_threshold));
-  require(border_crop_aspect >= 0.f && border_crop_aspect <= 2.f,
-          fmt::format("Segmentation.border_crop_aspect must be in [0, 2], got {}", border_crop_aspect));
-  require(min_mask_fill >= 0.f && min_mask_fill < 1.f,
-          fmt::format("Segmentation.min_mask_fill must be in [0, 1), got {}", min_mask_fill));
-  require(depth_tolerance > 0.f, fmt::format("Segmentation.depth_tolerance must be > 0 m, got {}", depth_tolerance));
-  require(max_instances >= 1, fmt::format("Segmentation.max_instances must be >= 1, got {}", max_instances));
-  require(threads >= 0 && threads <= 64, fmt::format("Segmentation.threads must be in [0, 64], got {}", threads));
+  core::requireOption(!backend.empty(), core::option(backend, "backend"), "must not be empty");
+  core::requireOption(input_size == 320 || input_size == 416, core::option(input_size, "input_size"),
+                      fmt::format("must be 320 or 416 (the available NanoDet exports), got {}", input_size));
+  core::requireOption(input_shape == "frame" || input_shape == "square", core::option(input_shape, "input_shape"),
+                      fmt::format("must be frame or square, got '{}'", input_shape));
+  core::requireOption(mask_input_size >= 64 && mask_input_size <= 256 && mask_input_size % 32 == 0,
+                      core::option(mask_input_size, "mask_input_size"),
+                      fmt::format("must be a multiple of 32 in [64, 256], got {}", mask_input_size));
+  core::requireOption(score_threshold > 0.f && score_threshold < 1.f, core::option(score_threshold, "score_threshold"),
+                      fmt::format("must be in (0, 1), got {}", score_threshold));
+  core::requireOption(nms_iou > 0.f && nms_iou <= 1.f, core::option(nms_iou, "nms_iou"),
+                      fmt::format("must be in (0, 1], got {}", nms_iou));
+  core::requireOption(!classes.empty(), core::option(classes, "classes"),
+                      "must name at least one class (e.g. [person])");
+  const auto& coco = cocoClassNames();
+  for (const auto& name : classes) {
+    core::requireOption(
+        std::find(coco.begin(), coco.end(), name) != coco.end(), core::option(classes, "classes"),
+        fmt::format("names an unknown class '{}' (COCO names as in coco.names, e.g. person, chair, dog, car)", name));
+  }
+  core::requireOption(box_widen_x >= 0.f && box_widen_x <= 1.f, core::option(box_widen_x, "box_widen_x"),
+                      fmt::format("must be in [0, 1], got {}", box_widen_x));
+  core::requireOption(box_widen_y >= 0.f && box_widen_y <= 1.f, core::option(box_widen_y, "box_widen_y"),
+                      fmt::format("must be in [0, 1], got {}", box_widen_y));
+  core::requireOption(mask_threshold > 0.f && mask_threshold < 1.f, core::option(mask_threshold, "mask_threshold"),
+                      fmt::format("must be in (0, 1), got {}", mask_threshold));
+  core::requireOption(border_crop_aspect >= 0.f && border_crop_aspect <= 2.f,
+                      core::option(border_crop_aspect, "border_crop_aspect"),
+                      fmt::format("must be in [0, 2], got {}", border_crop_aspect));
+  core::requireOption(min_mask_fill >= 0.f && min_mask_fill < 1.f, core::option(min_mask_fill, "min_mask_fill"),
+                      fmt::format("must be in [0, 1), got {}", min_mask_fill));
+  core::requireOption(depth_tolerance > 0.f, core::option(depth_tolerance, "depth_tolerance"),
+                      fmt::format("must be > 0 m, got {}", depth_tolerance));
+  core::requireAtLeast(max_instances, "max_instances", 1);
+  core::requireOption(threads >= 0 && threads <= 64, core::option(threads, "threads"),
+                      fmt::format("must be in [0, 64], got {}", threads));
   dilation.check();
 }
 

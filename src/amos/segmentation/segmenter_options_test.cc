@@ -32,31 +32,31 @@ TEST(SegmenterOptions, DefaultsAreValidAndMatchThePaper) {
   EXPECT_EQ(options.mask_input_size, 160);
 }
 
-TEST(SegmenterOptions, ErrorsNameTheKey) {
+TEST(SegmenterOptions, ErrorsNameTheMember) {
   const std::pair<std::string, std::function<void(SegmenterOptions&)>> cases[] = {
-      {"Segmentation.backend", [](SegmenterOptions& o) { o.backend.clear(); }},
-      {"Segmentation.input_size", [](SegmenterOptions& o) { o.input_size = 300; }},
-      {"Segmentation.input_shape", [](SegmenterOptions& o) { o.input_shape = "round"; }},
-      {"Segmentation.mask_input_size", [](SegmenterOptions& o) { o.mask_input_size = 100; }},
-      {"Segmentation.mask_input_size", [](SegmenterOptions& o) { o.mask_input_size = 288; }},
-      {"Segmentation.score_threshold", [](SegmenterOptions& o) { o.score_threshold = 1.5f; }},
-      {"Segmentation.nms_iou", [](SegmenterOptions& o) { o.nms_iou = 0.f; }},
-      {"Segmentation.classes", [](SegmenterOptions& o) { o.classes = {"person", "unicorn"}; }},
-      {"Segmentation.classes", [](SegmenterOptions& o) { o.classes.clear(); }},
-      {"Segmentation.box_widen_x", [](SegmenterOptions& o) { o.box_widen_x = -0.1f; }},
-      {"Segmentation.box_widen_y", [](SegmenterOptions& o) { o.box_widen_y = 2.f; }},
-      {"Segmentation.mask_threshold", [](SegmenterOptions& o) { o.mask_threshold = 1.f; }},
-      {"Segmentation.border_crop_aspect", [](SegmenterOptions& o) { o.border_crop_aspect = -1.f; }},
-      {"Segmentation.min_mask_fill", [](SegmenterOptions& o) { o.min_mask_fill = 1.f; }},
-      {"Segmentation.depth_tolerance", [](SegmenterOptions& o) { o.depth_tolerance = 0.f; }},
-      {"Segmentation.max_instances", [](SegmenterOptions& o) { o.max_instances = 0; }},
-      {"Segmentation.threads", [](SegmenterOptions& o) { o.threads = -1; }},
-      {"Segmentation.dilation_size", [](SegmenterOptions& o) { o.dilation.size = 30; }},
-      {"Segmentation.dilation_shape", [](SegmenterOptions& o) { o.dilation.shape = "disc"; }},
+      {"backend", [](SegmenterOptions& o) { o.backend.clear(); }},
+      {"input_size", [](SegmenterOptions& o) { o.input_size = 300; }},
+      {"input_shape", [](SegmenterOptions& o) { o.input_shape = "round"; }},
+      {"mask_input_size", [](SegmenterOptions& o) { o.mask_input_size = 100; }},
+      {"mask_input_size", [](SegmenterOptions& o) { o.mask_input_size = 288; }},
+      {"score_threshold", [](SegmenterOptions& o) { o.score_threshold = 1.5f; }},
+      {"nms_iou", [](SegmenterOptions& o) { o.nms_iou = 0.f; }},
+      {"classes", [](SegmenterOptions& o) { o.classes = {"person", "unicorn"}; }},
+      {"classes", [](SegmenterOptions& o) { o.classes.clear(); }},
+      {"box_widen_x", [](SegmenterOptions& o) { o.box_widen_x = -0.1f; }},
+      {"box_widen_y", [](SegmenterOptions& o) { o.box_widen_y = 2.f; }},
+      {"mask_threshold", [](SegmenterOptions& o) { o.mask_threshold = 1.f; }},
+      {"border_crop_aspect", [](SegmenterOptions& o) { o.border_crop_aspect = -1.f; }},
+      {"min_mask_fill", [](SegmenterOptions& o) { o.min_mask_fill = 1.f; }},
+      {"depth_tolerance", [](SegmenterOptions& o) { o.depth_tolerance = 0.f; }},
+      {"max_instances", [](SegmenterOptions& o) { o.max_instances = 0; }},
+      {"threads", [](SegmenterOptions& o) { o.threads = -1; }},
+      {"size", [](SegmenterOptions& o) { o.dilation.size = 30; }},
+      {"shape", [](SegmenterOptions& o) { o.dilation.shape = "disc"; }},
   };
-  for (const auto& [key, change] : cases) {
+  for (const auto& [member, change] : cases) {
     const std::string message = checkError(change);
-    EXPECT_NE(message.find(key), std::string::npos) << "expected an error naming " << key << ", got: " << message;
+    EXPECT_EQ(message.rfind(member + " ", 0), 0u) << "expected an error naming " << member << ", got: " << message;
   }
   EXPECT_EQ(checkError([](SegmenterOptions& o) { o.dilation.size = 0; }), "");
   EXPECT_EQ(checkError([](SegmenterOptions& o) { o.classes = movableCocoClasses(); }), "");

@@ -1,8 +1,10 @@
 #include "amos/tracking/relocalizer.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/match/brute_force_search.h"
 #include "amos/match/pose_from_matches.h"
 #include "amos/match/projection_search.h"
@@ -10,10 +12,11 @@
 namespace amos::tracking {
 
 void RelocalizerOptions::check() const {
-  core::require(num_candidates >= 1, "Relocalization.candidates must be >= 1");
-  core::require(min_matches >= 6, "Relocalization.minMatches must be >= 6");
-  core::require(match_ratio > 0 && match_ratio <= 1, "Relocalization.matchRatio must be in (0, 1]");
-  core::require(min_inliers >= 10, "Relocalization.minInliers must be >= 10");
+  core::requireAtLeast(num_candidates, "num_candidates", 1);
+  core::requireAtLeast(min_matches, "min_matches", 6);
+  core::requireOption(match_ratio > 0 && match_ratio <= 1, core::option(match_ratio, "match_ratio"),
+                      fmt::format("must be in (0, 1], got {}", match_ratio));
+  core::requireAtLeast(min_inliers, "min_inliers", 10);
   pnp.check();
 }
 
