@@ -120,6 +120,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     parseCameraSpec(options.camera);  // a wrong --camera is an error before any model is loaded
   }
   const std::string gt_file = index ? index->groundtruth_file : std::string();
+  if (index && !index->association.file.empty()) result.info.association = index->association;
   result.slam = std::make_unique<system::SlamSystem>(slamOptionsFromSettings(settings, options.deterministic));
   result.pipeline = makeDynamicPipeline(settings, options, *result.slam);
   std::optional<eval::GroundTruthMasks> truth_masks;

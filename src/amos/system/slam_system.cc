@@ -6,6 +6,7 @@
 #include <shared_mutex>
 
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 
 namespace amos::system {
 
@@ -16,7 +17,7 @@ void SlamOptions::check() const {
   tracking.check();
   mapping.check();
   loop.check();
-  core::require(covisibility.min_weight >= 1, "Mapping.covisibilityMinWeight must be >= 1");
+  core::requireAtLeast(covisibility.min_weight, "covisibility.min_weight", 1);
 }
 
 SlamSystem::SlamSystem(const SlamOptions& options)
