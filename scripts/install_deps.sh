@@ -4,7 +4,7 @@
 set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libopencv-dev libopencv-contrib-dev libceres-dev libpng-dev
+  libeigen3-dev libopencv-dev libopencv-contrib-dev libceres-dev libpng-dev libdeflate-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev ccache
   libopenni2-dev

@@ -1,0 +1,60 @@
+#pragma once
+// A PNG reader that gives exactly what cv::imread gives, faster on the PNGs datasets use: the zlib stream is
+// inflated by libdeflate (2-3x faster than zlib's inflate, which dominates cv::imread's cost) and the rows are
+// un-filtered here.
+//
+// Decoded here, with cv::IMREAD_COLOR or cv::IMREAD_UNCHANGED (either may carry cv::IMREAD_IGNORE_ORIENTATION):
+// non-interlaced PNGs of bit depth 8 or 16 in colour type grey, grey+alpha, RGB or RGBA, giving
+//   IMREAD_COLOR      CV_8UC3 BGR: RGB swapped, alpha dropped, grey replicated, 16-bit samples cut to their high
+//                     byte (as libpng's png_set_strip_16, which cv::imread uses)
+//   IMREAD_UNCHANGED  grey: CV_8UC1 / CV_16UC1; RGB: CV_8UC3 / CV_16UC3 BGR; RGBA and grey+alpha: CV_8UC4 /
+//                     CV_16UC4 BGRA (grey replicated); 16-bit samples in host byte order (PNG's are big-endian)
+//
+// Handed to OpenCV (cv::imread for a file, cv::imdecode for bytes), so that the result is still cv::imread's:
+// other flags; interlaced, palette and 1/2/4-bit PNGs; a tRNS chunk; an eXIf chunk when the orientation would be
+// applied; critical chunks other than IHDR/IDAT/IEND; IDAT chunks that are not consecutive; sizes beyond libpng's
+// and OpenCV's limits; a zlib stream that libdeflate rejects although the CRCs are right, or that inflates to more
+// than the image needs (zlib has the last word); bytes that are not a PNG (OpenCV decodes another format, and gives
+// an empty Mat for anything else); every PNG when the build has no libdeflate (AMOS_WITH_LIBDEFLATE off).
+//
+// Rejected here, because libpng rejects them too: a missing or empty file; a truncated file (it ends before IEND);
+// a CRC mismatch in IHDR, IDAT or IEND; an invalid IHDR; no IDAT; image data that is too short or un-filters with
+// an invalid filter type. The result is then an empty Mat, as from cv::imread (the caller reports it, e.g.
+// loadRgbdFrame's core::Error naming the file); readPng also logs a warning naming the file and the problem.
+// Every length is checked before it is used. The CRCs of the critical chunks are checked (libdeflate_crc32, about
+// 50 us for a 440 kB frame, 2 % of its decoding; libpng checks them too); those of ancillary chunks are not: such
+// chunks are skipped, as libpng skips them after a warning.
+//
+// Thread-safe: each thread has its own libdeflate decompressor and scratch buffers (thread_local; the buffers grow
+// to the largest PNG the thread read, 2.3 MB for a 640x480 RGB frame, and are freed beyond 64 MB).
+#include <opencv2/core.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace amos::io {
+
+// How decodePng / readPng got their result.
+enum class PngRoute {
+  decoded,   // decoded here with libdeflate
+  opencv,    // handed to cv::imdecode / cv::imread (see above for when)
+  rejected,  // not decodable (see above): the result is empty
+};
+
+struct PngReadInfo {
+  PngRoute route = PngRoute::opencv;
+  std::string reason;  // why it went to OpenCV or was rejected; empty when decoded here
+};
+
+// True when this build decodes PNGs here (AMOS_WITH_LIBDEFLATE); false when every PNG goes to OpenCV.
+bool pngFastPathAvailable();
+
+// The image cv::imdecode(bytes, imread_flags) gives, for `size` bytes at `data` (empty when size is 0). `info`, when
+// given, receives the route and its reason.
+cv::Mat decodePng(const std::uint8_t* data, std::size_t size, int imread_flags, PngReadInfo* info = nullptr);
+
+// The image cv::imread(path, imread_flags) gives (see above); logs a warning naming `path` when it is rejected.
+cv::Mat readPng(const std::string& path, int imread_flags, PngReadInfo* info = nullptr);
+
+}  // namespace amos::io
