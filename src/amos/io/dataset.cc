@@ -15,6 +15,7 @@
 
 #include "amos/core/bounded_queue.h"
 #include "amos/core/error.h"
+#include "amos/io/png_reader.h"
 #include "amos/io/text_lines.h"
 
 namespace amos::io {
@@ -146,12 +147,12 @@ RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& optio
   frame.index = index;
   frame.timestamp = entry.t_rgb;
   frame.rgb_file = entry.rgb_file;
-  frame.bgr = cv::imread(entry.rgb_file, cv::IMREAD_COLOR);
+  frame.bgr = readPng(entry.rgb_file, cv::IMREAD_COLOR);
   core::require(!frame.bgr.empty(), fmt::format("cannot read colour image '{}'", entry.rgb_file));
   core::require(frame.bgr.cols == options.width && frame.bgr.rows == options.height,
                 fmt::format("colour image '{}' is {}x{}, the settings say {}x{}", entry.rgb_file, frame.bgr.cols,
                             frame.bgr.rows, options.width, options.height));
-  const cv::Mat raw = cv::imread(entry.depth_file, cv::IMREAD_UNCHANGED);
+  const cv::Mat raw = readPng(entry.depth_file, cv::IMREAD_UNCHANGED);
   core::require(!raw.empty(), fmt::format("cannot read depth image '{}'", entry.depth_file));
   core::require(raw.channels() == 1 && (raw.depth() == CV_16U || raw.depth() == CV_32F),
                 fmt::format("depth image '{}' is {}-bit with {} channel(s); expected a 16-bit single-channel PNG",
