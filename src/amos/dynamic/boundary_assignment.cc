@@ -299,4 +299,12 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
   return seeds;
 }
 
+SuperpixelGraph superpixelGraph(const SuperpixelSegmentation& segmentation, const cv::Mat& depth,
+                                double depth_edge_ratio) {
+  SuperpixelGraph graph;
+  graph.neighbours = superpixelNeighbours(segmentation.labels, static_cast<int>(segmentation.superpixels.size()));
+  graph.occlusion_edges = occlusionEdges(segmentation.labels, graph.neighbours, depth, depth_edge_ratio);
+  return graph;
+}
+
 }  // namespace amos::dynamic

@@ -115,4 +115,14 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& superpixel_labels, const
                                          const std::vector<TrackEvidence>& tracks, double static_px,
                                          double epipolar_px, const SeedOptions& options = {});
 
+// What the mask building needs of a frame's superpixels that depends on the frame alone: their adjacency
+// (superpixelNeighbours) and which shared borders are occlusion edges (occlusionEdges). A pipeline that prepares
+// frames ahead computes it with the partition, off the sequential path (GeometricPartition::graph).
+struct SuperpixelGraph {
+  std::vector<std::vector<int>> neighbours;
+  std::vector<std::vector<bool>> occlusion_edges;
+};
+SuperpixelGraph superpixelGraph(const SuperpixelSegmentation& segmentation, const cv::Mat& depth,
+                                double depth_edge_ratio);
+
 }  // namespace amos::dynamic

@@ -3,8 +3,10 @@
 // cluster is a compact piece of the scene (neighbouring superpixels at similar depth) whose superpixels are
 // assumed to share one motion. Deterministic: k-means++ seeding from a fixed seed, then Lloyd iterations.
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
+#include "amos/dynamic/boundary_assignment.h"
 #include "amos/dynamic/depth_slic.h"
 
 namespace amos::dynamic {
@@ -47,6 +49,9 @@ struct GeometricPartition {
   SuperpixelSegmentation segmentation;  // Superpixel::cluster filled in
   cv::Mat cluster_map;                  // CV_32S cluster of every pixel
   double superpixel_ms = 0, cluster_ms = 0;  // time the two steps took
+  // Adjacency and occlusion edges of the superpixels, when computed ahead with the partition (else the mask
+  // building computes them).
+  std::optional<SuperpixelGraph> graph;
 };
 GeometricPartition computeGeometricPartition(const cv::Mat& bgr, const cv::Mat& depth,
                                              const DepthSlicOptions& superpixel_options,

@@ -90,9 +90,13 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
-                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options) {
+                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
+                                     const SuperpixelGraph* graph) {
   const int count = static_cast<int>(segmentation.superpixels.size());
-  const auto neighbours = superpixelNeighbours(segmentation.labels, count);
+  SuperpixelGraph computed;
+  if (graph == nullptr) computed = superpixelGraph(segmentation, depth, options.reprojection.depth_edge_ratio);
+  const SuperpixelGraph& g = graph != nullptr ? *graph : computed;
+  const auto& neighbours = g.neighbours;
   const std::vector<RegionLabel> seeds =
       seedSuperpixels(segmentation.labels, segmentation.superpixels, neighbours, border, dynamic_cluster, evidence,
                       static_bar_px, options.epipolar.dynamic_threshold_px,
@@ -102,8 +106,7 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
     may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
   const std::vector<RegionLabel> labels =
       growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,
-                  options.superpixel.depth_scale_m,
-                  occlusionEdges(segmentation.labels, neighbours, depth, options.reprojection.depth_edge_ratio));
+                  options.superpixel.depth_scale_m, g.occlusion_edges);
   std::vector<bool> dynamic(count);
   for (int s = 0; s < count; ++s) dynamic[s] = labels[s] == RegionLabel::kDynamic;
   return dynamic;
@@ -126,8 +129,9 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
     const std::vector<TrackEvidence> evidence =
         seedingEvidence(tracks, candidates.lifted, confirmation.residuals, epipolar.distance_px, in.last_depth,
                         in.depth, segmentation, confirmation.static_bar_px, options);
-    out.dynamic_superpixel = dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence,
-                                                confirmation.static_bar_px, seed_outside, in.depth, options);
+    out.dynamic_superpixel =
+        dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
+                           seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);

@@ -37,10 +37,12 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 // Per superpixel, whether it is dynamic: seeds from the evidence (seedSuperpixels; also away from the dynamic
 // clusters with seed_outside), then seeded region growing (growRegions) that may enter a superpixel as dynamic only
 // in a dynamic cluster or from a dynamic seed, and never across an occlusion edge of depth (CV_32F metres).
+// `graph`: the superpixels' adjacency and occlusion edges when computed ahead (null: computed here).
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
-                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options);
+                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
+                                     const SuperpixelGraph* graph = nullptr);
 
 struct DynamicMask {
   cv::Mat mask;                          // CV_8U, 255 = dynamic

@@ -65,6 +65,9 @@ FramePartition partitionFrame(const io::RgbdFrame& frame, const dynamic::Dynamic
   const double cpu_start = core::threadCpuMs();
   FramePartition out;
   out.partition = dynamic::computeGeometricPartition(frame.bgr, frame.depth, options.superpixel, options.cluster);
+  // The mask building's frame-only part too, so that stage B does not wait for it.
+  out.partition.graph =
+      dynamic::superpixelGraph(out.partition.segmentation, frame.depth, options.reprojection.depth_edge_ratio);
   out.cpu_ms = core::threadCpuMs() - cpu_start;
   return out;
 }
