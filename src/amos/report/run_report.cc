@@ -1,11 +1,13 @@
 #include "amos/report/run_report.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <cstdio>
+#include <iterator>
 #include <filesystem>
-#include <fstream>
 
 #include "amos/core/error.h"
+#include "amos/io/atomic_file.h"
 #include "amos/io/trajectory.h"
 
 namespace amos::report {
@@ -72,16 +74,11 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
 }
 
 void writeMapPly(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
-  std::ofstream out(path);
-  core::require(out.good(), "cannot write " + path);
-  out << "ply\nformat ascii 1.0\ncomment Amos-SLAM map points (world frame, metres)\n";
-  out << "element vertex " << points.size() << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
-  char line[96];
-  for (const auto& p : points) {
-    std::snprintf(line, sizeof(line), "%.6f %.6f %.6f\n", p.x(), p.y(), p.z());
-    out << line;
-  }
-  core::require(out.good(), "error while writing " + path);
+  std::string text = "ply\nformat ascii 1.0\ncomment Amos-SLAM map points (world frame, metres)\n";
+  text += "element vertex " + std::to_string(points.size()) +
+          "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  for (const auto& p : points) fmt::format_to(std::back_inserter(text), "{:.6f} {:.6f} {:.6f}\n", p.x(), p.y(), p.z());
+  io::writeFileAtomically(path, text);
 }
 
 void writeRunOutputs(const std::string& dir, const system::SlamSystem& slam, const RunInfo& info) {
@@ -92,11 +89,7 @@ void writeRunOutputs(const std::string& dir, const system::SlamSystem& slam, con
   io::writeTumTrajectory((d / "trajectory.txt").string(), slam.trajectory());
   io::writeTumTrajectory((d / "keyframes.txt").string(), slam.keyframeTrajectory());
   writeMapPly((d / "map.ply").string(), slam.mapPointPositions());
-  const std::string stats_path = (d / "stats.json").string();
-  std::ofstream out(stats_path);
-  core::require(out.good(), "cannot write " + stats_path);
-  out << statsJson(slam.stats(), slam.times(), info).dump(2) << "\n";
-  core::require(out.good(), "error while writing " + stats_path);
+  io::writeFileAtomically((d / "stats.json").string(), statsJson(slam.stats(), slam.times(), info).dump(2) + "\n");
 }
 
 }  // namespace amos::report

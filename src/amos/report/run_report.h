@@ -7,6 +7,8 @@
 //                   ATE / RPE when the sequence has ground truth, and the dynamic mask's pixel precision / recall /
 //                   IoU when it has ground-truth mover masks, and where the frames came from ("source": kind,
 //                   frames delivered / processed / dropped, latency from a frame's arrival to its pose)
+// Each file is written under a temporary name and renamed (io/atomic_file.h): a killed run never leaves a
+// half-written one.
 #include <nlohmann/json.hpp>
 
 #include <optional>
