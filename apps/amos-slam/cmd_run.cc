@@ -20,6 +20,7 @@
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/report/output_folder.h"
 #include "amos/report/run_report.h"
 #include "amos/report/sequence_run.h"
 #include "commands.h"
@@ -29,7 +30,7 @@ namespace {
 
 struct RunArgs {
   std::string sequence, config, output, mode = "full", models, camera, record;
-  bool deterministic = false, save_masks = false, realtime = false;
+  bool deterministic = false, save_masks = false, realtime = false, overwrite = false;
   std::size_t max_frames = 0, overlays = 8;
 };
 
@@ -91,6 +92,8 @@ void runSlam(const RunArgs& args, int& exit_code) {
   core::require(!args.sequence.empty() || !args.camera.empty(),
                 "run: give --sequence DIR (a recorded sequence) or --camera openni2[:URI] (a live camera)");
   const config::Settings settings = config::loadSettings(args.config);
+  // Before anything else runs (models, the camera, the first frame): a wrong --output is found at once.
+  report::prepareOutputFolder(args.output, args.overwrite);
   const bool tty = isatty(fileno(stderr)) != 0;
   report::SequenceRunOptions options;
   options.source = !args.camera.empty() ? report::FrameSourceKind::kCamera
@@ -162,7 +165,12 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                   "Also write every processed frame to this folder in TUM layout (rgb/, depth/ at the config's "
                   "DepthMapFactor, rgb.txt, depth.txt), to replay and evaluate later");
   cmd->add_option("--config", args->config, "Settings file (configs/*.yaml)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--output", args->output, "Output folder (created if needed)")->required();
+  cmd->add_option("--output", args->output,
+                  "Output folder (created if needed; checked for writing before anything else runs)")
+      ->required();
+  cmd->add_flag("--overwrite", args->overwrite,
+                "Replace an earlier run in --output: its trajectory.txt, keyframes.txt, map.ply, stats.json, masks/ "
+                "and overlays/ are removed first (nothing else). Without it such a folder is refused");
   cmd->add_option("--mode", args->mode, "Dynamic front end: none (plain SLAM) | prior (person masks) | geometry (superpixel clusters + epipolar) | full (both, default)")
       ->check(CLI::IsMember({"none", "prior", "geometry", "full"}));
   cmd->add_option("--models", args->models, "Folder with the segmentation models");
