@@ -5,6 +5,7 @@
 // ATE / RPE when the sequence has ground truth and the dynamic mask's pixel precision / recall / IoU when it has
 // ground-truth mover masks. All work is in amos::report / amos::system.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
@@ -30,7 +32,7 @@ namespace {
 
 struct RunArgs {
   std::string sequence, config, output, mode = "full", models, camera, record;
-  bool deterministic = false, save_masks = false, realtime = false, overwrite = false;
+  bool deterministic = false, save_masks = false, realtime = false, overwrite = false, strict = false;
   std::size_t max_frames = 0, overlays = 8;
 };
 
@@ -55,6 +57,20 @@ void printSource(const report::SourceReport& src) {
   std::cout << "\n";
 }
 
+// Frames skipped as unreadable (by reason) and depth dropouts, when there were any.
+void printDamagedInput(const report::RunInfo& info) {
+  const io::SkippedFrames& skipped = info.skipped_frames;
+  const report::DepthDropouts& dropouts = info.depth_dropouts;
+  if (skipped.total() == 0 && dropouts.frames == 0) return;
+  std::vector<std::string> reasons;
+  for (const io::FrameProblem problem : io::kFrameProblems) {
+    if (skipped.count(problem) > 0) reasons.push_back(fmt::format("{} {}", io::frameProblemName(problem), skipped.count(problem)));
+  }
+  std::cout << fmt::format("skipped frames {}{};  depth dropouts {} (tracked {}, lost {})\n", skipped.total(),
+                           reasons.empty() ? "" : " (" + fmt::format("{}", fmt::join(reasons, ", ")) + ")",
+                           dropouts.frames, dropouts.tracked, dropouts.lost);
+}
+
 void printSummary(const report::SequenceRunResult& r, const std::string& output) {
   const system::SlamStats s = r.slam->stats();
   const auto stages = r.slam->times().summary();
@@ -68,6 +84,7 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
                            median("frame.extract"), median("frame.track"), median("frame.total"), r.info.wall_time_s,
                            r.info.wall_time_s > 0 ? s.frames / r.info.wall_time_s : 0.0);
   if (r.info.source) printSource(*r.info.source);
+  printDamagedInput(r.info);
   if (r.info.evaluation) {
     const auto& e = *r.info.evaluation;
     std::cout << fmt::format("ATE RMSE {:.4f} m ({} poses)", e.ate_rmse_m, e.ate_pairs);
@@ -105,6 +122,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   options.config_label = args.config;
   options.mode = args.mode;
   options.deterministic = args.deterministic;
+  options.strict = args.strict;
   options.max_frames = args.max_frames;
   options.models_dir = args.models;
   if (args.save_masks) options.masks_output_dir = args.output;
@@ -176,6 +194,9 @@ void addRunCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--models", args->models, "Folder with the segmentation models");
   cmd->add_flag("--deterministic", args->deterministic,
                 "Bit-identical runs: local mapping in lock-step with tracking");
+  cmd->add_flag("--strict", args->strict,
+                "A frame that cannot be read (missing, unreadable, wrong size, depth not 16-bit) is an error that "
+                "ends the run; by default it is skipped with a warning and counted in stats.json");
   cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)");
   cmd->add_flag("--save-masks", args->save_masks,
                 "Also write every frame's dynamic mask (masks/<rgb stamp>.png, 255 = dynamic) and overlays of a few "

@@ -70,6 +70,13 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
   if (info.evaluation) j["evaluation"] = eval::toJson(*info.evaluation);
   if (info.mask_accuracy) j["mask_accuracy"] = eval::toJson(*info.mask_accuracy);
   if (info.source) j["source"] = toJson(*info.source);
+  nlohmann::json skipped = nlohmann::json::object();
+  for (const io::FrameProblem problem : io::kFrameProblems)
+    skipped[io::frameProblemName(problem)] = info.skipped_frames.count(problem);
+  j["skipped_frames"] = skipped;
+  j["depth_dropouts"] = {{"frames", info.depth_dropouts.frames},
+                         {"tracked", info.depth_dropouts.tracked},
+                         {"lost", info.depth_dropouts.lost}};
   return j;
 }
 

@@ -6,7 +6,8 @@
 //   stats.json      frame counts, map size, median / p95 ms per stage and per frame, wall time, frames per second,
 //                   ATE / RPE when the sequence has ground truth, and the dynamic mask's pixel precision / recall /
 //                   IoU when it has ground-truth mover masks, and where the frames came from ("source": kind,
-//                   frames delivered / processed / dropped, latency from a frame's arrival to its pose)
+//                   frames delivered / processed / dropped, latency from a frame's arrival to its pose), the
+//                   frames skipped as unreadable by reason ("skipped_frames") and the depth dropouts
 // Each file is written under a temporary name and renamed (io/atomic_file.h): a killed run never leaves a
 // half-written one.
 #include <nlohmann/json.hpp>
@@ -17,6 +18,7 @@
 
 #include "amos/eval/evaluate.h"
 #include "amos/eval/mask_metrics.h"
+#include "amos/io/frame_source.h"
 #include "amos/system/slam_system.h"
 
 namespace amos::report {
@@ -28,6 +30,12 @@ struct SourceReport {
   // Per processed frame: from the moment it became available to the moment process() returned its pose, in ms.
   std::vector<double> latency_ms;
   std::string recorded_to;  // --record folder ("" = none)
+};
+
+// Processed frames whose depth image was a sensor dropout (io::RgbdFrame::depth_dropout), and how tracking did on
+// them from their colour images alone.
+struct DepthDropouts {
+  std::size_t frames = 0, tracked = 0, lost = 0;  // tracked + lost <= frames (before the map exists: neither)
 };
 
 struct RunInfo {
@@ -45,6 +53,8 @@ struct RunInfo {
   // Time spent on --save-masks outputs and mask scoring (not part of wall_time_s).
   double mask_outputs_s = 0;
   std::optional<SourceReport> source;  // absent when the caller did not read frames from a FrameSource
+  io::SkippedFrames skipped_frames;    // frames the source could not read, by reason
+  DepthDropouts depth_dropouts;
 };
 
 nlohmann::json toJson(const SourceReport& source);

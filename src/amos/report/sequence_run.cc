@@ -126,13 +126,15 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   std::optional<io::SequenceRecorder> recorder;
   if (!options.record_dir.empty()) recorder.emplace(options.record_dir, settings.depth_factor);
   // Created last, just before the loop: a paced or live source starts its clock at once.
+  io::ReaderOptions reader_options = settings.readerOptions();
+  reader_options.strict = options.strict;
   std::unique_ptr<io::FrameSource> source;
   switch (options.source) {
     case FrameSourceKind::kFolder:
-      source = std::make_unique<io::SequenceReader>(std::move(*index), settings.readerOptions());
+      source = std::make_unique<io::SequenceReader>(std::move(*index), reader_options);
       break;
     case FrameSourceKind::kRealtime:
-      source = std::make_unique<io::RealtimeReplay>(std::move(*index), settings.readerOptions());
+      source = std::make_unique<io::RealtimeReplay>(std::move(*index), reader_options);
       break;
     case FrameSourceKind::kCamera:
       source = openCamera(settings, options.camera);
@@ -165,6 +167,12 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     const io::RgbdFrame& frame = out.frame;
     source_report.latency_ms.push_back(msSince(frame.arrival));
     ++n;
+    if (frame.depth_dropout) {
+      DepthDropouts& d = result.info.depth_dropouts;
+      ++d.frames;
+      d.tracked += out.slam.track.state == tracking::TrackingState::kOk;
+      d.lost += out.slam.track.state == tracking::TrackingState::kLost;
+    }
     if (recorder) recorder->add(frame);
     core::Stopwatch outputs;
     cv::Mat truth;
@@ -184,6 +192,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   const io::SourceStats stats = source->stats();
   source_report.delivered = stats.delivered;
   source_report.dropped = stats.dropped;
+  result.info.skipped_frames = stats.skipped;
   source_report.processed = n;
   source.reset();  // a live device is closed here
   result.info.source = std::move(source_report);

@@ -63,6 +63,9 @@ struct SequenceRunOptions {
   std::string mode = "none";   // dynamic front end: none | prior | geometry | full (the CLI defaults to full)
   std::string models_dir;      // --models: segmentation model folder (see segmentation/model_locator.h)
   bool deterministic = false;
+  // --strict: a frame that cannot be read ends the run with that error (io::ReaderOptions::strict); by default it
+  // is skipped and counted (RunInfo::skipped_frames).
+  bool strict = false;
   std::size_t max_frames = 0;  // 0 = all
   // --save-masks: write every frame's final dynamic mask to <masks_output_dir>/masks/ and overlays of
   // overlay_count evenly spaced frames to <masks_output_dir>/overlays/ (see mask_outputs.h). "" = do not.
