@@ -64,7 +64,8 @@ void printDamagedInput(const report::RunInfo& info) {
   if (skipped.total() == 0 && dropouts.frames == 0) return;
   std::vector<std::string> reasons;
   for (const io::FrameProblem problem : io::kFrameProblems) {
-    if (skipped.count(problem) > 0) reasons.push_back(fmt::format("{} {}", io::frameProblemName(problem), skipped.count(problem)));
+    if (skipped.count(problem) > 0)
+      reasons.push_back(fmt::format("{} {}", io::frameProblemName(problem), skipped.count(problem)));
   }
   std::cout << fmt::format("skipped frames {}{};  depth dropouts {} (tracked {}, lost {})\n", skipped.total(),
                            reasons.empty() ? "" : " (" + fmt::format("{}", fmt::join(reasons, ", ")) + ")",
@@ -101,6 +102,10 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
         "per-frame medians {:.3f} / {:.3f} / {:.3f};  {:.2f}% of pixels marked\n",
         m.frames, m.frames_with_truth, m.precision, m.recall, m.iou, m.median_precision, m.median_recall,
         m.median_iou, 100.0 * m.dynamic_fraction);
+  }
+  if (r.info.end.status != report::RunEnd::Status::kComplete) {
+    std::cout << fmt::format("run {} after {} frames: {}; the outputs hold the frames processed until then\n",
+                             report::toString(r.info.end.status), s.frames, r.info.end.reason);
   }
   std::cout << "outputs written to " << output << "\n";
 }
@@ -159,6 +164,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   std::signal(SIGINT, SIG_DFL);
   report::writeRunOutputs(args.output, *result.slam, result.info);
   printSummary(result, args.output);
+  result.rethrowFailure();  // main() reports it (stderr) and exits non-zero, after the outputs are written
   exit_code = 0;
 }
 

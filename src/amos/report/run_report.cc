@@ -12,6 +12,15 @@
 
 namespace amos::report {
 
+const char* toString(RunEnd::Status status) {
+  switch (status) {
+    case RunEnd::Status::kComplete: return "complete";
+    case RunEnd::Status::kInterrupted: return "interrupted";
+    case RunEnd::Status::kFailed: return "failed";
+  }
+  return "?";
+}
+
 nlohmann::json toJson(const SourceReport& source) {
   nlohmann::json j = {{"kind", source.kind},
                       {"delivered", source.delivered},
@@ -32,6 +41,7 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
   j["config"] = info.config;
   j["mode"] = info.mode;
   j["deterministic"] = info.deterministic;
+  j["end"] = {{"status", toString(info.end.status)}, {"reason", info.end.reason}};
   j["frames"] = s.frames;
   j["tracked"] = s.tracked;
   j["lost"] = s.lost;

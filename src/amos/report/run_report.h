@@ -7,7 +7,8 @@
 //                   ATE / RPE when the sequence has ground truth, and the dynamic mask's pixel precision / recall /
 //                   IoU when it has ground-truth mover masks, and where the frames came from ("source": kind,
 //                   frames delivered / processed / dropped, latency from a frame's arrival to its pose), the
-//                   frames skipped as unreadable by reason ("skipped_frames") and the depth dropouts
+//                   frames skipped as unreadable by reason ("skipped_frames") and the depth dropouts, and how
+//                   the run ended ("end": status complete | interrupted | failed, reason)
 // Each file is written under a temporary name and renamed (io/atomic_file.h): a killed run never leaves a
 // half-written one.
 #include <nlohmann/json.hpp>
@@ -38,6 +39,17 @@ struct DepthDropouts {
   std::size_t frames = 0, tracked = 0, lost = 0;  // tracked + lost <= frames (before the map exists: neither)
 };
 
+// How a run ended: every frame processed (or --max-frames reached), stopped from outside (a signal), or ended by a
+// failure (an unreadable frame with --strict, a worker thread's error). The outputs are those of the frames
+// processed until then in every case.
+struct RunEnd {
+  enum class Status { kComplete, kInterrupted, kFailed };
+  Status status = Status::kComplete;
+  std::string reason;  // why it ended early ("SIGINT", the error's message); empty when complete
+};
+// "complete" | "interrupted" | "failed"
+const char* toString(RunEnd::Status status);
+
 struct RunInfo {
   std::string sequence, config, mode;
   bool deterministic = false;
@@ -55,6 +67,7 @@ struct RunInfo {
   std::optional<SourceReport> source;  // absent when the caller did not read frames from a FrameSource
   io::SkippedFrames skipped_frames;    // frames the source could not read, by reason
   DepthDropouts depth_dropouts;
+  RunEnd end;
 };
 
 nlohmann::json toJson(const SourceReport& source);

@@ -102,11 +102,25 @@ std::unique_ptr<io::FrameSource> openCamera(const config::Settings& settings, co
 #endif
 }
 
+std::string errorMessage(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "unknown error";
+  }
+}
+
 double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 
 }  // namespace
+
+void SequenceRunResult::rethrowFailure() const {
+  if (failure) std::rethrow_exception(failure);
+}
 
 SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options) {
   SequenceRunResult result;
@@ -119,7 +133,9 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     parseCameraSpec(options.camera);  // a wrong --camera is an error before any model is loaded
   }
   const std::string gt_file = index ? index->groundtruth_file : std::string();
-  result.slam = std::make_unique<system::SlamSystem>(slamOptionsFromSettings(settings, options.deterministic));
+  system::SlamOptions slam_options = slamOptionsFromSettings(settings, options.deterministic);
+  slam_options.after_keyframe = options.after_keyframe;
+  result.slam = std::make_unique<system::SlamSystem>(slam_options);
   result.pipeline = makeDynamicPipeline(settings, options, *result.slam);
   std::optional<eval::GroundTruthMasks> truth_masks;
   if (!live) truth_masks = eval::GroundTruthMasks::find(options.sequence_dir);
@@ -153,42 +169,78 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   std::size_t n = 0;
   auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
   system::DynamicPipeline& pipeline = *result.pipeline;
-  // Pushes the source's next frame into the pipeline's stage A: `wait` for one, or only one already waiting.
+  // Pushes the source's next frame into the pipeline's stage A: `wait` for one, or only one already waiting. A
+  // source error (a frame that cannot be read with --strict, the camera lost) ends the stream: the frames already
+  // pushed are still processed, then the run ends with that error.
+  std::exception_ptr source_failure;
   auto feed = [&](bool wait) {
-    std::optional<io::RgbdFrame> f = wait ? source->next() : source->poll();
+    if (source_failure) return;
+    std::optional<io::RgbdFrame> f;
+    try {
+      f = wait ? source->next() : source->poll();
+    } catch (...) {
+      source_failure = std::current_exception();
+    }
     if (f) pipeline.push(std::move(*f));
   };
-  feed(true);
-  while (pipeline.waiting() > 0 && !stopped()) {
-    // One frame of look-ahead: stage A of frame k+1 runs while frame k is in stage B. A paced source offers only
-    // the frame already waiting; the loop then waits for the next one after this frame.
-    if (pipeline.waiting() < 2) feed(!paced);
-    const system::DynamicFrameOutput out = pipeline.processNext();
-    const io::RgbdFrame& frame = out.frame;
-    source_report.latency_ms.push_back(msSince(frame.arrival));
-    ++n;
-    if (frame.depth_dropout) {
-      DepthDropouts& d = result.info.depth_dropouts;
-      ++d.frames;
-      d.tracked += out.slam.track.state == tracking::TrackingState::kOk;
-      d.lost += out.slam.track.state == tracking::TrackingState::kLost;
+  // Any other error from here on (a stage-A lane's or the mapping thread's failure) ends the loop like a stop does:
+  // what was processed so far is finished and kept.
+  std::exception_ptr failure;
+  bool interrupted = false;
+  try {
+    feed(true);
+    while (pipeline.waiting() > 0) {
+      if (stopped()) {
+        interrupted = true;
+        break;
+      }
+      // One frame of look-ahead: stage A of frame k+1 runs while frame k is in stage B. A paced source offers only
+      // the frame already waiting; the loop then waits for the next one after this frame.
+      if (pipeline.waiting() < 2) feed(!paced);
+      const system::DynamicFrameOutput out = pipeline.processNext();
+      const io::RgbdFrame& frame = out.frame;
+      source_report.latency_ms.push_back(msSince(frame.arrival));
+      ++n;
+      if (frame.depth_dropout) {
+        DepthDropouts& d = result.info.depth_dropouts;
+        ++d.frames;
+        d.tracked += out.slam.track.state == tracking::TrackingState::kOk;
+        d.lost += out.slam.track.state == tracking::TrackingState::kLost;
+      }
+      if (recorder) recorder->add(frame);
+      core::Stopwatch outputs;
+      cv::Mat truth;
+      if (truth_masks && (mask_writer || !out.dynamic_mask.empty())) {
+        if (const auto k = truth_masks->frameAt(frame.timestamp)) truth = truth_masks->moverMask(*k);
+      }
+      if (!truth.empty() && !out.dynamic_mask.empty()) mask_accuracy.add(out.dynamic_mask, truth);
+      if (mask_writer)
+        mask_writer->add(frame.index, frame.rgb_file, frame.bgr, out.dynamic_mask, out.prior_mask, truth);
+      outputs_ms += outputs.elapsedMs();
+      if (options.on_frame)
+        options.on_frame({frame.index + 1, source->size(), n, &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
+      if (options.max_frames > 0 && n >= options.max_frames) break;  // a live source has no end of its own
+      if (pipeline.waiting() == 0) feed(true);
     }
-    if (recorder) recorder->add(frame);
-    core::Stopwatch outputs;
-    cv::Mat truth;
-    if (truth_masks && (mask_writer || !out.dynamic_mask.empty())) {
-      if (const auto k = truth_masks->frameAt(frame.timestamp)) truth = truth_masks->moverMask(*k);
-    }
-    if (!truth.empty() && !out.dynamic_mask.empty()) mask_accuracy.add(out.dynamic_mask, truth);
-    if (mask_writer) mask_writer->add(frame.index, frame.rgb_file, frame.bgr, out.dynamic_mask, out.prior_mask, truth);
-    outputs_ms += outputs.elapsedMs();
-    if (options.on_frame)
-      options.on_frame({frame.index + 1, source->size(), n, &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
-    if (options.max_frames > 0 && n >= options.max_frames) break;  // a live source has no end of its own
-    if (pipeline.waiting() == 0) feed(true);
+  } catch (...) {
+    failure = std::current_exception();
   }
   result.pipeline->finish();
-  if (recorder) recorder->finish();
+  if (!failure) failure = source_failure;
+  if (!failure) failure = result.slam->workerFailure();  // e.g. while the mapping drained its queue
+  if (recorder) {
+    try {
+      recorder->finish();
+    } catch (...) {
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) {
+    result.failure = failure;
+    result.info.end = {RunEnd::Status::kFailed, errorMessage(failure)};
+  } else if (interrupted) {
+    result.info.end = {RunEnd::Status::kInterrupted, "stop requested"};
+  }
   const io::SourceStats stats = source->stats();
   source_report.delivered = stats.delivered;
   source_report.dropped = stats.dropped;

@@ -30,7 +30,9 @@ constexpr int kFrames = 30;
 // A fresh copy of the 30-frame static_xyz sequence (rendered once per build tree) in test_outputs/<name>.
 fs::path freshSequence(const std::string& name) {
   const fs::path root = fs::path(AMOS_BINARY_DIR) / "test_outputs" / "damaged_input";
-  const std::string cached = synth::cachedSequence((root / "cache").string(), "static_xyz", 1, kFrames);
+  const std::string cached =
+      synth::cachedSequence((fs::path(AMOS_BINARY_DIR) / "test_outputs" / "synth_cache").string(), "static_xyz", 1,
+                            kFrames);
   const fs::path dir = root / name;
   fs::remove_all(dir);
   fs::create_directories(dir.parent_path());
@@ -94,13 +96,17 @@ TEST(SequenceRunDamagedInput, BadFramesAreSkippedAndCountedByReason) {
   EXPECT_EQ(stats["depth_dropouts"]["frames"], 0);
 }
 
-// --strict: the first bad frame ends the run with its error.
+// --strict: the first bad frame ends the run with its error; the frames before it are kept.
 TEST(SequenceRunDamagedInput, StrictMakesABadFrameAnError) {
   const fs::path dir = freshSequence("strict");
   const auto frames = framesOf(dir);
   fs::resize_file(frames[8].rgb_file, fs::file_size(frames[8].rgb_file) / 3);
+  const SequenceRunResult r = runOn(dir, "none", /*strict=*/true);
+  EXPECT_EQ(r.info.end.status, RunEnd::Status::kFailed);
+  EXPECT_EQ(r.slam->stats().frames, 8u);
+  EXPECT_EQ(r.trajectory.size(), 8u);
   try {
-    runOn(dir, "none", /*strict=*/true);
+    r.rethrowFailure();
     FAIL() << "expected a core::Error";
   } catch (const io::FrameLoadError& e) {
     EXPECT_EQ(e.problem(), io::FrameProblem::kUnreadable);
