@@ -4,6 +4,9 @@
 // also masks/ and overlays/) and prints where the frames came from (delivered / processed / dropped, latency),
 // ATE / RPE when the sequence has ground truth and the dynamic mask's pixel precision / recall / IoU when it has
 // ground-truth mover masks. All work is in amos::report / amos::system.
+// Streams: progress and warnings on stderr, the summary on stdout. Exit status: 0, 1 for an error (before the run,
+// or one that ended it: the outputs of the frames processed are written first), 130 / 143 when SIGINT / SIGTERM
+// ended it (outputs written likewise).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
@@ -33,17 +36,49 @@ namespace {
 struct RunArgs {
   std::string sequence, config, output, mode = "full", models, camera, record;
   bool deterministic = false, save_masks = false, realtime = false, overwrite = false, strict = false;
-  std::size_t max_frames = 0, overlays = 8;
+  std::size_t max_frames = 0, overlays = 8, progress_every = 100;
 };
 
-// Ctrl-C during a live session: the run ends after the current frame and writes its outputs; a second Ctrl-C
-// kills the program as usual.
-std::atomic<bool> g_interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+// SIGINT (Ctrl-C) and SIGTERM end the run at the next frame boundary: mapping is stopped and the outputs are
+// written for the frames processed so far; exit status 128 + the signal (130, 143). The handler only stores the
+// signal in lock-free atomics and restores the default actions, so a second signal ends the program at once.
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
+              "set from a signal handler");
 
-extern "C" void onInterrupt(int) {
-  g_interrupted.store(true);
+extern "C" void onStopSignal(int signal_number) {
+  g_signal.store(signal_number);
+  g_stop.store(true);
   std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+}
+
+// Installs onStopSignal for SIGINT and SIGTERM for its lifetime (the run and the writing of its outputs).
+class StopSignals {
+ public:
+  StopSignals() {
+    g_stop.store(false);
+    g_signal.store(0);
+    std::signal(SIGINT, onStopSignal);
+    std::signal(SIGTERM, onStopSignal);
+  }
+  ~StopSignals() {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  const std::atomic<bool>* flag() const { return &g_stop; }
+  int received() const { return g_signal.load(); }
+};
+
+const char* signalName(int signal_number) {
+  switch (signal_number) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+  }
+  return "a signal";
 }
 
 void printSource(const report::SourceReport& src) {
@@ -133,7 +168,10 @@ void runSlam(const RunArgs& args, int& exit_code) {
   if (args.save_masks) options.masks_output_dir = args.output;
   options.overlay_count = args.overlays;
   bool line_open = false;  // a progress line without its newline on the terminal
-  options.on_frame = [tty, &line_open](const report::SequenceProgress& p) {
+  // Progress goes to stderr: a live line on a terminal, else (a log file, a pipe) one line every --progress-every
+  // frames and the last one.
+  const std::size_t every = std::max<std::size_t>(1, args.progress_every);
+  options.on_frame = [tty, every, &line_open](const report::SequenceProgress& p) {
     const auto& t = p.output->track;
     const std::string position = p.total > 0 ? fmt::format("{}/{}", p.frame, p.total) : std::to_string(p.frame);
     const std::string line =
@@ -142,30 +180,32 @@ void runSlam(const RunArgs& args, int& exit_code) {
     if (tty) {
       std::fprintf(stderr, "\r%-78s", line.c_str());
       line_open = true;
-    } else if (p.processed % 100 == 0 || p.frame == p.total) {
+    } else if (p.processed % every == 0 || p.frame == p.total) {
       spdlog::info("{}", line);
     }
   };
-  if (options.source == report::FrameSourceKind::kCamera) {
-    g_interrupted.store(false);
-    options.stop = &g_interrupted;
-    std::signal(SIGINT, onInterrupt);
+  const StopSignals signals;
+  options.stop = signals.flag();
+  if (options.source == report::FrameSourceKind::kCamera)
     spdlog::info("live session: Ctrl-C ends it and writes the outputs");
-  }
   report::SequenceRunResult result;
   try {
     result = report::runSequence(settings, options);
   } catch (...) {
     if (line_open) std::fprintf(stderr, "\n");
-    std::signal(SIGINT, SIG_DFL);
     throw;
   }
   if (line_open) std::fprintf(stderr, "\n");
-  std::signal(SIGINT, SIG_DFL);
+  const int signal_number = signals.received();
+  if (result.info.end.status == report::RunEnd::Status::kInterrupted) result.info.end.reason = signalName(signal_number);
   report::writeRunOutputs(args.output, *result.slam, result.info);
   printSummary(result, args.output);
   result.rethrowFailure();  // main() reports it (stderr) and exits non-zero, after the outputs are written
-  exit_code = 0;
+  if (signal_number != 0) {
+    spdlog::warn("run interrupted by {} after {} frames; the outputs in {} hold those frames",
+                 signalName(signal_number), result.slam->stats().frames, args.output);
+  }
+  exit_code = signal_number != 0 ? 128 + signal_number : 0;
 }
 
 }  // namespace
@@ -204,6 +244,9 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                 "A frame that cannot be read (missing, unreadable, wrong size, depth not 16-bit) is an error that "
                 "ends the run; by default it is skipped with a warning and counted in stats.json");
   cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)");
+  cmd->add_option("--progress-every", args->progress_every,
+                  "When stderr is not a terminal, print a progress line every N frames (default 100); on a terminal "
+                  "the progress is one live line");
   cmd->add_flag("--save-masks", args->save_masks,
                 "Also write every frame's dynamic mask (masks/<rgb stamp>.png, 255 = dynamic) and overlays of a few "
                 "evenly spaced frames (overlays/)");
