@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "amos/core/error.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::io {
 namespace {
@@ -257,7 +258,10 @@ TEST_F(TinySequence, NearlyEmptyDepthIsADropoutNotAnError) {
 }
 
 TEST(RealSequences, ReadsTheSharedTumAndBonnSlices) {
-  const std::string data = std::string(AMOS_SHARED_DIR) + "/data/";
+  AMOS_REQUIRE_SHARED("data/tum_fr2_desk_first50");
+  AMOS_REQUIRE_SHARED("data/tum_fr1_desk_first9");
+  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
+  const std::string data = testing::sharedPath("data/");
   const auto fr2 = indexSequence(data + "tum_fr2_desk_first50");
   EXPECT_EQ(fr2.frames.size(), 50u);
   EXPECT_FALSE(fr2.groundtruth_file.empty());
