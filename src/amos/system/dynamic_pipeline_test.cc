@@ -273,5 +273,87 @@ TEST(DynamicPipeline, MaskedExtractionBeforeTheMapIgnoresTheCoverage) {
   EXPECT_GT(small.kept, 0);
 }
 
+// A failure in one of stage A's lanes (the segmentation network, the preparation) reaches stage B through the
+// frame's future: processNext() of that frame throws it, the frames before it were processed, and the pipeline
+// still finishes and shuts down (runSequence then ends the run with the outputs of those frames).
+
+// A segmenter that throws on the frame coded `bad` (see codedFrame).
+class FailingSegmenter : public segmentation::Segmenter {
+ public:
+  explicit FailingSegmenter(int bad) : bad_(bad) {}
+  std::vector<segmentation::SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat&) override {
+    if (bgr.at<cv::Vec3b>(0, 0)[0] == bad_)
+      throw core::Error("segmenter: out of memory on frame " + std::to_string(bad_));
+    return {};
+  }
+  std::string name() const override { return "failing"; }
+
+ private:
+  int bad_;
+};
+
+// Feeds frames 0..count-1 with one frame of look-ahead, as runSequence does; returns the frames processed before
+// processNext() threw, and the error.
+std::size_t feedUntilFailure(DynamicPipeline& pipeline, std::size_t count, std::string& error) {
+  std::size_t pushed = 0, processed = 0;
+  try {
+    while (pushed < count || pipeline.waiting() > 0) {
+      while (pushed < count && pipeline.waiting() < 2) pipeline.push(codedFrame(pushed++));
+      pipeline.processNext();
+      ++processed;
+    }
+  } catch (const core::Error& e) {
+    error = e.what();
+  }
+  return processed;
+}
+
+TEST(DynamicPipelineFailure, SegmentationLaneFailureReachesItsFrame) {
+  SlamSystem slam(bonnOptions());
+  dynamic::DynamicOptions options;
+  options.mode = dynamic::DynamicMode::kPrior;
+  options.prior.interval = 1;
+  options.prior.lag = 0;
+  {
+    DynamicPipeline pipeline(slam, options,
+                             std::make_unique<segmentation::SegmentationWorker>(std::make_unique<FailingSegmenter>(2),
+                                                                                segmentation::MaskDilationOptions{}));
+    std::string error;
+    EXPECT_EQ(feedUntilFailure(pipeline, 6, error), 2u);
+    EXPECT_NE(error.find("segmenter: out of memory on frame 2"), std::string::npos) << error;
+    pipeline.finish();
+  }  // the lanes stop; frame 3, pushed ahead, is dropped
+  EXPECT_EQ(slam.stats().frames, 2u);
+}
+
+// A frame the preparation lane cannot handle (a grey image where colour is expected).
+TEST(DynamicPipelineFailure, PreparationLaneFailureReachesItsFrame) {
+  SlamSystem slam(bonnOptions());
+  dynamic::DynamicOptions options;
+  options.mode = dynamic::DynamicMode::kGeometry;
+  {
+    DynamicPipeline pipeline(slam, options, nullptr);
+    std::size_t processed = 0;
+    std::string error;
+    try {
+      for (std::size_t k = 0; k < 5; ++k) {
+        io::RgbdFrame frame = codedFrame(k);
+        if (k == 3) frame.bgr = cv::Mat(480, 640, CV_8UC1, cv::Scalar(0));
+        pipeline.push(std::move(frame));
+        if (k > 0) {
+          pipeline.processNext();
+          ++processed;
+        }
+      }
+    } catch (const core::Error& e) {
+      error = e.what();
+    }
+    EXPECT_EQ(processed, 3u);
+    EXPECT_NE(error.find("CV_8UC3"), std::string::npos) << error;
+    pipeline.finish();
+  }
+  EXPECT_EQ(slam.stats().frames, 3u);
+}
+
 }  // namespace
 }  // namespace amos::system
