@@ -191,8 +191,8 @@ TEST_F(TinySequence, StrictReaderRethrowsTheFirstBadFrame) {
   writeImages("1.0");
   writeImages("2.0", {32, 48});
   writeImages("3.0");
-  writeFile("associations.txt",
-            "1.0 rgb/1.0.png 1.0 depth/1.0.png\n2.0 rgb/2.0.png 2.0 depth/2.0.png\n3.0 rgb/3.0.png 3.0 depth/3.0.png\n");
+  writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n2.0 rgb/2.0.png 2.0 depth/2.0.png\n"
+                                "3.0 rgb/3.0.png 3.0 depth/3.0.png\n");
   ReaderOptions options = smallOptions();
   options.strict = true;
   SequenceReader reader(indexSequence(dir_.string()), options);

@@ -259,7 +259,8 @@ std::string cachedSequence(const std::string& cache_root, const std::string& pre
   std::error_code ec;
   fs::rename(partial, dir, ec);  // fails when another caller got there first: its rendering is the same
   if (ec) fs::remove_all(partial);
-  core::require(fs::is_directory(dir), fmt::format("cannot render the sequence into '{}': {}", dir.string(), ec.message()));
+  core::require(fs::is_directory(dir),
+                fmt::format("cannot render the sequence into '{}': {}", dir.string(), ec.message()));
   return dir.string();
 }
 
