@@ -57,15 +57,17 @@ std::string readFile(const fs::path& path) {
   return ss.str();
 }
 
-// Runs amos-slam with `args`: stdout to a file, stderr through a pipe that is read line by line; `on_line` sees
-// each stderr line and may signal the child (its pid is given).
+// Runs amos-slam with `args`: stdout to a file (empty: to a pipe whose reader has gone away, as in
+// `amos-slam run ... | head -0`), stderr through a pipe that is read line by line; `on_line` sees each stderr line
+// and may signal the child (its pid is given).
 Finished runChild(const std::vector<std::string>& args, const fs::path& stdout_file,
                   const std::function<void(const std::string&, pid_t)>& on_line = {}) {
-  int err_pipe[2];
-  if (pipe(err_pipe) != 0) throw std::runtime_error("pipe");
+  int err_pipe[2], out_pipe[2];
+  if (pipe(err_pipe) != 0 || pipe(out_pipe) != 0) throw std::runtime_error("pipe");
+  close(out_pipe[0]);  // nobody reads the child's stdout pipe
   const pid_t pid = fork();
   if (pid == 0) {
-    const int out = open(stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int out = stdout_file.empty() ? out_pipe[1] : open(stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(out, STDOUT_FILENO);
     dup2(err_pipe[1], STDERR_FILENO);
     close(err_pipe[0]);
@@ -76,6 +78,7 @@ Finished runChild(const std::vector<std::string>& args, const fs::path& stdout_f
     _exit(127);
   }
   close(err_pipe[1]);
+  close(out_pipe[1]);
   Finished f;
   std::FILE* err = fdopen(err_pipe[0], "r");
   char buffer[4096];
@@ -85,7 +88,7 @@ Finished runChild(const std::vector<std::string>& args, const fs::path& stdout_f
   }
   std::fclose(err);
   waitpid(pid, &f.status, 0);
-  f.out = readFile(stdout_file);
+  if (!stdout_file.empty()) f.out = readFile(stdout_file);
   return f;
 }
 
@@ -199,6 +202,15 @@ TEST(RunCommand, ProgressAndWarningsOnStderrSummaryOnStdout) {
   for (const std::string& line : out_lines) {
     EXPECT_FALSE(contains(line, "[info]") || contains(line, "[warning]") || contains(line, "frame ")) << line;
   }
+}
+
+// SIGPIPE never kills a run: with nobody reading stdout the run still ends normally and writes its outputs.
+TEST(RunCommand, AClosedStdoutDoesNotKillTheRun) {
+  const fs::path out = outputDir("closed_stdout");
+  const Finished f = runChild(runArgs(out), fs::path());
+  ASSERT_TRUE(WIFEXITED(f.status)) << "killed by signal " << WTERMSIG(f.status);
+  EXPECT_EQ(WEXITSTATUS(f.status), 0) << f.err;
+  EXPECT_EQ(poses(out / "trajectory.txt"), static_cast<std::size_t>(kFrames));
 }
 
 // --output is checked before anything runs: a path under a file and a folder holding an earlier run are refused at
