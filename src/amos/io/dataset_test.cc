@@ -40,6 +40,20 @@ class TinySequence : public ::testing::Test {
     o.height = 48;
     return o;
   }
+  // The error a --strict reader of the sequence ends with, after delivering `good` frames.
+  FrameLoadError strictReaderError(std::size_t good) const {
+    ReaderOptions options = smallOptions();
+    options.strict = true;
+    SequenceReader reader(indexSequence(dir_.string()), options);
+    for (std::size_t k = 0; k < good; ++k) EXPECT_EQ(reader.next()->index, k);
+    try {
+      reader.next();
+    } catch (const FrameLoadError& e) {
+      return e;
+    }
+    ADD_FAILURE() << "expected a FrameLoadError";
+    return FrameLoadError(FrameProblem::kUnreadable, "", "none");
+  }
   fs::path dir_;
 };
 
@@ -193,32 +207,17 @@ TEST_F(TinySequence, StrictReaderRethrowsTheFirstBadFrame) {
   writeImages("3.0");
   writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n2.0 rgb/2.0.png 2.0 depth/2.0.png\n"
                                 "3.0 rgb/3.0.png 3.0 depth/3.0.png\n");
-  ReaderOptions options = smallOptions();
-  options.strict = true;
-  SequenceReader reader(indexSequence(dir_.string()), options);
-  ASSERT_EQ(reader.next()->index, 0u);
-  try {
-    reader.next();
-    FAIL() << "expected a FrameLoadError";
-  } catch (const FrameLoadError& e) {
-    EXPECT_EQ(e.problem(), FrameProblem::kWrongSize);
-    EXPECT_NE(std::string(e.what()).find("2.0.png"), std::string::npos) << e.what();
-  }
+  const FrameLoadError e = strictReaderError(1);
+  EXPECT_EQ(e.problem(), FrameProblem::kWrongSize);
+  EXPECT_NE(std::string(e.what()).find("2.0.png"), std::string::npos) << e.what();
 }
 
 TEST_F(TinySequence, StrictReaderRefusesAListedFileThatIsMissing) {
   writeImages("1.0");
   writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n2.0 rgb/2.0.png 2.0 depth/2.0.png\n");
-  ReaderOptions options = smallOptions();
-  options.strict = true;
-  SequenceReader reader(indexSequence(dir_.string()), options);
-  try {
-    reader.next();
-    FAIL() << "expected a FrameLoadError";
-  } catch (const FrameLoadError& e) {
-    EXPECT_EQ(e.problem(), FrameProblem::kMissing);
-    EXPECT_NE(std::string(e.what()).find("rgb/2.0.png"), std::string::npos) << e.what();
-  }
+  const FrameLoadError e = strictReaderError(0);
+  EXPECT_EQ(e.problem(), FrameProblem::kMissing);
+  EXPECT_NE(std::string(e.what()).find("rgb/2.0.png"), std::string::npos) << e.what();
 }
 
 // A depth image with no valid pixel, or fewer than ReaderOptions::min_valid_depth (1 %), is a sensor dropout: the
