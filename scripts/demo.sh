@@ -13,4 +13,4 @@ mkdir -p "$OUT"
 CUTOUTS=()
 if [ -d ../shared/data/person_masks ]; then CUTOUTS=(--person-cutouts ../shared/data/person_masks); fi
 ./build/bin/amos-slam synth --preset "$PRESET" --seed 1 --frames 300 --output "$OUT/$PRESET" "${CUTOUTS[@]}"
-./build/bin/amos-slam run --sequence "$OUT/$PRESET" --config configs/tum3.yaml --output "$OUT/run_$PRESET"
+./build/bin/amos-slam run --sequence "$OUT/$PRESET" --config configs/tum3.yaml --output "$OUT/run_$PRESET" --overwrite

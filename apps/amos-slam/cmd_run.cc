@@ -4,7 +4,11 @@
 // also masks/ and overlays/) and prints where the frames came from (delivered / processed / dropped, latency),
 // ATE / RPE when the sequence has ground truth and the dynamic mask's pixel precision / recall / IoU when it has
 // ground-truth mover masks. All work is in amos::report / amos::system.
+// Streams: progress and warnings on stderr, the summary on stdout. Exit status: 0, 1 for an error (before the run,
+// or one that ended it: the outputs of the frames processed are written first), 130 / 143 when SIGINT / SIGTERM
+// ended it (outputs written likewise).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -16,10 +20,12 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/report/output_folder.h"
 #include "amos/report/run_report.h"
 #include "amos/report/sequence_run.h"
 #include "commands.h"
@@ -29,18 +35,50 @@ namespace {
 
 struct RunArgs {
   std::string sequence, config, output, mode = "full", models, camera, record;
-  bool deterministic = false, save_masks = false, realtime = false;
-  std::size_t max_frames = 0, overlays = 8;
+  bool deterministic = false, save_masks = false, realtime = false, overwrite = false, strict = false;
+  std::size_t max_frames = 0, overlays = 8, progress_every = 100;
 };
 
-// Ctrl-C during a live session: the run ends after the current frame and writes its outputs; a second Ctrl-C
-// kills the program as usual.
-std::atomic<bool> g_interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+// SIGINT (Ctrl-C) and SIGTERM end the run at the next frame boundary: mapping is stopped and the outputs are
+// written for the frames processed so far; exit status 128 + the signal (130, 143). The handler only stores the
+// signal in lock-free atomics and restores the default actions, so a second signal ends the program at once.
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
+              "set from a signal handler");
 
-extern "C" void onInterrupt(int) {
-  g_interrupted.store(true);
+extern "C" void onStopSignal(int signal_number) {
+  g_signal.store(signal_number);
+  g_stop.store(true);
   std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+}
+
+// Installs onStopSignal for SIGINT and SIGTERM for its lifetime (the run and the writing of its outputs).
+class StopSignals {
+ public:
+  StopSignals() {
+    g_stop.store(false);
+    g_signal.store(0);
+    std::signal(SIGINT, onStopSignal);
+    std::signal(SIGTERM, onStopSignal);
+  }
+  ~StopSignals() {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  const std::atomic<bool>* flag() const { return &g_stop; }
+  int received() const { return g_signal.load(); }
+};
+
+const char* signalName(int signal_number) {
+  switch (signal_number) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+  }
+  return "a signal";
 }
 
 void printSource(const report::SourceReport& src) {
@@ -52,6 +90,21 @@ void printSource(const report::SourceReport& src) {
   }
   if (!src.recorded_to.empty()) std::cout << ";  recorded to " << src.recorded_to;
   std::cout << "\n";
+}
+
+// Frames skipped as unreadable (by reason) and depth dropouts, when there were any.
+void printDamagedInput(const report::RunInfo& info) {
+  const io::SkippedFrames& skipped = info.skipped_frames;
+  const report::DepthDropouts& dropouts = info.depth_dropouts;
+  if (skipped.total() == 0 && dropouts.frames == 0) return;
+  std::vector<std::string> reasons;
+  for (const io::FrameProblem problem : io::kFrameProblems) {
+    if (skipped.count(problem) > 0)
+      reasons.push_back(fmt::format("{} {}", io::frameProblemName(problem), skipped.count(problem)));
+  }
+  std::cout << fmt::format("skipped frames {}{};  depth dropouts {} (tracked {}, lost {})\n", skipped.total(),
+                           reasons.empty() ? "" : " (" + fmt::format("{}", fmt::join(reasons, ", ")) + ")",
+                           dropouts.frames, dropouts.tracked, dropouts.lost);
 }
 
 void printSummary(const report::SequenceRunResult& r, const std::string& output) {
@@ -67,6 +120,7 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
                            median("frame.extract"), median("frame.track"), median("frame.total"), r.info.wall_time_s,
                            r.info.wall_time_s > 0 ? s.frames / r.info.wall_time_s : 0.0);
   if (r.info.source) printSource(*r.info.source);
+  printDamagedInput(r.info);
   if (r.info.evaluation) {
     const auto& e = *r.info.evaluation;
     std::cout << fmt::format("ATE RMSE {:.4f} m ({} poses)", e.ate_rmse_m, e.ate_pairs);
@@ -84,6 +138,10 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
         m.frames, m.frames_with_truth, m.precision, m.recall, m.iou, m.median_precision, m.median_recall,
         m.median_iou, 100.0 * m.dynamic_fraction);
   }
+  if (r.info.end.status != report::RunEnd::Status::kComplete) {
+    std::cout << fmt::format("run {} after {} frames: {}; the outputs hold the frames processed until then\n",
+                             report::toString(r.info.end.status), s.frames, r.info.end.reason);
+  }
   std::cout << "outputs written to " << output << "\n";
 }
 
@@ -91,6 +149,8 @@ void runSlam(const RunArgs& args, int& exit_code) {
   core::require(!args.sequence.empty() || !args.camera.empty(),
                 "run: give --sequence DIR (a recorded sequence) or --camera openni2[:URI] (a live camera)");
   const config::Settings settings = config::loadSettings(args.config);
+  // Before anything else runs (models, the camera, the first frame): a wrong --output is found at once.
+  report::prepareOutputFolder(args.output, args.overwrite);
   const bool tty = isatty(fileno(stderr)) != 0;
   report::SequenceRunOptions options;
   options.source = !args.camera.empty() ? report::FrameSourceKind::kCamera
@@ -102,12 +162,16 @@ void runSlam(const RunArgs& args, int& exit_code) {
   options.config_label = args.config;
   options.mode = args.mode;
   options.deterministic = args.deterministic;
+  options.strict = args.strict;
   options.max_frames = args.max_frames;
   options.models_dir = args.models;
   if (args.save_masks) options.masks_output_dir = args.output;
   options.overlay_count = args.overlays;
   bool line_open = false;  // a progress line without its newline on the terminal
-  options.on_frame = [tty, &line_open](const report::SequenceProgress& p) {
+  // Progress goes to stderr: a live line on a terminal, else (a log file, a pipe) one line every --progress-every
+  // frames and the last one.
+  const std::size_t every = std::max<std::size_t>(1, args.progress_every);
+  options.on_frame = [tty, every, &line_open](const report::SequenceProgress& p) {
     const auto& t = p.output->track;
     const std::string position = p.total > 0 ? fmt::format("{}/{}", p.frame, p.total) : std::to_string(p.frame);
     const std::string line =
@@ -116,29 +180,32 @@ void runSlam(const RunArgs& args, int& exit_code) {
     if (tty) {
       std::fprintf(stderr, "\r%-78s", line.c_str());
       line_open = true;
-    } else if (p.processed % 100 == 0 || p.frame == p.total) {
+    } else if (p.processed % every == 0 || p.frame == p.total) {
       spdlog::info("{}", line);
     }
   };
-  if (options.source == report::FrameSourceKind::kCamera) {
-    g_interrupted.store(false);
-    options.stop = &g_interrupted;
-    std::signal(SIGINT, onInterrupt);
+  const StopSignals signals;
+  options.stop = signals.flag();
+  if (options.source == report::FrameSourceKind::kCamera)
     spdlog::info("live session: Ctrl-C ends it and writes the outputs");
-  }
   report::SequenceRunResult result;
   try {
     result = report::runSequence(settings, options);
   } catch (...) {
     if (line_open) std::fprintf(stderr, "\n");
-    std::signal(SIGINT, SIG_DFL);
     throw;
   }
   if (line_open) std::fprintf(stderr, "\n");
-  std::signal(SIGINT, SIG_DFL);
+  const int signal_number = signals.received();
+  if (result.info.end.status == report::RunEnd::Status::kInterrupted) result.info.end.reason = signalName(signal_number);
   report::writeRunOutputs(args.output, *result.slam, result.info);
   printSummary(result, args.output);
-  exit_code = 0;
+  result.rethrowFailure();  // main() reports it (stderr) and exits non-zero, after the outputs are written
+  if (signal_number != 0) {
+    spdlog::warn("run interrupted by {} after {} frames; the outputs in {} hold those frames",
+                 signalName(signal_number), result.slam->stats().frames, args.output);
+  }
+  exit_code = signal_number != 0 ? 128 + signal_number : 0;
 }
 
 }  // namespace
@@ -162,13 +229,24 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                   "Also write every processed frame to this folder in TUM layout (rgb/, depth/ at the config's "
                   "DepthMapFactor, rgb.txt, depth.txt), to replay and evaluate later");
   cmd->add_option("--config", args->config, "Settings file (configs/*.yaml)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--output", args->output, "Output folder (created if needed)")->required();
+  cmd->add_option("--output", args->output,
+                  "Output folder (created if needed; checked for writing before anything else runs)")
+      ->required();
+  cmd->add_flag("--overwrite", args->overwrite,
+                "Replace an earlier run in --output: its trajectory.txt, keyframes.txt, map.ply, stats.json, masks/ "
+                "and overlays/ are removed first (nothing else). Without it such a folder is refused");
   cmd->add_option("--mode", args->mode, "Dynamic front end: none (plain SLAM) | prior (person masks) | geometry (superpixel clusters + epipolar) | full (both, default)")
       ->check(CLI::IsMember({"none", "prior", "geometry", "full"}));
   cmd->add_option("--models", args->models, "Folder with the segmentation models");
   cmd->add_flag("--deterministic", args->deterministic,
                 "Bit-identical runs: local mapping in lock-step with tracking");
+  cmd->add_flag("--strict", args->strict,
+                "A frame that cannot be read (missing, unreadable, wrong size, depth not 16-bit) is an error that "
+                "ends the run; by default it is skipped with a warning and counted in stats.json");
   cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)");
+  cmd->add_option("--progress-every", args->progress_every,
+                  "When stderr is not a terminal, print a progress line every N frames (default 100); on a terminal "
+                  "the progress is one live line");
   cmd->add_flag("--save-masks", args->save_masks,
                 "Also write every frame's dynamic mask (masks/<rgb stamp>.png, 255 = dynamic) and overlays of a few "
                 "evenly spaced frames (overlays/)");

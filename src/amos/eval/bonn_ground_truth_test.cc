@@ -5,6 +5,7 @@
 #include <string>
 
 #include "amos/eval/evaluate.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::eval {
 namespace {
@@ -40,7 +41,8 @@ TEST(BonnGroundTruth, FormulaOnOnePose) {
 // The real Bonn ground truth: converted poses are rigid; a perfect camera trajectory has ~zero RPE against the
 // converted ground truth but large RPE against the raw marker file, while ATE hardly changes (data README).
 TEST(BonnGroundTruth, RpeNeedsTheConvertedGroundTruthAteDoesNot) {
-  const auto marker = io::readTumTrajectory(std::string(AMOS_SHARED_DIR) + "/data/bonn_crowd_dev/groundtruth.txt");
+  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev/groundtruth.txt");
+  const auto marker = io::readTumTrajectory(testing::sharedPath("data/bonn_crowd_dev/groundtruth.txt"));
   ASSERT_GT(marker.size(), 300u);
   const auto camera = bonnMarkerToCamera(marker);
   ASSERT_EQ(camera.size(), marker.size());

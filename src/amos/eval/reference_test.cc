@@ -7,6 +7,7 @@
 
 #include "amos/eval/evaluate.h"
 #include "amos/io/trajectory.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::eval {
 namespace {
@@ -28,17 +29,15 @@ const Reference kReferences[] = {
      0.021217, 0.934480, 753},
 };
 
-std::string trajectoryPath(const std::string& name) {
-  return std::string(AMOS_SHARED_DIR) + "/data/trajectories/" + name;
-}
+std::string trajectoryPath(const std::string& name) { return testing::sharedPath("data/trajectories/" + name); }
 
 void PrintTo(const Reference& ref, std::ostream* os) { *os << ref.name; }
 
 class TumReference : public ::testing::TestWithParam<Reference> {};
 
 TEST_P(TumReference, ReproducesTheBenchmarkScripts) {
+  AMOS_REQUIRE_SHARED("data/trajectories");
   const Reference& ref = GetParam();
-  // A missing shared dir makes readTumTrajectory throw, which fails the test.
   const auto gt = io::readTumTrajectory(trajectoryPath(ref.gt_file));
   const auto est = io::readTumTrajectory(trajectoryPath(ref.est_file));
   const EvaluationResult r = evaluate(gt, est);

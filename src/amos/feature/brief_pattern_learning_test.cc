@@ -9,13 +9,14 @@
 #include <tuple>
 
 #include "amos/feature/learned_brief_pattern.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::feature {
 namespace {
 
 // Every `step`-th frame (sorted by name) of a shared-data folder, grayscale.
 std::vector<cv::Mat> frames(const std::string& folder, size_t step, size_t limit = 1000) {
-  const std::filesystem::path dir = std::filesystem::path(AMOS_SHARED_DIR) / "data" / folder / "rgb";
+  const std::filesystem::path dir = std::filesystem::path(testing::sharedPath("data")) / folder / "rgb";
   std::vector<std::filesystem::path> files;
   if (std::filesystem::is_directory(dir))
     for (const auto& entry : std::filesystem::directory_iterator(dir)) files.push_back(entry.path());
@@ -42,8 +43,9 @@ TEST(LearnedBriefPattern, IsAValidPatternAndTheDefault) {
 
 TEST(LearnedBriefPattern, BeatsTheGaussianPatternOnHeldOutFrames) {
   // TUM fr2/desk was not used for learning.
+  AMOS_REQUIRE_SHARED("data/tum_fr2_desk_first50");
   const std::vector<cv::Mat> held_out = frames("tum_fr2_desk_first50", 10);
-  ASSERT_EQ(held_out.size(), 5u) << "missing " << AMOS_SHARED_DIR << "/data/tum_fr2_desk_first50";
+  ASSERT_EQ(held_out.size(), 5u);
   const BriefPatternStats learned = evaluateBriefPattern(learnedBriefPattern(), held_out, OrbOptions{}, 5000);
   const BriefPatternStats gaussian =
       evaluateBriefPattern(makeGaussianBriefPattern(SteeredBrief::kDefaultSeed), held_out, OrbOptions{}, 5000);
@@ -67,6 +69,8 @@ TEST(LearnedBriefPattern, BeatsTheGaussianPatternOnHeldOutFrames) {
 }
 
 TEST(BriefPatternLearning, SmallRunImprovesOnItsCandidatePool) {
+  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
+  AMOS_REQUIRE_SHARED("data/tum_fr2_desk_first50");
   const std::vector<cv::Mat> train = frames("bonn_crowd_dev", 90);  // 3 frames
   const std::vector<cv::Mat> held_out = frames("tum_fr2_desk_first50", 25);
   ASSERT_EQ(train.size(), 3u);

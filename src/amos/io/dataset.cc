@@ -8,7 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <mutex>
 #include <filesystem>
+#include <vector>
+#include <cstdint>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <thread>
 #include <variant>
@@ -93,19 +97,26 @@ std::string firstExisting(const fs::path& dir, std::initializer_list<const char*
   return {};
 }
 
-// Drops entries whose files are missing, warning once per missing file (the first few by name, then a count).
-void dropMissingFiles(std::vector<AssociatedFrame>& frames) {
+// Drops entries whose files are missing, warning once per missing file (the first few by name, then a count);
+// returns the first missing file of each entry dropped.
+std::vector<std::string> dropMissingFiles(std::vector<AssociatedFrame>& frames) {
   constexpr std::size_t kNamedWarnings = 10;
   std::size_t missing = 0;
+  std::vector<std::string> dropped;
   auto gone = [&](const std::string& file) {
     if (fs::is_regular_file(file)) return false;
     if (++missing <= kNamedWarnings) spdlog::warn("listed file is missing, frame skipped: {}", file);
     return true;
   };
   frames.erase(std::remove_if(frames.begin(), frames.end(),
-                              [&](const AssociatedFrame& f) { return gone(f.rgb_file) | gone(f.depth_file); }),
+                              [&](const AssociatedFrame& f) {
+                                const bool rgb_gone = gone(f.rgb_file), depth_gone = gone(f.depth_file);
+                                if (rgb_gone || depth_gone) dropped.push_back(rgb_gone ? f.rgb_file : f.depth_file);
+                                return rgb_gone || depth_gone;
+                              }),
                frames.end());
   if (missing > kNamedWarnings) spdlog::warn("{} listed files are missing in all; their frames were skipped", missing);
+  return dropped;
 }
 
 }  // namespace
@@ -136,33 +147,69 @@ SequenceIndex indexSequence(const std::string& dir, double max_dt) {
     f.rgb_file = (root / f.rgb_file).string();
     f.depth_file = (root / f.depth_file).string();
   }
-  dropMissingFiles(index.frames);
+  index.missing = dropMissingFiles(index.frames);
   core::require(!index.frames.empty(), fmt::format("sequence '{}' has no RGB-D frame to read", dir));
   index.groundtruth_file = firstExisting(root, {"groundtruth.txt"});
   return index;
 }
+
+namespace {
+
+// The image cv::imread would give, decoded by io::decodePng (libdeflate), with the reason when there is none.
+cv::Mat readImage(const std::string& file, int flags, const char* what) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in) {
+    if (!fs::is_regular_file(file))
+      throw FrameLoadError(FrameProblem::kMissing, file, fmt::format("{} '{}' is missing", what, file));
+    throw FrameLoadError(FrameProblem::kUnreadable, file, fmt::format("cannot open {} '{}'", what, file));
+  }
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(std::max<std::streamoff>(0, in.tellg())));
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!in) throw FrameLoadError(FrameProblem::kUnreadable, file, fmt::format("cannot read {} '{}'", what, file));
+  PngReadInfo info;
+  cv::Mat image;
+  try {
+    image = decodePng(bytes.data(), bytes.size(), flags, &info);
+  } catch (const cv::Exception& e) {
+    throw FrameLoadError(FrameProblem::kUnreadable, file, fmt::format("cannot read {} '{}': {}", what, file, e.what()));
+  }
+  if (!image.empty()) return image;
+  throw FrameLoadError(FrameProblem::kUnreadable, file,
+                       fmt::format("cannot read {} '{}' ({})", what, file,
+                                   info.reason.empty() ? "truncated or not an image" : info.reason));
+}
+
+void requireSize(const cv::Mat& image, const std::string& file, const char* what, const ReaderOptions& options) {
+  if (image.cols == options.width && image.rows == options.height) return;
+  throw FrameLoadError(FrameProblem::kWrongSize, file,
+                       fmt::format("{} '{}' is {}x{}, the settings say {}x{}", what, file, image.cols, image.rows,
+                                   options.width, options.height));
+}
+
+}  // namespace
 
 RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index) {
   RgbdFrame frame;
   frame.index = index;
   frame.timestamp = entry.t_rgb;
   frame.rgb_file = entry.rgb_file;
-  frame.bgr = readPng(entry.rgb_file, cv::IMREAD_COLOR);
-  core::require(!frame.bgr.empty(), fmt::format("cannot read colour image '{}'", entry.rgb_file));
-  core::require(frame.bgr.cols == options.width && frame.bgr.rows == options.height,
-                fmt::format("colour image '{}' is {}x{}, the settings say {}x{}", entry.rgb_file, frame.bgr.cols,
-                            frame.bgr.rows, options.width, options.height));
-  const cv::Mat raw = readPng(entry.depth_file, cv::IMREAD_UNCHANGED);
-  core::require(!raw.empty(), fmt::format("cannot read depth image '{}'", entry.depth_file));
-  core::require(raw.channels() == 1 && (raw.depth() == CV_16U || raw.depth() == CV_32F),
-                fmt::format("depth image '{}' is {}-bit with {} channel(s); expected a 16-bit single-channel PNG",
-                            entry.depth_file, raw.elemSize1() * 8, raw.channels()));
-  core::require(raw.cols == options.width && raw.rows == options.height,
-                fmt::format("depth image '{}' is {}x{}, the settings say {}x{}", entry.depth_file, raw.cols, raw.rows,
-                            options.width, options.height));
+  frame.bgr = readImage(entry.rgb_file, cv::IMREAD_COLOR, "colour image");
+  requireSize(frame.bgr, entry.rgb_file, "colour image", options);
+  const cv::Mat raw = readImage(entry.depth_file, cv::IMREAD_UNCHANGED, "depth image");
+  if (raw.channels() != 1 || (raw.depth() != CV_16U && raw.depth() != CV_32F)) {
+    throw FrameLoadError(FrameProblem::kWrongFormat, entry.depth_file,
+                         fmt::format("depth image '{}' is {}-bit with {} channel(s); expected a 16-bit single-channel "
+                                     "PNG",
+                                     entry.depth_file, raw.elemSize1() * 8, raw.channels()));
+  }
+  requireSize(raw, entry.depth_file, "depth image", options);
   raw.convertTo(frame.depth, CV_32F, raw.depth() == CV_16U ? 1.0 / options.depth_factor : 1.0);
-  core::require(cv::countNonZero(frame.depth > 0) > 0,
-                fmt::format("depth image '{}' has no valid pixel", entry.depth_file));
+  const cv::Mat valid = frame.depth > 0;  // NaN compares false: not valid
+  if (cv::countNonZero(valid) < options.min_valid_depth * static_cast<double>(frame.depth.total())) {
+    frame.depth.setTo(0);
+    frame.depth_dropout = true;
+  }
   return frame;
 }
 
@@ -172,26 +219,54 @@ struct SequenceReader::Impl {
   using Item = std::variant<RgbdFrame, std::exception_ptr>;
   core::BoundedQueue<Item> queue;
   std::atomic<std::size_t> delivered{0};
+  mutable std::mutex skipped_mutex;
+  SkippedFrames skipped;  // guarded by skipped_mutex
   std::thread worker;
 
   Impl(SequenceIndex idx, ReaderOptions opts)
       : index(std::move(idx)), options(opts), queue(std::max<std::size_t>(1, opts.prefetch)) {
+    skipped.add(FrameProblem::kMissing, index.missing.size());
     worker = std::thread([this] { produce(); });
   }
   ~Impl() {
     queue.close();
     if (worker.joinable()) worker.join();
   }
-  void produce() {
-    for (std::size_t i = 0; i < index.frames.size(); ++i) {
-      Item item;
-      try {
-        item = loadRgbdFrame(index.frames[i], options, i);
-      } catch (...) {
-        item = std::current_exception();
+  // The item for frame i: the frame, an error that ends the stream, or nothing (skipped).
+  std::optional<Item> load(std::size_t i) {
+    try {
+      RgbdFrame frame = loadRgbdFrame(index.frames[i], options, i);
+      if (frame.depth_dropout) {
+        spdlog::warn("frame {}: depth dropout ('{}' has fewer than {:g} % valid pixels): tracked from its colour "
+                     "image alone",
+                     i, index.frames[i].depth_file, 100 * options.min_valid_depth);
       }
-      const bool failed = std::holds_alternative<std::exception_ptr>(item);
-      if (!queue.push(std::move(item)) || failed) break;
+      return Item(std::move(frame));
+    } catch (const FrameLoadError& e) {
+      if (options.strict) return Item(std::current_exception());
+      spdlog::warn("frame {} skipped ({}): {}", i, frameProblemName(e.problem()), e.what());
+      std::lock_guard lock(skipped_mutex);
+      skipped.add(e.problem());
+      return std::nullopt;
+    } catch (...) {
+      return Item(std::current_exception());
+    }
+  }
+  void produce() {
+    if (options.strict && !index.missing.empty()) {
+      const std::string& file = index.missing.front();
+      queue.push(std::make_exception_ptr(FrameLoadError(
+          FrameProblem::kMissing, file,
+          fmt::format("listed file '{}' is missing ({} frame(s) with missing files; --strict)", file,
+                      index.missing.size()))));
+      queue.close();
+      return;
+    }
+    for (std::size_t i = 0; i < index.frames.size(); ++i) {
+      std::optional<Item> item = load(i);
+      if (!item) continue;
+      const bool failed = std::holds_alternative<std::exception_ptr>(*item);
+      if (!queue.push(std::move(*item)) || failed) break;
     }
     queue.close();
   }
@@ -213,7 +288,13 @@ std::optional<RgbdFrame> SequenceReader::next() {
 }
 
 std::size_t SequenceReader::size() const { return impl_->index.frames.size(); }
-SourceStats SequenceReader::stats() const { return {impl_->delivered.load(std::memory_order_relaxed), 0}; }
+SourceStats SequenceReader::stats() const {
+  SourceStats stats;
+  stats.delivered = impl_->delivered.load(std::memory_order_relaxed);
+  std::lock_guard lock(impl_->skipped_mutex);
+  stats.skipped = impl_->skipped;
+  return stats;
+}
 const SequenceIndex& SequenceReader::index() const { return impl_->index; }
 
 }  // namespace amos::io

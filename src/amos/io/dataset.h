@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "amos/core/error.h"
 #include "amos/io/associate.h"
 #include "amos/io/frame_source.h"
 #include "amos/io/rgbd_frame.h"
@@ -38,27 +39,53 @@ struct SequenceIndex {
   std::vector<AssociatedFrame> frames;
   std::string groundtruth_file;  // empty when the sequence has none
   AssociationStats association;
+  // Listed frames left out because a file of theirs does not exist: the first missing file of each.
+  std::vector<std::string> missing;
 };
 
-// Lists the frames of the sequence in `dir`. Listed files that do not exist are skipped with one warning naming
-// them; malformed lines throw core::Error naming file and line; an empty result throws. An association file's RGB
-// and depth stamps must each increase from row to row (core::Error naming file and line otherwise); rows whose two
-// stamps differ by more than max_dt are kept, warned about once (count and first row) and counted in
-// `association`.
+// Lists the frames of the sequence in `dir`. Listed files that do not exist are left out (SequenceIndex::missing)
+// with one warning naming them; malformed lines throw core::Error naming file and line; an empty result throws. An
+// association file's RGB and depth stamps must each increase from row to row (core::Error naming file and line
+// otherwise); rows whose two stamps differ by more than max_dt are kept, warned about once (count and first row)
+// and counted in `association`.
 SequenceIndex indexSequence(const std::string& dir, double max_dt = 0.02);
 
 struct ReaderOptions {
   double depth_factor = 5000.0;  // DepthMapFactor: raw 16-bit value / factor = metres
   int width = 640, height = 480; // expected image size (Camera.width/height)
   std::size_t prefetch = 8;      // frames decoded ahead of the consumer
+  // A depth image with fewer valid pixels than this share is a sensor dropout (RgbdFrame::depth_dropout): its depth
+  // is cleared and the frame is tracked from colour alone. 1 % is 3072 pixels at 640x480: too few to initialise a
+  // map (Tracking.initMinDepthPoints keypoints with depth) or to anchor new map points, and far below any real frame
+  // here (TUM fr2 desk: 63 % at least, Bonn crowd: 81 %), so only a sensor that gave up is caught.
+  double min_valid_depth = 0.01;
+  // --strict: a frame that cannot be read (FrameLoadError) or a listed file that is missing ends the stream with
+  // that error; by default such a frame is skipped with a warning and counted (SourceStats::skipped).
+  bool strict = false;
 };
 
-// Loads and validates one frame: throws core::Error naming the file for unreadable images, a wrong size,
-// an 8-bit depth image or a depth image without a single valid pixel.
+// A frame that cannot be used: the reason and the file at fault (named in the message too).
+class FrameLoadError : public core::Error {
+ public:
+  FrameLoadError(FrameProblem problem, std::string file, const std::string& message)
+      : core::Error(message), problem_(problem), file_(std::move(file)) {}
+  FrameProblem problem() const { return problem_; }
+  const std::string& file() const { return file_; }
+
+ private:
+  FrameProblem problem_;
+  std::string file_;
+};
+
+// Loads and validates one frame: throws FrameLoadError naming the file for a missing or unreadable image, a wrong
+// size or a depth image that is not 16-bit single-channel. A depth dropout (see ReaderOptions::min_valid_depth) is
+// not an error: the frame comes back with depth_dropout set and all-zero depth.
 RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index);
 
 // Reads a folder as fast as the consumer takes the frames (the default source), decoding `prefetch` frames ahead
-// in its own thread. Delivers on demand: nothing is ever dropped, and poll() is next().
+// in its own thread. Delivers on demand: nothing is ever dropped, and poll() is next(). A frame that cannot be
+// read is skipped with one warning naming the file and the reason, and counted in stats().skipped (the frames the
+// index left out as missing included); with ReaderOptions::strict the first one is an error instead.
 class SequenceReader : public FrameSource {
  public:
   SequenceReader(SequenceIndex index, ReaderOptions options);
@@ -66,7 +93,8 @@ class SequenceReader : public FrameSource {
   SequenceReader(const SequenceReader&) = delete;
   SequenceReader& operator=(const SequenceReader&) = delete;
 
-  // Next frame in order, or nullopt at the end. Rethrows a load error of that frame in the caller's thread.
+  // Next frame in order, or nullopt at the end. Rethrows a load error in the caller's thread (with strict, or an
+  // error that is not a FrameLoadError).
   std::optional<RgbdFrame> next() override;
   std::optional<RgbdFrame> poll() override { return next(); }
   std::size_t size() const override;

@@ -9,6 +9,7 @@
 
 #include "amos/core/error.h"
 #include "amos/core/log_capture.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::io {
 namespace {
@@ -40,6 +41,20 @@ class TinySequence : public ::testing::Test {
     o.width = 64;
     o.height = 48;
     return o;
+  }
+  // The error a --strict reader of the sequence ends with, after delivering `good` frames.
+  FrameLoadError strictReaderError(std::size_t good) const {
+    ReaderOptions options = smallOptions();
+    options.strict = true;
+    SequenceReader reader(indexSequence(dir_.string()), options);
+    for (std::size_t k = 0; k < good; ++k) EXPECT_EQ(reader.next()->index, k);
+    try {
+      reader.next();
+    } catch (const FrameLoadError& e) {
+      return e;
+    }
+    ADD_FAILURE() << "expected a FrameLoadError";
+    return FrameLoadError(FrameProblem::kUnreadable, "", "none");
   }
   fs::path dir_;
 };
@@ -187,27 +202,124 @@ TEST_F(TinySequence, EightBitDepthIsAClearError) {
   }
 }
 
-TEST_F(TinySequence, WrongImageSizeIsAClearErrorThroughTheReader) {
-  writeImages("1.0", {32, 48});
-  writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n");
-  SequenceReader reader(indexSequence(dir_.string()), smallOptions());
-  try {
-    reader.next();
-    FAIL() << "expected an error";
-  } catch (const core::Error& e) {
-    EXPECT_NE(std::string(e.what()).find("32x48"), std::string::npos) << e.what();
+// Every way a listed frame can be unusable mid-sequence: each is skipped with a warning and counted by reason;
+// the frames around them are delivered in order.
+TEST_F(TinySequence, BadFramesAreSkippedAndCountedByReason) {
+  std::string list;
+  for (int i = 0; i < 6; ++i) {
+    const std::string stamp = std::to_string(i + 1) + ".0";
+    writeImages(stamp, i == 2 ? cv::Size(32, 48) : cv::Size(64, 48), i == 3 ? CV_8U : CV_16U);
+    list += stamp + " rgb/" + stamp + ".png " + stamp + " depth/" + stamp + ".png\n";
   }
+  list += "7.0 rgb/gone.png 7.0 depth/gone.png\n";  // missing before the run
+  writeFile("associations.txt", list);
+  // Frame 1: a PNG cut off half way (a copy interrupted, a full disk).
+  const fs::path truncated = dir_ / "rgb" / "2.0.png";
+  const auto size = fs::file_size(truncated);
+  fs::resize_file(truncated, size / 2);
+  const SequenceIndex index = indexSequence(dir_.string());
+  ASSERT_EQ(index.frames.size(), 6u);
+  ASSERT_EQ(index.missing.size(), 1u);
+  fs::remove(dir_ / "depth" / "5.0.png");  // frame 4: missing once the run is under way
+  ReaderOptions options = smallOptions();
+  options.prefetch = 1;
+  SequenceReader reader(index, options);
+  std::vector<std::size_t> delivered;
+  while (auto frame = reader.next()) delivered.push_back(frame->index);
+  EXPECT_EQ(delivered, (std::vector<std::size_t>{0, 5}));
+  const SkippedFrames skipped = reader.stats().skipped;
+  EXPECT_EQ(skipped.count(FrameProblem::kUnreadable), 1u);
+  EXPECT_EQ(skipped.count(FrameProblem::kWrongSize), 1u);
+  EXPECT_EQ(skipped.count(FrameProblem::kWrongFormat), 1u);
+  EXPECT_EQ(skipped.count(FrameProblem::kMissing), 2u);
+  EXPECT_EQ(skipped.total(), 5u);
+  EXPECT_EQ(reader.stats().delivered, 2u);
 }
 
-TEST_F(TinySequence, DepthWithoutValidPixelIsAnError) {
-  cv::imwrite((dir_ / "rgb" / "1.png").string(), cv::Mat(48, 64, CV_8UC3, cv::Scalar(1, 2, 3)));
-  cv::imwrite((dir_ / "depth" / "1.png").string(), cv::Mat(48, 64, CV_16U, cv::Scalar(0)));
-  writeFile("associations.txt", "1.0 rgb/1.png 1.0 depth/1.png\n");
-  EXPECT_THROW(loadRgbdFrame(indexSequence(dir_.string()).frames[0], smallOptions(), 0), core::Error);
+TEST_F(TinySequence, LoadErrorsNameTheFileAndTheReason) {
+  writeImages("1.0", {32, 48});
+  writeImages("2.0", {64, 48}, CV_8U);
+  writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n2.0 rgb/2.0.png 2.0 depth/2.0.png\n");
+  const SequenceIndex index = indexSequence(dir_.string());
+  try {
+    loadRgbdFrame(index.frames[0], smallOptions(), 0);
+    FAIL() << "expected a FrameLoadError";
+  } catch (const FrameLoadError& e) {
+    EXPECT_EQ(e.problem(), FrameProblem::kWrongSize);
+    EXPECT_EQ(e.file(), index.frames[0].rgb_file);
+    EXPECT_NE(std::string(e.what()).find("32x48"), std::string::npos) << e.what();
+  }
+  try {
+    loadRgbdFrame(index.frames[1], smallOptions(), 1);
+    FAIL() << "expected a FrameLoadError";
+  } catch (const FrameLoadError& e) {
+    EXPECT_EQ(e.problem(), FrameProblem::kWrongFormat);
+    EXPECT_EQ(e.file(), index.frames[1].depth_file);
+  }
+  EXPECT_STREQ(frameProblemName(FrameProblem::kWrongFormat), "wrong_format");
+}
+
+// --strict: the first bad frame ends the stream with its error, after the frames before it.
+TEST_F(TinySequence, StrictReaderRethrowsTheFirstBadFrame) {
+  writeImages("1.0");
+  writeImages("2.0", {32, 48});
+  writeImages("3.0");
+  writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n2.0 rgb/2.0.png 2.0 depth/2.0.png\n"
+                                "3.0 rgb/3.0.png 3.0 depth/3.0.png\n");
+  const FrameLoadError e = strictReaderError(1);
+  EXPECT_EQ(e.problem(), FrameProblem::kWrongSize);
+  EXPECT_NE(std::string(e.what()).find("2.0.png"), std::string::npos) << e.what();
+}
+
+TEST_F(TinySequence, StrictReaderRefusesAListedFileThatIsMissing) {
+  writeImages("1.0");
+  writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n2.0 rgb/2.0.png 2.0 depth/2.0.png\n");
+  const FrameLoadError e = strictReaderError(0);
+  EXPECT_EQ(e.problem(), FrameProblem::kMissing);
+  EXPECT_NE(std::string(e.what()).find("rgb/2.0.png"), std::string::npos) << e.what();
+}
+
+// A depth image with no valid pixel, or fewer than ReaderOptions::min_valid_depth (1 %), is a sensor dropout: the
+// frame is delivered with its depth cleared and flagged; 2 % valid is an ordinary (if poor) depth image.
+TEST_F(TinySequence, NearlyEmptyDepthIsADropoutNotAnError) {
+  const cv::Mat rgb(48, 64, CV_8UC3, cv::Scalar(1, 2, 3));
+  const int pixels = 48 * 64;
+  auto depthWithValid = [&](int valid) {
+    cv::Mat d(48, 64, CV_16U, cv::Scalar(0));
+    for (int k = 0; k < valid; ++k) d.at<std::uint16_t>(k / 64, k % 64) = 5000;
+    return d;
+  };
+  const std::vector<std::pair<int, bool>> cases = {{0, true}, {pixels / 200, true}, {pixels / 50, false}};
+  std::string list;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string stamp = std::to_string(i + 1) + ".0";
+    cv::imwrite((dir_ / "rgb" / (stamp + ".png")).string(), rgb);
+    cv::imwrite((dir_ / "depth" / (stamp + ".png")).string(), depthWithValid(cases[i].first));
+    list += stamp + " rgb/" + stamp + ".png " + stamp + " depth/" + stamp + ".png\n";
+  }
+  writeFile("associations.txt", list);
+  const SequenceIndex index = indexSequence(dir_.string());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const RgbdFrame f = loadRgbdFrame(index.frames[i], smallOptions(), i);
+    EXPECT_EQ(f.depth_dropout, cases[i].second) << cases[i].first << " valid pixels";
+    if (f.depth_dropout) {
+      EXPECT_EQ(cv::countNonZero(f.depth), 0);
+    } else {
+      EXPECT_EQ(cv::countNonZero(f.depth), cases[i].first);
+    }
+  }
+  SequenceReader reader(index, smallOptions());
+  std::size_t n = 0;
+  while (reader.next()) ++n;
+  EXPECT_EQ(n, 3u);
+  EXPECT_EQ(reader.stats().skipped.total(), 0u);
 }
 
 TEST(RealSequences, ReadsTheSharedTumAndBonnSlices) {
-  const std::string data = std::string(AMOS_SHARED_DIR) + "/data/";
+  AMOS_REQUIRE_SHARED("data/tum_fr2_desk_first50");
+  AMOS_REQUIRE_SHARED("data/tum_fr1_desk_first9");
+  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
+  const std::string data = testing::sharedPath("data/");
   const auto fr2 = indexSequence(data + "tum_fr2_desk_first50");
   EXPECT_EQ(fr2.frames.size(), 50u);
   EXPECT_EQ(fr2.association.rows_beyond_window, 0u);

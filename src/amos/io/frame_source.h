@@ -7,6 +7,7 @@
 // A source that produces at its own rate (replay, camera) keeps only the newest frame waiting (NewestFrameSlot):
 // a frame that arrives while an older one still waits replaces it, and the older one is counted as dropped.
 // Every frame handed out has RgbdFrame::arrival set: the moment it became available to the consumer.
+#include <array>
 #include <cstddef>
 #include <optional>
 
@@ -14,10 +15,31 @@
 
 namespace amos::io {
 
+// Why a listed frame could not be used (it is skipped, or with --strict the run ends).
+enum class FrameProblem {
+  kMissing,     // a listed image file does not exist
+  kUnreadable,  // the file exists but does not decode (truncated, not an image)
+  kWrongSize,   // the image is not Camera.width x Camera.height
+  kWrongFormat  // depth that is not a single-channel 16-bit (or 32-bit float) image, e.g. an 8-bit PNG
+};
+constexpr std::array<FrameProblem, 4> kFrameProblems = {FrameProblem::kMissing, FrameProblem::kUnreadable,
+                                                        FrameProblem::kWrongSize, FrameProblem::kWrongFormat};
+// "missing" | "unreadable" | "wrong_size" | "wrong_format" (the keys of stats.json's "skipped_frames").
+const char* frameProblemName(FrameProblem problem);
+
+// Frames skipped, by reason.
+struct SkippedFrames {
+  std::array<std::size_t, kFrameProblems.size()> by_problem{};
+  void add(FrameProblem problem, std::size_t n = 1) { by_problem[static_cast<std::size_t>(problem)] += n; }
+  std::size_t count(FrameProblem problem) const { return by_problem[static_cast<std::size_t>(problem)]; }
+  std::size_t total() const;
+};
+
 struct SourceStats {
   std::size_t delivered = 0;  // frames that became available to the consumer
   std::size_t dropped = 0;    // of those, frames replaced by a newer one before the consumer took them
   // Once the consumer has read to the end: delivered = frames it got + dropped.
+  SkippedFrames skipped;      // listed frames never delivered because they could not be read
 };
 
 class FrameSource {

@@ -76,7 +76,11 @@ RealtimeReplay::~RealtimeReplay() = default;
 std::optional<RgbdFrame> RealtimeReplay::next() { return impl_->slot.take(); }
 std::optional<RgbdFrame> RealtimeReplay::poll() { return impl_->slot.tryTake(); }
 std::size_t RealtimeReplay::size() const { return impl_->total; }
-SourceStats RealtimeReplay::stats() const { return impl_->slot.stats(); }
+SourceStats RealtimeReplay::stats() const {
+  SourceStats stats = impl_->slot.stats();
+  stats.skipped = impl_->reader.stats().skipped;
+  return stats;
+}
 
 std::optional<Clock::time_point> RealtimeReplay::startTime() const {
   std::lock_guard<std::mutex> lock(impl_->mutex);

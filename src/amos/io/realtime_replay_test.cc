@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <algorithm>
 #include <thread>
 #include <vector>
 
@@ -176,8 +177,24 @@ TEST_F(ReplaySequence, PollHandsOutAWaitingFrameWithoutBlocking) {
   EXPECT_EQ(replay.stats().dropped, 1u);
 }
 
-TEST_F(ReplaySequence, LoadErrorReachesTheConsumerAfterTheFramesBeforeIt) {
+// A bad frame is skipped by the reader underneath: the replay goes on and counts it.
+TEST_F(ReplaySequence, BadFrameIsSkippedAndCounted) {
   RealtimeReplay replay(write(evenStamps(4, 0.01), 2), smallOptions());
+  std::vector<std::size_t> frames;
+  while (auto f = replay.next()) frames.push_back(f->index);
+  EXPECT_FALSE(frames.empty());
+  EXPECT_EQ(std::count(frames.begin(), frames.end(), 2u), 0);
+  EXPECT_EQ(frames.back(), 3u);
+  const SourceStats stats = replay.stats();
+  EXPECT_EQ(stats.skipped.count(FrameProblem::kWrongFormat), 1u);
+  EXPECT_EQ(stats.delivered, 3u);
+}
+
+// --strict: the load error reaches the consumer, after the frames before it.
+TEST_F(ReplaySequence, StrictLoadErrorReachesTheConsumerAfterTheFramesBeforeIt) {
+  ReaderOptions options = smallOptions();
+  options.strict = true;
+  RealtimeReplay replay(write(evenStamps(4, 0.01), 2), options);
   std::size_t frames = 0;
   try {
     while (replay.next()) ++frames;

@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "amos/core/error.h"
+#include "amos/io/atomic_file.h"
 #include "amos/io/text_lines.h"
 
 namespace amos::io {
@@ -91,18 +92,18 @@ std::vector<StampedPose> readTumTrajectoryWithPoses(const std::string& path, con
 }
 
 void writeTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "w"), &std::fclose);
-  core::require(file != nullptr, fmt::format("cannot write trajectory file '{}'", path));
-  std::fprintf(file.get(), "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n");
+  std::string text = "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n";
+  char line[256];
   for (const StampedPose& pose : poses) {
     const Eigen::Vector3d t = pose.T_wc.translation();
     const Eigen::Quaterniond q(pose.T_wc.linear());
-    std::fprintf(file.get(), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", pose.timestamp, t.x(), t.y(), t.z(),
-                 q.x(), q.y(), q.z(), q.w());
+    const int n = std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", pose.timestamp,
+                                t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+    core::require(n > 0 && n < static_cast<int>(sizeof(line)),
+                  fmt::format("trajectory file '{}': pose at {} does not fit a line", path, pose.timestamp));
+    text.append(line, static_cast<std::size_t>(n));
   }
-  const bool ok = std::ferror(file.get()) == 0;
-  const int close_result = std::fclose(file.release());
-  core::require(ok && close_result == 0, fmt::format("error while writing trajectory file '{}'", path));
+  writeFileAtomically(path, text);
 }
 
 }  // namespace amos::io

@@ -30,8 +30,8 @@ std::vector<StampedPose> readTumTrajectory(const std::string& path);
 std::vector<StampedPose> readTumTrajectoryWithPoses(const std::string& path, const std::string& role);
 
 // Writes poses in the TUM format with a header comment: timestamps with %.6f, translations and quaternions with
-// %.9f, enough for a lossless round trip of the TUM data (microsecond stamps). Throws core::Error when the file
-// cannot be written.
+// %.9f, enough for a lossless round trip of the TUM data (microsecond stamps). The file is written under a
+// temporary name and renamed (atomic_file.h). Throws core::Error when the file cannot be written.
 void writeTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses);
 
 }  // namespace amos::io

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "amos/core/error.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::io {
 namespace {
@@ -150,8 +151,8 @@ TEST(TumTrajectory, MissingFileIsAClearError) {
 }
 
 TEST(TumTrajectory, ReadsTheOfficialGroundTruth) {
-  const std::string path =
-      std::string(AMOS_SHARED_DIR) + "/data/trajectories/rgbd_dataset_freiburg1_xyz_groundtruth.txt";
+  AMOS_REQUIRE_SHARED("data/trajectories");
+  const std::string path = testing::sharedPath("data/trajectories/rgbd_dataset_freiburg1_xyz_groundtruth.txt");
   const std::vector<StampedPose> poses = readTumTrajectory(path);
   ASSERT_EQ(poses.size(), 3000u);  // 3003 lines, 3 of them comments
   EXPECT_DOUBLE_EQ(poses[0].timestamp, 1305031098.6659);

@@ -43,12 +43,25 @@ LocalMapper::~LocalMapper() { stop(); }
 void LocalMapper::insertKeyFrame(const map::KeyFramePtr& kf, std::vector<map::MapPointPtr> new_points) {
   {
     std::lock_guard lock(mutex_);
+    if (failure_) std::rethrow_exception(failure_);
     core::require(!stopping_, "LocalMapper: keyframe inserted after stop()");
     queue_.push_back({kf, std::move(new_points)});
     abort_ba_.store(true);
   }
   work_cv_.notify_one();
-  if (lock_step_) waitUntilIdle();
+  if (lock_step_) {
+    waitUntilIdle();
+    rethrowIfFailed();
+  }
+}
+
+std::exception_ptr LocalMapper::failure() const {
+  std::lock_guard lock(mutex_);
+  return failure_;
+}
+
+void LocalMapper::rethrowIfFailed() const {
+  if (const std::exception_ptr e = failure()) std::rethrow_exception(e);
 }
 
 bool LocalMapper::isIdle() const {
@@ -85,21 +98,30 @@ void LocalMapper::run() {
     Job job;
     {
       std::unique_lock lock(mutex_);
-      work_cv_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-      if (queue_.empty()) break;  // stopping and nothing left
+      work_cv_.wait(lock, [&] { return stopping_ || failure_ || !queue_.empty(); });
+      if (failure_ || queue_.empty()) break;  // failed, or stopping and nothing left
       job = std::move(queue_.front());
       queue_.pop_front();
       busy_ = true;
       abort_ba_.store(!queue_.empty());
     }
+    const map::KeyFrameId id = job.kf->id();
+    std::exception_ptr failure;
     try {
       process(std::move(job));
     } catch (const std::exception& e) {
-      spdlog::error("local mapping: {}", e.what());
+      failure =
+          std::make_exception_ptr(core::Error(fmt::format("local mapping failed on keyframe {}: {}", id, e.what())));
+    } catch (...) {
+      failure = std::make_exception_ptr(core::Error(fmt::format("local mapping failed on keyframe {}", id)));
     }
     {
       std::lock_guard lock(mutex_);
       busy_ = false;
+      if (failure) {
+        failure_ = failure;
+        queue_.clear();  // the map is in no state to go on; the run ends at the next frame boundary
+      }
     }
     idle_cv_.notify_all();
   }

@@ -8,9 +8,15 @@
 // thread, woken by a condition variable. Tracking never waits for bundle adjustment: a new keyframe raises the
 // abort flag, which the solver checks every iteration. In lock-step mode (deterministic runs) insertKeyFrame()
 // returns only once the keyframe is fully processed, so the map evolves identically on every run.
+//
+// Failures: an exception while processing a keyframe (the after-keyframe hook, i.e. loop closing, included) stops
+// the mapping: the keyframes still queued are dropped, and the failure (a core::Error naming the keyframe and the
+// cause) is handed over under the mutex to the tracking thread, which gets it from the next insertKeyFrame() or
+// rethrowIfFailed() (SlamSystem calls it at every frame boundary). Nothing is logged and forgotten.
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <exception>
 #include <functional>
 #include <list>
 #include <memory>
@@ -68,8 +74,12 @@ class LocalMapper final : public tracking::KeyFrameSink {
 
   // Blocks until every queued keyframe is processed.
   void waitUntilIdle();
-  // Processes what is queued, then stops the thread (idempotent; also done by the destructor).
+  // Processes what is queued, then stops the thread (idempotent; also done by the destructor). Never throws: a
+  // failure while processing is kept for failure() / rethrowIfFailed().
   void stop();
+  // The failure that stopped the mapping, or null.
+  std::exception_ptr failure() const;
+  void rethrowIfFailed() const;
   LocalMappingStats stats() const;
 
  private:
@@ -92,6 +102,7 @@ class LocalMapper final : public tracking::KeyFrameSink {
   std::condition_variable work_cv_, idle_cv_;
   std::deque<Job> queue_;
   bool busy_ = false, stopping_ = false;
+  std::exception_ptr failure_;                 // guarded by mutex_: set once, by the mapper thread
   std::atomic<bool> abort_ba_{false};
   std::list<map::MapPointPtr> recent_points_;  // mapper thread only
   LocalMappingStats stats_;                    // guarded by mutex_

@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
+#include "amos/io/atomic_file.h"
 
 namespace amos::report {
 
@@ -85,14 +85,13 @@ void MaskOutputWriter::add(std::size_t index, const std::string& rgb_file, const
   const std::string stem = frameStem(rgb_file);
   cv::Mat mask = dynamic_mask.empty() ? cv::Mat(bgr.size(), CV_8U, cv::Scalar(0)) : cv::Mat(dynamic_mask != 0);
   const std::string mask_path = (fs::path(masks_dir_) / (stem + ".png")).string();
-  core::require(cv::imwrite(mask_path, mask), "cannot write " + mask_path);
+  io::writeImageAtomically(mask_path, mask);
   ++masks_written_;
   if (!std::binary_search(overlay_frames_.begin(), overlay_frames_.end(), index)) return;
   const std::string caption = fmt::format("frame {}  {}  dynamic {:.1f}%", index, stem,
                                           100.0 * cv::countNonZero(mask) / static_cast<double>(mask.total()));
   const std::string overlay_path = (fs::path(overlays_dir_) / (stem + ".png")).string();
-  core::require(cv::imwrite(overlay_path, renderMaskOverlay(bgr, mask, prior_mask, truth_mask, caption)),
-                "cannot write " + overlay_path);
+  io::writeImageAtomically(overlay_path, renderMaskOverlay(bgr, mask, prior_mask, truth_mask, caption));
   ++overlays_written_;
 }
 

@@ -4,6 +4,7 @@
 //   overlays/<rgb time stamp>.png  for a few evenly spaced frames: the colour image with the dynamic mask tinted
 //                                  red, the prior (segmentation) mask outlined yellow and, when the sequence has
 //                                  ground truth, the true movers outlined green
+// Each image is written under a temporary name and renamed (io/atomic_file.h).
 #include <opencv2/core.hpp>
 
 #include <cstddef>

@@ -1,14 +1,25 @@
 #include "amos/report/run_report.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <cstdio>
+#include <iterator>
 #include <filesystem>
-#include <fstream>
 
 #include "amos/core/error.h"
+#include "amos/io/atomic_file.h"
 #include "amos/io/trajectory.h"
 
 namespace amos::report {
+
+const char* toString(RunEnd::Status status) {
+  switch (status) {
+    case RunEnd::Status::kComplete: return "complete";
+    case RunEnd::Status::kInterrupted: return "interrupted";
+    case RunEnd::Status::kFailed: return "failed";
+  }
+  return "?";
+}
 
 nlohmann::json toJson(const SourceReport& source) {
   nlohmann::json j = {{"kind", source.kind},
@@ -37,6 +48,7 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
   j["config"] = info.config;
   j["mode"] = info.mode;
   j["deterministic"] = info.deterministic;
+  j["end"] = {{"status", toString(info.end.status)}, {"reason", info.end.reason}};
   j["frames"] = s.frames;
   j["tracked"] = s.tracked;
   j["lost"] = s.lost;
@@ -76,20 +88,22 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
   if (info.mask_accuracy) j["mask_accuracy"] = eval::toJson(*info.mask_accuracy);
   if (info.source) j["source"] = toJson(*info.source);
   if (info.association) j["association"] = toJson(*info.association);
+  nlohmann::json skipped = nlohmann::json::object();
+  for (const io::FrameProblem problem : io::kFrameProblems)
+    skipped[io::frameProblemName(problem)] = info.skipped_frames.count(problem);
+  j["skipped_frames"] = skipped;
+  j["depth_dropouts"] = {{"frames", info.depth_dropouts.frames},
+                         {"tracked", info.depth_dropouts.tracked},
+                         {"lost", info.depth_dropouts.lost}};
   return j;
 }
 
 void writeMapPly(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
-  std::ofstream out(path);
-  core::require(out.good(), "cannot write " + path);
-  out << "ply\nformat ascii 1.0\ncomment Amos-SLAM map points (world frame, metres)\n";
-  out << "element vertex " << points.size() << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
-  char line[96];
-  for (const auto& p : points) {
-    std::snprintf(line, sizeof(line), "%.6f %.6f %.6f\n", p.x(), p.y(), p.z());
-    out << line;
-  }
-  core::require(out.good(), "error while writing " + path);
+  std::string text = "ply\nformat ascii 1.0\ncomment Amos-SLAM map points (world frame, metres)\n";
+  text += "element vertex " + std::to_string(points.size()) +
+          "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  for (const auto& p : points) fmt::format_to(std::back_inserter(text), "{:.6f} {:.6f} {:.6f}\n", p.x(), p.y(), p.z());
+  io::writeFileAtomically(path, text);
 }
 
 void writeRunOutputs(const std::string& dir, const system::SlamSystem& slam, const RunInfo& info) {
@@ -100,11 +114,7 @@ void writeRunOutputs(const std::string& dir, const system::SlamSystem& slam, con
   io::writeTumTrajectory((d / "trajectory.txt").string(), slam.trajectory());
   io::writeTumTrajectory((d / "keyframes.txt").string(), slam.keyframeTrajectory());
   writeMapPly((d / "map.ply").string(), slam.mapPointPositions());
-  const std::string stats_path = (d / "stats.json").string();
-  std::ofstream out(stats_path);
-  core::require(out.good(), "cannot write " + stats_path);
-  out << statsJson(slam.stats(), slam.times(), info).dump(2) << "\n";
-  core::require(out.good(), "error while writing " + stats_path);
+  io::writeFileAtomically((d / "stats.json").string(), statsJson(slam.stats(), slam.times(), info).dump(2) + "\n");
 }
 
 }  // namespace amos::report

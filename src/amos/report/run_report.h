@@ -6,8 +6,12 @@
 //   stats.json      frame counts, map size, median / p95 ms per stage and per frame, wall time, frames per second,
 //                   ATE / RPE when the sequence has ground truth, and the dynamic mask's pixel precision / recall /
 //                   IoU when it has ground-truth mover masks, and where the frames came from ("source": kind,
-//                   frames delivered / processed / dropped, latency from a frame's arrival to its pose) and how
-//                   its association file paired RGB and depth ("association": rows, rows_beyond_window)
+//                   frames delivered / processed / dropped, latency from a frame's arrival to its pose), how its
+//                   association file paired RGB and depth ("association": rows, rows_beyond_window), the frames
+//                   skipped as unreadable by reason ("skipped_frames") and the depth dropouts, and how the run
+//                   ended ("end": status complete | interrupted | failed, reason)
+// Each file is written under a temporary name and renamed (io/atomic_file.h): a killed run never leaves a
+// half-written one.
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -17,6 +21,7 @@
 #include "amos/eval/evaluate.h"
 #include "amos/eval/mask_metrics.h"
 #include "amos/io/dataset.h"
+#include "amos/io/frame_source.h"
 #include "amos/system/slam_system.h"
 
 namespace amos::report {
@@ -29,6 +34,23 @@ struct SourceReport {
   std::vector<double> latency_ms;
   std::string recorded_to;  // --record folder ("" = none)
 };
+
+// Processed frames whose depth image was a sensor dropout (io::RgbdFrame::depth_dropout), and how tracking did on
+// them from their colour images alone.
+struct DepthDropouts {
+  std::size_t frames = 0, tracked = 0, lost = 0;  // tracked + lost <= frames (before the map exists: neither)
+};
+
+// How a run ended: every frame processed (or --max-frames reached), stopped from outside (a signal), or ended by a
+// failure (an unreadable frame with --strict, a worker thread's error). The outputs are those of the frames
+// processed until then in every case.
+struct RunEnd {
+  enum class Status { kComplete, kInterrupted, kFailed };
+  Status status = Status::kComplete;
+  std::string reason;  // why it ended early ("SIGINT", the error's message); empty when complete
+};
+// "complete" | "interrupted" | "failed"
+const char* toString(RunEnd::Status status);
 
 struct RunInfo {
   std::string sequence, config, mode;
@@ -48,6 +70,9 @@ struct RunInfo {
   // The sequence's association file (io::SequenceIndex::association); absent for a live camera or when the frames
   // were associated from rgb.txt + depth.txt.
   std::optional<io::AssociationStats> association;
+  io::SkippedFrames skipped_frames;    // frames the source could not read, by reason
+  DepthDropouts depth_dropouts;
+  RunEnd end;
 };
 
 nlohmann::json toJson(const SourceReport& source);

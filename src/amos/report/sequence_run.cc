@@ -103,11 +103,25 @@ std::unique_ptr<io::FrameSource> openCamera(const config::Settings& settings, co
 #endif
 }
 
+std::string errorMessage(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "unknown error";
+  }
+}
+
 double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 
 }  // namespace
+
+void SequenceRunResult::rethrowFailure() const {
+  if (failure) std::rethrow_exception(failure);
+}
 
 SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options) {
   SequenceRunResult result;
@@ -121,20 +135,24 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   }
   const std::string gt_file = index ? index->groundtruth_file : std::string();
   if (index && !index->association.file.empty()) result.info.association = index->association;
-  result.slam = std::make_unique<system::SlamSystem>(slamOptionsFromSettings(settings, options.deterministic));
+  system::SlamOptions slam_options = slamOptionsFromSettings(settings, options.deterministic);
+  slam_options.after_keyframe = options.after_keyframe;
+  result.slam = std::make_unique<system::SlamSystem>(slam_options);
   result.pipeline = makeDynamicPipeline(settings, options, *result.slam);
   std::optional<eval::GroundTruthMasks> truth_masks;
   if (!live) truth_masks = eval::GroundTruthMasks::find(options.sequence_dir);
   std::optional<io::SequenceRecorder> recorder;
   if (!options.record_dir.empty()) recorder.emplace(options.record_dir, settings.depth_factor);
   // Created last, just before the loop: a paced or live source starts its clock at once.
+  io::ReaderOptions reader_options = settings.readerOptions();
+  reader_options.strict = options.strict;
   std::unique_ptr<io::FrameSource> source;
   switch (options.source) {
     case FrameSourceKind::kFolder:
-      source = std::make_unique<io::SequenceReader>(std::move(*index), settings.readerOptions());
+      source = std::make_unique<io::SequenceReader>(std::move(*index), reader_options);
       break;
     case FrameSourceKind::kRealtime:
-      source = std::make_unique<io::RealtimeReplay>(std::move(*index), settings.readerOptions());
+      source = std::make_unique<io::RealtimeReplay>(std::move(*index), reader_options);
       break;
     case FrameSourceKind::kCamera:
       source = openCamera(settings, options.camera);
@@ -158,6 +176,12 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     const io::RgbdFrame& frame = out.frame;
     source_report.latency_ms.push_back(msSince(frame.arrival));
     ++n;
+    if (frame.depth_dropout) {
+      DepthDropouts& d = result.info.depth_dropouts;
+      ++d.frames;
+      d.tracked += out.slam.track.state == tracking::TrackingState::kOk;
+      d.lost += out.slam.track.state == tracking::TrackingState::kLost;
+    }
     if (recorder) recorder->add(frame);
     core::Stopwatch outputs;
     cv::Mat truth;
@@ -171,27 +195,61 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
       options.on_frame({frame.index + 1, source->size(), n, &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
     return options.max_frames == 0 || n < options.max_frames;  // a live source has no end of its own
   };
-  if (paced) {
-    // A feeder thread hands frames to stage A as they arrive (paced_feeder.h).
-    PacedFeeder feeder(*source, pipeline);
-    while (!stopped() && feeder.nextForStageB())
-      if (!consume(pipeline.processNext())) break;
-  } else {
-    // One frame of look-ahead: stage A of frame k+1 runs while frame k is in stage B.
-    auto feed = [&] {
-      if (std::optional<io::RgbdFrame> f = source->next()) pipeline.push(std::move(*f));
-    };
-    feed();
-    while (pipeline.waiting() > 0 && !stopped()) {
-      if (pipeline.waiting() < 2) feed();
-      if (!consume(pipeline.processNext())) break;
+  // Pushes the source's next frame into the pipeline's stage A (folder). A source error (a frame that cannot be
+  // read with --strict) ends the stream: the frames already pushed are still processed, then the run ends with
+  // that error.
+  std::exception_ptr source_failure;
+  auto feed = [&] {
+    if (source_failure) return;
+    std::optional<io::RgbdFrame> f;
+    try {
+      f = source->next();
+    } catch (...) {
+      source_failure = std::current_exception();
     }
+    if (f) pipeline.push(std::move(*f));
+  };
+  // Any other error from here on (a stage-A lane's or the mapping thread's failure, a paced source's error after
+  // the frames it delivered) ends the loop like a stop does: what was processed so far is finished and kept.
+  std::exception_ptr failure;
+  bool interrupted = false;
+  try {
+    if (paced) {
+      // A feeder thread hands frames to stage A as they arrive (paced_feeder.h).
+      PacedFeeder feeder(*source, pipeline);
+      while (!(interrupted = stopped()) && feeder.nextForStageB())
+        if (!consume(pipeline.processNext())) break;
+    } else {
+      // One frame of look-ahead: stage A of frame k+1 runs while frame k is in stage B.
+      feed();
+      while (pipeline.waiting() > 0 && !(interrupted = stopped())) {
+        if (pipeline.waiting() < 2) feed();
+        if (!consume(pipeline.processNext())) break;
+      }
+    }
+  } catch (...) {
+    failure = std::current_exception();
   }
   result.pipeline->finish();
-  if (recorder) recorder->finish();
+  if (!failure) failure = source_failure;
+  if (!failure) failure = result.slam->workerFailure();  // e.g. while the mapping drained its queue
+  if (recorder) {
+    try {
+      recorder->finish();
+    } catch (...) {
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) {
+    result.failure = failure;
+    result.info.end = {RunEnd::Status::kFailed, errorMessage(failure)};
+  } else if (interrupted) {
+    result.info.end = {RunEnd::Status::kInterrupted, "stop requested"};
+  }
   const io::SourceStats stats = source->stats();
   source_report.delivered = stats.delivered;
   source_report.dropped = stats.dropped;
+  result.info.skipped_frames = stats.skipped;
   source_report.processed = n;
   source.reset();  // a live device is closed here
   result.info.source = std::move(source_report);

@@ -14,6 +14,7 @@
 // how long each processed frame took from its arrival to its pose.
 #include <atomic>
 #include <cstddef>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -63,23 +64,36 @@ struct SequenceRunOptions {
   std::string mode = "none";   // dynamic front end: none | prior | geometry | full (the CLI defaults to full)
   std::string models_dir;      // --models: segmentation model folder (see segmentation/model_locator.h)
   bool deterministic = false;
+  // --strict: a frame that cannot be read ends the run with that error (io::ReaderOptions::strict); by default it
+  // is skipped and counted (RunInfo::skipped_frames).
+  bool strict = false;
   std::size_t max_frames = 0;  // 0 = all
   // --save-masks: write every frame's final dynamic mask to <masks_output_dir>/masks/ and overlays of
   // overlay_count evenly spaced frames to <masks_output_dir>/overlays/ (see mask_outputs.h). "" = do not.
   std::string masks_output_dir;
   std::size_t overlay_count = 8;
   std::function<void(const SequenceProgress&)> on_frame;  // called after every frame (progress display)
-  // When set, the run ends after the frame being processed once it reads true (a live session's Ctrl-C).
+  // When set, the run ends after the frame being processed once it reads true (SIGINT / SIGTERM): RunInfo::end is
+  // then kInterrupted, and everything is finished and kept as at the end of the stream.
   const std::atomic<bool>* stop = nullptr;
+  // Called in the mapping thread after each keyframe is mapped (system::SlamOptions::after_keyframe).
+  mapping::KeyFrameHook after_keyframe;
 };
 
 struct SequenceRunResult {
   std::unique_ptr<system::SlamSystem> slam;  // finished (mapping stopped)
   std::unique_ptr<system::DynamicPipeline> pipeline;  // the front end around `slam` (declared after it: dies first)
-  RunInfo info;                              // wall time, evaluation when there is ground truth
+  RunInfo info;                              // wall time, evaluation when there is ground truth, how it ended
   std::vector<io::StampedPose> trajectory;
+  // The error that ended the run early (info.end.status kFailed), or null.
+  std::exception_ptr failure;
+  void rethrowFailure() const;
 };
 
+// Errors before the first frame (settings, models, the camera, the sequence index) are thrown. An error during the
+// loop (a frame that cannot be read with `strict`, a failure of a stage-A lane or of the mapping thread) ends the
+// run like a stop does: the frames processed so far are finished, evaluated and returned, with the error in
+// SequenceRunResult::failure (rethrowFailure()) and RunInfo::end; so the caller can still write the outputs.
 SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options);
 
 }  // namespace amos::report

@@ -12,13 +12,15 @@
 #include "amos/io/dataset.h"
 #include "amos/report/run_report.h"
 #include "amos/report/sequence_run.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::report {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kFr2 = std::string(AMOS_SHARED_DIR) + "/data/tum_fr2_desk_first50";
+const std::string kFr2Data = "data/tum_fr2_desk_first50";
+const std::string kFr2 = testing::sharedPath(kFr2Data);
 const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
 
 fs::path outputDir(const std::string& name) {
@@ -34,7 +36,7 @@ nlohmann::json writeAndReadStats(const SequenceRunResult& r, const fs::path& dir
 }
 
 TEST(SequenceRunSources, FolderSourceDeliversAndProcessesEveryFrame) {
-  ASSERT_TRUE(fs::exists(kFr2)) << kFr2;
+  AMOS_REQUIRE_SHARED(kFr2Data);
   SequenceRunOptions options;
   options.sequence_dir = kFr2;
   options.max_frames = 20;
@@ -59,7 +61,7 @@ TEST(SequenceRunSources, FolderSourceDeliversAndProcessesEveryFrame) {
 // The 50 fr2 frames replayed at 30 Hz (1.6 s): every frame delivered is either processed or dropped, the
 // trajectory holds the processed ones, and it is still evaluated against the ground truth.
 TEST(SequenceRunSources, RealtimeReplayProcessesOrDropsEveryFrame) {
-  ASSERT_TRUE(fs::exists(kFr2)) << kFr2;
+  AMOS_REQUIRE_SHARED(kFr2Data);
   SequenceRunOptions options;
   options.source = FrameSourceKind::kRealtime;
   options.sequence_dir = kFr2;
@@ -83,7 +85,7 @@ TEST(SequenceRunSources, RealtimeReplayProcessesOrDropsEveryFrame) {
 
 // --record: the recorded folder is a sequence of its own, holding exactly the processed frames, bit for bit.
 TEST(SequenceRunSources, RecordingHoldsTheProcessedFramesBitExact) {
-  ASSERT_TRUE(fs::exists(kFr2)) << kFr2;
+  AMOS_REQUIRE_SHARED(kFr2Data);
   const config::Settings settings = config::loadSettings(kTum2);
   const fs::path record = outputDir("record");
   SequenceRunOptions options;

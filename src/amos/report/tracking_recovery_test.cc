@@ -11,11 +11,13 @@
 #include "amos/io/dataset.h"
 #include "amos/report/sequence_run.h"
 #include "amos/system/slam_system.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::report {
 namespace {
 
-const std::string kFr2 = std::string(AMOS_SHARED_DIR) + "/data/tum_fr2_desk_first50";
+const std::string kFr2Data = "data/tum_fr2_desk_first50";
+const std::string kFr2 = testing::sharedPath(kFr2Data);
 const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
 
 std::vector<io::RgbdFrame> loadFrames(const config::Settings& settings, std::size_t count) {
@@ -54,7 +56,7 @@ RecoveryRun run(const config::Settings& settings, const std::vector<io::RgbdFram
 }
 
 TEST(TrackingRecovery, LostFramesRecoverNearTheLastPoseWithoutTheRelocaliser) {
-  ASSERT_TRUE(std::filesystem::exists(kFr2)) << kFr2;
+  AMOS_REQUIRE_SHARED(kFr2Data);
   const config::Settings settings = config::loadSettings(kTum2);
   const std::vector<io::RgbdFrame> frames = loadFrames(settings, 16);
   ASSERT_EQ(frames.size(), 16u);

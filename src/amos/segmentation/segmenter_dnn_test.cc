@@ -12,13 +12,13 @@
 #include "amos/segmentation/segment_masks.h"
 #include "amos/segmentation/segmentation_worker.h"
 #include "amos/segmentation/segmenter_factory.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::segmentation {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kShared = AMOS_SHARED_DIR;
-const std::string kModels = kShared + "/models";
+const std::string kModels = testing::sharedPath("models");
 
 ModelSources modelsAt(const std::string& dir) {
   ModelSources sources;
@@ -40,7 +40,9 @@ std::string creationError(const SegmenterOptions& options, const ModelSources& s
 // person). In w_xyz_122 YOLACT missed the person cut by the right border, and so does NanoDet at the default
 // threshold, so a detection there would count against us.
 TEST(SegmenterDnn, PersonMasksMatchThePapersYolactMasks) {
-  const std::string dir = kShared + "/data/person_masks";
+  AMOS_REQUIRE_SHARED("models");
+  AMOS_REQUIRE_SHARED("data/person_masks");
+  const std::string dir = testing::sharedPath("data/person_masks");
   ASSERT_TRUE(fs::is_directory(dir + "/rgb")) << dir << " is missing";
   SegmenterOptions options;
   auto segmenter = createSegmenter(options, modelsAt(kModels), builtinSegmenterFactory());
@@ -67,6 +69,7 @@ TEST(SegmenterDnn, PersonMasksMatchThePapersYolactMasks) {
 }
 
 TEST(SegmenterDnn, NoPeopleInAnEmptyImage) {
+  AMOS_REQUIRE_SHARED("models");
   SegmenterOptions options;
   options.models_dir = kModels;
   auto segmenter = makeNanoDetSelfieSegmenter(options);
@@ -88,6 +91,7 @@ TEST(SegmenterDnn, MissingModelIsAClearStartUpError) {
 }
 
 TEST(SegmenterDnn, CorruptModelIsAClearStartUpError) {
+  AMOS_REQUIRE_SHARED("models");
   const fs::path dir = fs::temp_directory_path() / ("amos_bad_models_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   fs::copy_file(kModels + "/selfie_seg_256.onnx", dir / "selfie_seg_256.onnx", fs::copy_options::overwrite_existing);

@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::synth {
 namespace {
@@ -12,7 +13,8 @@ namespace {
 TEST(ImageAssets, CutoutsFromTheSharedPersonMasks) {
   // Two TUM fr3/walking_xyz frames: a seated man (feet at the bottom border), a standing man cut by the bottom
   // border at the thighs, and a man cut by the right border (not usable).
-  const std::vector<PersonCutout> cutouts = loadPersonCutouts(std::string(AMOS_SHARED_DIR) + "/data/person_masks");
+  AMOS_REQUIRE_SHARED("data/person_masks");
+  const std::vector<PersonCutout> cutouts = loadPersonCutouts(testing::sharedPath("data/person_masks"));
   int sitting = 0, upper = 0;
   for (const PersonCutout& c : cutouts) {
     EXPECT_EQ(c.bgr.size(), c.alpha.size());
@@ -43,11 +45,13 @@ TEST(ImageAssets, BorderCutRegionsAreSkipped) {
 }
 
 TEST(ImageAssets, PhotosSkipDepthAndMaskFolders) {
-  const std::vector<cv::Mat> photos = loadPhotos(std::string(AMOS_SHARED_DIR) + "/data/tum_fr1_desk_first9", 4);
+  AMOS_REQUIRE_SHARED("data/tum_fr1_desk_first9");
+  AMOS_REQUIRE_SHARED("data/trajectories");
+  const std::vector<cv::Mat> photos = loadPhotos(testing::sharedPath("data/tum_fr1_desk_first9"), 4);
   EXPECT_EQ(photos.size(), 4u);
   for (const cv::Mat& p : photos) EXPECT_EQ(p.type(), CV_8UC3);
-  EXPECT_THROW(loadPhotos(std::string(AMOS_SHARED_DIR) + "/data/no_such_folder"), core::Error);
-  EXPECT_THROW(loadPersonCutouts(std::string(AMOS_SHARED_DIR) + "/data/trajectories"), core::Error);
+  EXPECT_THROW(loadPhotos(testing::sharedPath("data/no_such_folder")), core::Error);
+  EXPECT_THROW(loadPersonCutouts(testing::sharedPath("data/trajectories")), core::Error);
 }
 
 }  // namespace

@@ -1,8 +1,13 @@
 #include "amos/synth/sequence.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <functional>
+#include <thread>
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
@@ -237,6 +242,26 @@ SequenceSummary renderSequence(const SequenceOptions& options, const std::string
   summary.write_ms_per_frame = write_ms / std::max(1, summary.frames);
   summary.total_s = total.elapsedMs() / 1000.0;
   return summary;
+}
+
+std::string cachedSequence(const std::string& cache_root, const std::string& preset, std::uint32_t seed, int frames) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(cache_root) / fmt::format("{}_seed{}_{}", preset, seed, frames);
+  if (fs::is_directory(dir)) return dir.string();
+  const fs::path partial = fs::path(cache_root) / fmt::format(".{}.partial-{}-{}", dir.filename().string(), ::getpid(),
+                                                              std::hash<std::thread::id>{}(std::this_thread::get_id()));
+  fs::remove_all(partial);
+  SequenceOptions options;
+  options.preset = preset;
+  options.seed = seed;
+  options.frames = frames;
+  renderSequence(options, partial.string());
+  std::error_code ec;
+  fs::rename(partial, dir, ec);  // fails when another caller got there first: its rendering is the same
+  if (ec) fs::remove_all(partial);
+  core::require(fs::is_directory(dir),
+                fmt::format("cannot render the sequence into '{}': {}", dir.string(), ec.message()));
+  return dir.string();
 }
 
 }  // namespace amos::synth

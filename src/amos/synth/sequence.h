@@ -81,4 +81,10 @@ struct SequenceSummary {
 // depth.txt, masks.txt, associations.txt, groundtruth.txt, instances.json.
 SequenceSummary renderSequence(const SequenceOptions& options, const std::string& output_dir);
 
+// The sequence of `preset`, `seed` and `frames` (all other options at their defaults), rendered once into
+// <cache_root>/<preset>_seed<seed>_<frames> and reused from there: for tests and scripts that need the same short
+// sequence many times. It is rendered into a temporary sibling folder and renamed into place, so callers in other
+// processes never see a half-rendered sequence. Returns the sequence folder.
+std::string cachedSequence(const std::string& cache_root, const std::string& preset, std::uint32_t seed, int frames);
+
 }  // namespace amos::synth

@@ -15,11 +15,12 @@
 #include "amos/segmentation/segmenter_factory.h"
 #include "amos/core/error.h"
 #include "amos/io/dataset.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::system {
 namespace {
 
-const std::string kBonn = std::string(AMOS_SHARED_DIR) + "/data/bonn_crowd_dev";
+const std::string kBonn = testing::sharedPath("data/bonn_crowd_dev");
 
 SlamOptions bonnOptions() {
   SlamOptions o;
@@ -44,7 +45,7 @@ std::vector<io::RgbdFrame> bonnFrames(std::size_t count, std::size_t first) {
 
 std::unique_ptr<segmentation::SegmentationWorker> realSegmentation() {
   segmentation::ModelSources sources;
-  sources.cli_dir = std::string(AMOS_SHARED_DIR) + "/models";
+  sources.cli_dir = testing::sharedPath("models");
   sources.default_dirs.clear();
   auto segmenter =
       segmentation::createSegmenter(segmentation::SegmenterOptions{}, sources, segmentation::builtinSegmenterFactory());
@@ -91,7 +92,8 @@ bool sameMask(const cv::Mat& a, const cv::Mat& b) {
 // no look-ahead, the one frame that `run` uses, and three (the stage-A tasks then wait for the hand-offs of
 // frames stage B has not reached).
 TEST(DynamicPipeline, LookAheadGivesTheSameMasksAndPoses) {
-  ASSERT_TRUE(std::filesystem::exists(kBonn)) << kBonn;
+  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
+  AMOS_REQUIRE_SHARED("models");
   const std::vector<io::RgbdFrame> frames = bonnFrames(12, 90);
   ASSERT_EQ(frames.size(), 12u);
   const RunRecord plain = runPipeline(frames, 0);
@@ -247,7 +249,7 @@ MaskedExtractionRun runLeftBand(const std::vector<io::RgbdFrame>& frames, double
 // priorMaskedExtractionCoverage) and a map in place, or with the option off, extraction ignores the mask and the
 // mask removes them.
 TEST(DynamicPipeline, MaskedExtractionPutsTheFeatureBudgetOutsideLargePriorMasks) {
-  ASSERT_TRUE(std::filesystem::exists(kBonn)) << kBonn;
+  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
   const std::vector<io::RgbdFrame> frames = bonnFrames(4, 0);
   const MaskedExtractionRun masked = runLeftBand(frames, 0.7, true);
   const MaskedExtractionRun unmasked = runLeftBand(frames, 0.7, false);
@@ -262,13 +264,95 @@ TEST(DynamicPipeline, MaskedExtractionPutsTheFeatureBudgetOutsideLargePriorMasks
 // Before the map exists the mask steers the extraction at any coverage: the frame alone must supply the points to
 // start the map. Here the first two frames have no depth, so no map exists before the third frame is prepared.
 TEST(DynamicPipeline, MaskedExtractionBeforeTheMapIgnoresTheCoverage) {
-  ASSERT_TRUE(std::filesystem::exists(kBonn)) << kBonn;
+  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
   std::vector<io::RgbdFrame> frames = bonnFrames(3, 0);
   for (std::size_t k = 0; k < 2; ++k) frames[k].depth = cv::Mat(frames[k].depth.size(), CV_32F, cv::Scalar(0));
   const MaskedExtractionRun small = runLeftBand(frames, 0.3, true);
   EXPECT_FALSE(small.map_from_first_frame);
   EXPECT_EQ(small.removed, 0);
   EXPECT_GT(small.kept, 0);
+}
+
+// A failure in one of stage A's lanes (the segmentation network, the preparation) reaches stage B through the
+// frame's future: processNext() of that frame throws it, the frames before it were processed, and the pipeline
+// still finishes and shuts down (runSequence then ends the run with the outputs of those frames).
+
+// A segmenter that throws on the frame coded `bad` (see codedFrame).
+class FailingSegmenter : public segmentation::Segmenter {
+ public:
+  explicit FailingSegmenter(int bad) : bad_(bad) {}
+  std::vector<segmentation::SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat&) override {
+    if (bgr.at<cv::Vec3b>(0, 0)[0] == bad_)
+      throw core::Error("segmenter: out of memory on frame " + std::to_string(bad_));
+    return {};
+  }
+  std::string name() const override { return "failing"; }
+
+ private:
+  int bad_;
+};
+
+// Feeds frames 0..count-1 with one frame of look-ahead, as runSequence does; returns the frames processed before
+// processNext() threw, and the error.
+std::size_t feedUntilFailure(DynamicPipeline& pipeline, std::size_t count, std::string& error) {
+  std::size_t pushed = 0, processed = 0;
+  try {
+    while (pushed < count || pipeline.waiting() > 0) {
+      while (pushed < count && pipeline.waiting() < 2) pipeline.push(codedFrame(pushed++));
+      pipeline.processNext();
+      ++processed;
+    }
+  } catch (const core::Error& e) {
+    error = e.what();
+  }
+  return processed;
+}
+
+TEST(DynamicPipelineFailure, SegmentationLaneFailureReachesItsFrame) {
+  SlamSystem slam(bonnOptions());
+  dynamic::DynamicOptions options;
+  options.mode = dynamic::DynamicMode::kPrior;
+  options.prior.interval = 1;
+  options.prior.lag = 0;
+  {
+    DynamicPipeline pipeline(slam, options,
+                             std::make_unique<segmentation::SegmentationWorker>(std::make_unique<FailingSegmenter>(2),
+                                                                                segmentation::MaskDilationOptions{}));
+    std::string error;
+    EXPECT_EQ(feedUntilFailure(pipeline, 6, error), 2u);
+    EXPECT_NE(error.find("segmenter: out of memory on frame 2"), std::string::npos) << error;
+    pipeline.finish();
+  }  // the lanes stop; frame 3, pushed ahead, is dropped
+  EXPECT_EQ(slam.stats().frames, 2u);
+}
+
+// A frame the preparation lane cannot handle (a grey image where colour is expected).
+TEST(DynamicPipelineFailure, PreparationLaneFailureReachesItsFrame) {
+  SlamSystem slam(bonnOptions());
+  dynamic::DynamicOptions options;
+  options.mode = dynamic::DynamicMode::kGeometry;
+  {
+    DynamicPipeline pipeline(slam, options, nullptr);
+    std::size_t processed = 0;
+    std::string error;
+    try {
+      for (std::size_t k = 0; k < 5; ++k) {
+        io::RgbdFrame frame = codedFrame(k);
+        if (k == 3) frame.bgr = cv::Mat(480, 640, CV_8UC1, cv::Scalar(0));
+        pipeline.push(std::move(frame));
+        if (k > 0) {
+          pipeline.processNext();
+          ++processed;
+        }
+      }
+    } catch (const core::Error& e) {
+      error = e.what();
+    }
+    EXPECT_EQ(processed, 3u);
+    EXPECT_NE(error.find("CV_8UC3"), std::string::npos) << error;
+    pipeline.finish();
+  }
+  EXPECT_EQ(slam.stats().frames, 3u);
 }
 
 }  // namespace

@@ -28,7 +28,10 @@ SlamSystem::SlamSystem(const SlamOptions& options)
   loop_closer_ = std::make_unique<loop::LoopCloser>(options_.loop, map_);
   mapper_ = std::make_unique<mapping::LocalMapper>(
       options_.mapping, map_, options_.deterministic, &times_,
-      [closer = loop_closer_.get()](const map::KeyFramePtr& kf) { closer->process(kf); });
+      [closer = loop_closer_.get(), after = options_.after_keyframe](const map::KeyFramePtr& kf) {
+        closer->process(kf);
+        if (after) after(kf);
+      });
   tracker_ = std::make_unique<tracking::Tracker>(options_.tracking, map_, mapper_.get(), &times_);
 }
 
@@ -66,6 +69,7 @@ FrameOutput SlamSystem::processFrame(const io::RgbdFrame& frame, const FrameExtr
 FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeatures& features,
                               const FrameExtras& extras) {
   core::require(!finished_, "SlamSystem: frame given after finish()");
+  mapper_->rethrowIfFailed();  // the frame boundary where a mapping failure reaches the caller
   core::require(frame.depth.type() == CV_32F, "SlamSystem: depth image must be CV_32F metres");
   core::Stopwatch total, watch;
   FrameOutput out;
@@ -112,6 +116,8 @@ void SlamSystem::finish() {
   finished_ = true;
   mapper_->stop();
 }
+
+std::exception_ptr SlamSystem::workerFailure() const { return mapper_->failure(); }
 
 std::vector<io::StampedPose> SlamSystem::trajectory() const {
   std::vector<io::StampedPose> out;

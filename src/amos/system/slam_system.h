@@ -8,8 +8,13 @@
 // Every frame's pose is stored relative to its reference keyframe (T_cr), and trajectory() composes it with the
 // keyframe's current pose, so bundle-adjustment corrections made after a frame was tracked reach the output
 // trajectory (as ORB-SLAM2 does).
+//
+// A failure of the mapping thread (local mapping or loop closing) ends the mapping and reaches the caller: track()
+// rethrows it at the next frame (core::Error naming the keyframe and the cause); workerFailure() has it too, also
+// one that happened while finish() let the mapping drain its queue.
 #include <opencv2/core.hpp>
 
+#include <exception>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -38,6 +43,9 @@ struct SlamOptions {
   // System.deterministic: local mapping in lock-step with tracking (each keyframe fully processed before the
   // next frame is tracked), so the same input gives a bit-identical trajectory.
   bool deterministic = false;
+  // Called in the mapping thread after each keyframe is mapped (loop closing done), for observers and tests. An
+  // exception thrown from it is a mapping failure like any other (see SlamSystem::track).
+  mapping::KeyFrameHook after_keyframe;
   void check() const;
 };
 
@@ -83,8 +91,10 @@ class SlamSystem {
   static cv::Mat toGray(const io::RgbdFrame& frame);
   FrameOutput track(const io::RgbdFrame& frame, const ExtractedFeatures& features, const FrameExtras& extras = {});
 
-  // Lets local mapping finish its queue and stops its thread. Further frames are not accepted.
+  // Lets local mapping finish its queue and stops its thread. Further frames are not accepted. Never throws.
   void finish();
+  // The failure that stopped the mapping thread, or null.
+  std::exception_ptr workerFailure() const;
 
   // One pose per processed frame (T_wc, TUM convention), composed with the current keyframe poses.
   std::vector<io::StampedPose> trajectory() const;
