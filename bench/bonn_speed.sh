@@ -17,11 +17,15 @@ OUT="${AMOS_BENCH_OUT:-out/bonn_speed}"
 [ -d "$SEQ" ] || { echo "bonn_speed: $SEQ is missing" >&2; exit 2; }
 mkdir -p "$OUT"
 PAPER_CONFIG="$OUT/bonn_paper.yaml"
-{ cat configs/bonn.yaml
-  echo "Dynamic.Prior.interval: 1"
-  echo "Dynamic.Prior.lag: 0"
-  echo "Dynamic.LK.window: 15"
-  echo "LocalBA.maxKeyFrames: 0"; } > "$PAPER_CONFIG"
+# configs/bonn.yaml with these keys set (replaced where the file sets them: a key set twice is an error).
+paper_keys=("Dynamic.Prior.interval: 1" "Dynamic.Prior.lag: 0" "Dynamic.LK.window: 15" "LocalBA.maxKeyFrames: 0")
+cp configs/bonn.yaml "$PAPER_CONFIG"
+for kv in "${paper_keys[@]}"; do
+  key="${kv%%:*}"
+  grep -v "^${key}:" "$PAPER_CONFIG" > "$PAPER_CONFIG.tmp"
+  echo "$kv" >> "$PAPER_CONFIG.tmp"
+  mv "$PAPER_CONFIG.tmp" "$PAPER_CONFIG"
+done
 
 for run in $(seq 1 "$RUNS"); do
   for v in $VARIANTS; do
