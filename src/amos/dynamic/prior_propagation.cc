@@ -78,8 +78,9 @@ void PriorMaskPropagator::reset(const std::vector<segmentation::SegmentedInstanc
                              instance.box.height + 2 * half);
     // Dilating each instance on its own gives the dilation of the union (dilation distributes over union).
     cv::copyMakeBorder(instance.mask, m.dilated, half, half, half, half, cv::BORDER_CONSTANT, cv::Scalar(0));
-    if (!kernel.empty())
-      cv::dilate(m.dilated, m.dilated, kernel, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+    // segmentation::dilateMask: what cv::dilate gives with this kernel, by its row runs (a few passes instead of
+    // one per kernel element).
+    if (!kernel.empty()) m.dilated = segmentation::dilateMask(m.dilated, dilation_);
     instances_.push_back(std::move(m));
   }
   for (Moving& m : held) instances_.push_back(std::move(m));
