@@ -302,7 +302,10 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
 SuperpixelGraph superpixelGraph(const SuperpixelSegmentation& segmentation, const cv::Mat& depth,
                                 double depth_edge_ratio) {
   SuperpixelGraph graph;
-  graph.neighbours = superpixelNeighbours(segmentation.labels, static_cast<int>(segmentation.superpixels.size()));
+  // Adjacency from the working-resolution labels when there are any: upsampling adds no new pair of neighbours
+  // and loses none.
+  const cv::Mat& adjacency_labels = segmentation.working_labels.empty() ? segmentation.labels : segmentation.working_labels;
+  graph.neighbours = superpixelNeighbours(adjacency_labels, static_cast<int>(segmentation.superpixels.size()));
   graph.occlusion_edges = occlusionEdges(segmentation.labels, graph.neighbours, depth, depth_edge_ratio);
   return graph;
 }

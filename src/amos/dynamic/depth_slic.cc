@@ -461,6 +461,7 @@ SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth
       s.valid_depth_fraction = static_cast<float>(nz[k]) / n[k];
     }
   }
+  result.working_labels = labels;
   if (labels.size() == bgr.size()) {
     result.labels = labels;
   } else {

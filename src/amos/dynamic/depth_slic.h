@@ -44,6 +44,9 @@ struct Superpixel {
 
 struct SuperpixelSegmentation {
   cv::Mat labels;  // CV_32S, full input resolution, values 0..superpixels.size()-1, every pixel labelled
+  // The same at the working resolution (DepthSlicOptions::scale), of which `labels` is the nearest-neighbour
+  // upsampling: the same superpixels touch each other in both, at a quarter of the pixels for scale 0.5.
+  cv::Mat working_labels;
   std::vector<Superpixel> superpixels;
 };
 

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/dynamic/boundary_assignment.h"
 #include "amos/dynamic/superpixel_metrics.h"
 
 namespace amos::dynamic {
@@ -172,6 +173,30 @@ TEST(DepthSlic, Avx2PathGivesTheSameLabels) {
     const SuperpixelSegmentation narrow = detail::computeDepthSlic(bgr, depth, options, false);
     ASSERT_EQ(wide.superpixels.size(), narrow.superpixels.size()) << count;
     EXPECT_EQ(cv::norm(wide.labels, narrow.labels, cv::NORM_INF), 0) << count << " superpixels";
+  }
+}
+
+}  // namespace
+}  // namespace amos::dynamic
+
+namespace amos::dynamic {
+namespace {
+
+// The working-resolution labels give the same superpixel adjacency as the full-resolution ones they are upsampled
+// to (superpixelGraph relies on it), at half and at a non-integer scale.
+TEST(DepthSlic, WorkingLabelsHaveTheSameNeighbours) {
+  cv::Mat small(60, 80, CV_8UC3), bgr;
+  cv::RNG rng(5);
+  rng.fill(small, cv::RNG::UNIFORM, 0, 256);
+  cv::resize(small, bgr, cv::Size(640, 480), 0, 0, cv::INTER_LINEAR);
+  const cv::Mat depth(480, 640, CV_32F, cv::Scalar(2.0f));
+  for (const double scale : {0.5, 0.37}) {
+    DepthSlicOptions options;
+    options.scale = scale;
+    const SuperpixelSegmentation seg = computeDepthSlic(bgr, depth, options);
+    ASSERT_LT(seg.working_labels.cols, seg.labels.cols);
+    const int n = static_cast<int>(seg.superpixels.size());
+    EXPECT_EQ(superpixelNeighbours(seg.working_labels, n), superpixelNeighbours(seg.labels, n)) << "scale " << scale;
   }
 }
 
