@@ -8,6 +8,7 @@
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/core/thread_priority.h"
 #include "amos/mapping/local_bundle_adjustment.h"
 
 namespace amos::mapping {
@@ -94,6 +95,8 @@ LocalMappingStats LocalMapper::stats() const {
 }
 
 void LocalMapper::run() {
+  // Background work: keyframes queue, frames do not wait for it (core/thread_priority.h).
+  core::lowerThisThreadPriority(core::kBackgroundNice);
   for (;;) {
     Job job;
     {

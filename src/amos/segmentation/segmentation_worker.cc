@@ -3,6 +3,7 @@
 #include <exception>
 
 #include "amos/core/error.h"
+#include "amos/core/thread_priority.h"
 #include "amos/segmentation/segment_masks.h"
 
 namespace amos::segmentation {
@@ -24,6 +25,8 @@ SegmentationResult segmentFrame(Segmenter& segmenter, const MaskDilationOptions&
 SegmentationWorker::SegmentationWorker(std::unique_ptr<Segmenter> segmenter, MaskDilationOptions dilation,
                                        std::size_t queue_capacity)
     : segmenter_(std::move(segmenter)), dilation_(std::move(dilation)), executor_(queue_capacity) {
+  // Background work: its masks are used frames later (core/thread_priority.h). The first task runs in the thread.
+  executor_.submit([] { core::lowerThisThreadPriority(core::kBackgroundNice); });
   core::require(segmenter_ != nullptr, "SegmentationWorker needs a segmenter");
   dilation_.check();
 }
