@@ -114,8 +114,8 @@ TEST(CornerTracking, ForwardBackwardCheckDropsOccludedPoints) {
 // its own, so the result must be exactly that of running both passes on all points (checked on two real frames with
 // people walking, where many forward tracks fail or leave the image).
 TEST(CornerTracking, BackwardPassOnSurvivorsOnlyChangesNothing) {
-  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
-  const std::string dir = testing::sharedPath("data/bonn_crowd_dev/rgb/");
+  AMOS_REQUIRE_DATA("bonn_crowd_dev");
+  const std::string dir = testing::dataPath("bonn_crowd_dev/rgb/");
   const cv::Mat last = cv::imread(dir + "1548339831.57265.png", cv::IMREAD_GRAYSCALE);
   const cv::Mat current = cv::imread(dir + "1548339831.87434.png", cv::IMREAD_GRAYSCALE);  // 9 frames later
   ASSERT_FALSE(last.empty() || current.empty());

@@ -257,8 +257,8 @@ TEST(DynamicFrontEnd, UsesPrecomputedTracksAndRejectsBadInput) {
 // Two consecutive real frames of Bonn crowd (three people walking, moving camera): the pipeline runs end to end
 // on real data with the initial pose from the last-frame model, and its output is consistent.
 TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
-  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
-  const std::string dir = testing::sharedPath("data/bonn_crowd_dev/");
+  AMOS_REQUIRE_DATA("bonn_crowd_dev");
+  const std::string dir = testing::dataPath("bonn_crowd_dev/");
   std::ifstream assoc(dir + "associations.txt");
   ASSERT_TRUE(assoc.good()) << "missing " << dir;
   std::vector<std::pair<std::string, std::string>> rows;

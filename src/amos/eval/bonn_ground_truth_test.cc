@@ -41,8 +41,8 @@ TEST(BonnGroundTruth, FormulaOnOnePose) {
 // The real Bonn ground truth: converted poses are rigid; a perfect camera trajectory has ~zero RPE against the
 // converted ground truth but large RPE against the raw marker file, while ATE hardly changes (data README).
 TEST(BonnGroundTruth, RpeNeedsTheConvertedGroundTruthAteDoesNot) {
-  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev/groundtruth.txt");
-  const auto marker = io::readTumTrajectory(testing::sharedPath("data/bonn_crowd_dev/groundtruth.txt"));
+  AMOS_REQUIRE_DATA("bonn_crowd_dev/groundtruth.txt");
+  const auto marker = io::readTumTrajectory(testing::dataPath("bonn_crowd_dev/groundtruth.txt"));
   ASSERT_GT(marker.size(), 300u);
   const auto camera = bonnMarkerToCamera(marker);
   ASSERT_EQ(camera.size(), marker.size());

@@ -29,14 +29,14 @@ const Reference kReferences[] = {
      0.021217, 0.934480, 753},
 };
 
-std::string trajectoryPath(const std::string& name) { return testing::sharedPath("data/trajectories/" + name); }
+std::string trajectoryPath(const std::string& name) { return testing::dataPath("trajectories/" + name); }
 
 void PrintTo(const Reference& ref, std::ostream* os) { *os << ref.name; }
 
 class TumReference : public ::testing::TestWithParam<Reference> {};
 
 TEST_P(TumReference, ReproducesTheBenchmarkScripts) {
-  AMOS_REQUIRE_SHARED("data/trajectories");
+  AMOS_REQUIRE_DATA("trajectories");
   const Reference& ref = GetParam();
   const auto gt = io::readTumTrajectory(trajectoryPath(ref.gt_file));
   const auto est = io::readTumTrajectory(trajectoryPath(ref.est_file));

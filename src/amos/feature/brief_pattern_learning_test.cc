@@ -16,7 +16,7 @@ namespace {
 
 // Every `step`-th frame (sorted by name) of a shared-data folder, grayscale.
 std::vector<cv::Mat> frames(const std::string& folder, size_t step, size_t limit = 1000) {
-  const std::filesystem::path dir = std::filesystem::path(testing::sharedPath("data")) / folder / "rgb";
+  const std::filesystem::path dir = std::filesystem::path(testing::dataDir()) / folder / "rgb";
   std::vector<std::filesystem::path> files;
   if (std::filesystem::is_directory(dir))
     for (const auto& entry : std::filesystem::directory_iterator(dir)) files.push_back(entry.path());
@@ -43,7 +43,7 @@ TEST(LearnedBriefPattern, IsAValidPatternAndTheDefault) {
 
 TEST(LearnedBriefPattern, BeatsTheGaussianPatternOnHeldOutFrames) {
   // TUM fr2/desk was not used for learning.
-  AMOS_REQUIRE_SHARED("data/tum_fr2_desk_first50");
+  AMOS_REQUIRE_DATA("tum_fr2_desk_first50");
   const std::vector<cv::Mat> held_out = frames("tum_fr2_desk_first50", 10);
   ASSERT_EQ(held_out.size(), 5u);
   const BriefPatternStats learned = evaluateBriefPattern(learnedBriefPattern(), held_out, OrbOptions{}, 5000);
@@ -69,8 +69,8 @@ TEST(LearnedBriefPattern, BeatsTheGaussianPatternOnHeldOutFrames) {
 }
 
 TEST(BriefPatternLearning, SmallRunImprovesOnItsCandidatePool) {
-  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
-  AMOS_REQUIRE_SHARED("data/tum_fr2_desk_first50");
+  AMOS_REQUIRE_DATA("bonn_crowd_dev");
+  AMOS_REQUIRE_DATA("tum_fr2_desk_first50");
   const std::vector<cv::Mat> train = frames("bonn_crowd_dev", 90);  // 3 frames
   const std::vector<cv::Mat> held_out = frames("tum_fr2_desk_first50", 25);
   ASSERT_EQ(train.size(), 3u);

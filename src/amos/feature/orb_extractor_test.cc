@@ -20,7 +20,7 @@ namespace {
 
 // First frame of TUM fr2/desk (real texture: desk, keyboard, monitor, books).
 cv::Mat tumFrame() {
-  const std::filesystem::path dir = testing::sharedPath("data/tum_fr2_desk_first50/rgb");
+  const std::filesystem::path dir = testing::dataPath("tum_fr2_desk_first50/rgb");
   std::vector<std::filesystem::path> files;
   if (std::filesystem::is_directory(dir))
     for (const auto& entry : std::filesystem::directory_iterator(dir)) files.push_back(entry.path());
@@ -52,7 +52,7 @@ int hamming(const cv::Mat& a, int i, const cv::Mat& b, int j) {
 // On synthetic texture always; on the real frame when the shared data is there.
 TEST(OrbExtractor, KeypointsCoverTheImageAndReachTheTarget) {
   std::vector<cv::Mat> images = {syntheticTexture()};
-  if (!testing::missingShared("data/tum_fr2_desk_first50")) images.push_back(tumFrame());
+  if (!testing::missingData("tum_fr2_desk_first50")) images.push_back(tumFrame());
   for (const cv::Mat& image : images) {
     ASSERT_FALSE(image.empty());
     OrbExtractor orb(OrbOptions{});
@@ -152,7 +152,7 @@ TEST(OrbExtractor, CoarseLevelKeypointsMapExactlyToLevelZero) {
 }
 
 TEST(OrbExtractor, DescriptorsSurviveRotation) {
-  AMOS_REQUIRE_SHARED("data/tum_fr2_desk_first50");
+  AMOS_REQUIRE_DATA("tum_fr2_desk_first50");
   const cv::Mat image = tumFrame();
   ASSERT_FALSE(image.empty());
   const cv::Point2f center(image.cols / 2.0f, image.rows / 2.0f);

@@ -316,10 +316,10 @@ TEST_F(TinySequence, NearlyEmptyDepthIsADropoutNotAnError) {
 }
 
 TEST(RealSequences, ReadsTheSharedTumAndBonnSlices) {
-  AMOS_REQUIRE_SHARED("data/tum_fr2_desk_first50");
-  AMOS_REQUIRE_SHARED("data/tum_fr1_desk_first9");
-  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
-  const std::string data = testing::sharedPath("data/");
+  AMOS_REQUIRE_DATA("tum_fr2_desk_first50");
+  AMOS_REQUIRE_DATA("tum_fr1_desk_first9");
+  AMOS_REQUIRE_DATA("bonn_crowd_dev");
+  const std::string data = testing::dataPath("");
   const auto fr2 = indexSequence(data + "tum_fr2_desk_first50");
   EXPECT_EQ(fr2.frames.size(), 50u);
   EXPECT_EQ(fr2.association.rows_beyond_window, 0u);

@@ -16,6 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include "amos/testing/shared_data.h"
+
 namespace amos::io {
 namespace {
 
@@ -227,9 +229,9 @@ std::vector<fs::path> pngsIn(const fs::path& dir) {
 
 // Every rgb/ frame with IMREAD_COLOR and depth/ frame with IMREAD_UNCHANGED equals cv::imread's, decoded here.
 void expectSequenceLikeImread(const std::string& name) {
-  const fs::path dir = fs::path(AMOS_SHARED_DIR) / "data" / name;
-  if (!fs::is_directory(dir / "rgb") || !fs::is_directory(dir / "depth"))
-    GTEST_SKIP() << "real data " << dir << " is absent (../shared/data beside the checkout)";
+  AMOS_REQUIRE_DATA(name + "/rgb");
+  AMOS_REQUIRE_DATA(name + "/depth");
+  const fs::path dir = testing::dataPath(name);
   std::size_t frames = 0;
   for (const auto& [sub, flags] : {std::pair{"rgb", cv::IMREAD_COLOR}, std::pair{"depth", cv::IMREAD_UNCHANGED}}) {
     for (const fs::path& file : pngsIn(dir / sub)) {

@@ -151,8 +151,8 @@ TEST(TumTrajectory, MissingFileIsAClearError) {
 }
 
 TEST(TumTrajectory, ReadsTheOfficialGroundTruth) {
-  AMOS_REQUIRE_SHARED("data/trajectories");
-  const std::string path = testing::sharedPath("data/trajectories/rgbd_dataset_freiburg1_xyz_groundtruth.txt");
+  AMOS_REQUIRE_DATA("trajectories");
+  const std::string path = testing::dataPath("trajectories/rgbd_dataset_freiburg1_xyz_groundtruth.txt");
   const std::vector<StampedPose> poses = readTumTrajectory(path);
   ASSERT_EQ(poses.size(), 3000u);  // 3003 lines, 3 of them comments
   EXPECT_DOUBLE_EQ(poses[0].timestamp, 1305031098.6659);

@@ -12,11 +12,13 @@
 #include "amos/core/error.h"
 #include "amos/io/dataset.h"
 #include "amos/report/sequence_run.h"
+#include "amos/testing/shared_data.h"
 
 namespace amos::report {
 namespace {
 
-const std::string kFr2 = std::string(AMOS_SHARED_DIR) + "/data/tum_fr2_desk_first50";
+const std::string kFr2Data = "tum_fr2_desk_first50";
+const std::string kFr2 = testing::dataPath(kFr2Data);
 const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
 
 // Hands out preloaded frames at once (a camera that is always ahead), then ends or fails.
@@ -73,7 +75,7 @@ Fed feed(io::FrameSource& source) {
 }
 
 TEST(PacedFeeder, StageAOfTheNextFrameRunsBesideStageB) {
-  ASSERT_TRUE(std::filesystem::exists(kFr2)) << kFr2;
+  AMOS_REQUIRE_DATA(kFr2Data);
   ListSource source(fr2Frames(8), false);
   const Fed fed = feed(source);
   EXPECT_EQ(fed.indices, (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7}));
@@ -82,7 +84,7 @@ TEST(PacedFeeder, StageAOfTheNextFrameRunsBesideStageB) {
 }
 
 TEST(PacedFeeder, ASourceErrorEndsTheLoopWithTheError) {
-  ASSERT_TRUE(std::filesystem::exists(kFr2)) << kFr2;
+  AMOS_REQUIRE_DATA(kFr2Data);
   ListSource source(fr2Frames(3), true);
   EXPECT_THROW(feed(source), core::Error);
 }

@@ -19,8 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kFr2Data = "data/tum_fr2_desk_first50";
-const std::string kFr2 = testing::sharedPath(kFr2Data);
+const std::string kFr2Data = "tum_fr2_desk_first50";
+const std::string kFr2 = testing::dataPath(kFr2Data);
 const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
 
 fs::path outputDir(const std::string& name) {
@@ -36,7 +36,7 @@ nlohmann::json writeAndReadStats(const SequenceRunResult& r, const fs::path& dir
 }
 
 TEST(SequenceRunSources, FolderSourceDeliversAndProcessesEveryFrame) {
-  AMOS_REQUIRE_SHARED(kFr2Data);
+  AMOS_REQUIRE_DATA(kFr2Data);
   SequenceRunOptions options;
   options.sequence_dir = kFr2;
   options.max_frames = 20;
@@ -61,7 +61,7 @@ TEST(SequenceRunSources, FolderSourceDeliversAndProcessesEveryFrame) {
 // The 50 fr2 frames replayed at 30 Hz (1.6 s): every frame delivered is either processed or dropped, the
 // trajectory holds the processed ones, and it is still evaluated against the ground truth.
 TEST(SequenceRunSources, RealtimeReplayProcessesOrDropsEveryFrame) {
-  AMOS_REQUIRE_SHARED(kFr2Data);
+  AMOS_REQUIRE_DATA(kFr2Data);
   SequenceRunOptions options;
   options.source = FrameSourceKind::kRealtime;
   options.sequence_dir = kFr2;
@@ -85,7 +85,7 @@ TEST(SequenceRunSources, RealtimeReplayProcessesOrDropsEveryFrame) {
 
 // --record: the recorded folder is a sequence of its own, holding exactly the processed frames, bit for bit.
 TEST(SequenceRunSources, RecordingHoldsTheProcessedFramesBitExact) {
-  AMOS_REQUIRE_SHARED(kFr2Data);
+  AMOS_REQUIRE_DATA(kFr2Data);
   const config::Settings settings = config::loadSettings(kTum2);
   const fs::path record = outputDir("record");
   SequenceRunOptions options;

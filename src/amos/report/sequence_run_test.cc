@@ -16,8 +16,8 @@
 namespace amos::report {
 namespace {
 
-const std::string kFr2Data = "data/tum_fr2_desk_first50";
-const std::string kFr2 = testing::sharedPath(kFr2Data);
+const std::string kFr2Data = "tum_fr2_desk_first50";
+const std::string kFr2 = testing::dataPath(kFr2Data);
 const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
 const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
 
@@ -39,7 +39,7 @@ SequenceRunResult runFr2(bool deterministic) {
 // deterministic mode today (4.9 mm before FAST corners were kept off the reflected image border; tracking alone,
 // without local BA, 3.7 mm). The bound guards against regressions while the 3.8 mm target is still open.
 TEST(SequenceRun, TumFr2DeskFirst50TracksEveryFrameAccurately) {
-  AMOS_REQUIRE_SHARED(kFr2Data);
+  AMOS_REQUIRE_DATA(kFr2Data);
   const SequenceRunResult r = runFr2(true);
   ASSERT_TRUE(r.slam);
   const system::SlamStats s = r.slam->stats();
@@ -56,7 +56,7 @@ TEST(SequenceRun, TumFr2DeskFirst50TracksEveryFrameAccurately) {
 
 // --deterministic: the same input gives the same trajectory file, byte for byte.
 TEST(SequenceRun, DeterministicModeIsBitIdentical) {
-  AMOS_REQUIRE_SHARED(kFr2Data);
+  AMOS_REQUIRE_DATA(kFr2Data);
   const std::filesystem::path dir = std::filesystem::path(AMOS_BINARY_DIR) / "test_outputs" / "determinism";
   std::string bytes[2];
   for (int run = 0; run < 2; ++run) {

@@ -16,8 +16,8 @@
 namespace amos::report {
 namespace {
 
-const std::string kFr2Data = "data/tum_fr2_desk_first50";
-const std::string kFr2 = testing::sharedPath(kFr2Data);
+const std::string kFr2Data = "tum_fr2_desk_first50";
+const std::string kFr2 = testing::dataPath(kFr2Data);
 const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
 
 std::vector<io::RgbdFrame> loadFrames(const config::Settings& settings, std::size_t count) {
@@ -56,7 +56,7 @@ RecoveryRun run(const config::Settings& settings, const std::vector<io::RgbdFram
 }
 
 TEST(TrackingRecovery, LostFramesRecoverNearTheLastPoseWithoutTheRelocaliser) {
-  AMOS_REQUIRE_SHARED(kFr2Data);
+  AMOS_REQUIRE_DATA(kFr2Data);
   const config::Settings settings = config::loadSettings(kTum2);
   const std::vector<io::RgbdFrame> frames = loadFrames(settings, 16);
   ASSERT_EQ(frames.size(), 16u);

@@ -14,8 +14,8 @@
 namespace amos::segmentation {
 namespace {
 
-const std::string kDetectorModel = "models/nanodet_m_320.onnx";
-const std::string kDetector = testing::sharedPath(kDetectorModel);
+const std::string kDetectorModel = "nanodet_m_320.onnx";
+const std::string kDetector = testing::modelPath(kDetectorModel);
 
 cv::Mat countingBlob(const std::vector<int>& shape) {
   cv::Mat blob(static_cast<int>(shape.size()), shape.data(), CV_32F);
@@ -61,7 +61,7 @@ TEST(NanoDetImport, TransposeMatchesTheDefinition) {
 }
 
 TEST(NanoDetImport, ShufflesRunAsBlockCopiesAndOtherImportsAreUntouched) {
-  AMOS_REQUIRE_SHARED(kDetectorModel);
+  AMOS_REQUIRE_MODELS(kDetectorModel);
   const NanoDetImport square = loadNanoDet(kDetector, 320, {320, 320});
   // 16 ShuffleNetV2 blocks, one shuffle each; the shapes are the export's own.
   EXPECT_EQ(square.block_transposes, 16);
@@ -87,9 +87,9 @@ TEST(NanoDetImport, ShufflesRunAsBlockCopiesAndOtherImportsAreUntouched) {
 }
 
 TEST(NanoDetImport, FrameShapedInputFindsThePeopleTheSquareInputFinds) {
-  AMOS_REQUIRE_SHARED(kDetectorModel);
-  AMOS_REQUIRE_SHARED("data/person_masks");
-  const cv::Mat bgr = cv::imread(testing::sharedPath("data/person_masks/rgb/w_xyz_1341846313.553992.png"));
+  AMOS_REQUIRE_MODELS(kDetectorModel);
+  AMOS_REQUIRE_DATA("person_masks");
+  const cv::Mat bgr = cv::imread(testing::dataPath("person_masks/rgb/w_xyz_1341846313.553992.png"));
   ASSERT_FALSE(bgr.empty());
   const cv::Size frame_input = detectorInputSize(bgr.size(), 320, /*square=*/false);
   ASSERT_EQ(frame_input, cv::Size(320, 256));
@@ -120,7 +120,7 @@ TEST(NanoDetImport, FrameShapedInputFindsThePeopleTheSquareInputFinds) {
 }
 
 TEST(NanoDetImport, RejectsInputsThatAreNotMultiplesOf32) {
-  AMOS_REQUIRE_SHARED(kDetectorModel);
+  AMOS_REQUIRE_MODELS(kDetectorModel);
   EXPECT_THROW(loadNanoDet(kDetector, 320, {320, 240}), core::Error);
 }
 

@@ -18,7 +18,7 @@ namespace amos::segmentation {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kModels = testing::sharedPath("models");
+const std::string kModels = testing::modelsDir();
 
 ModelSources modelsAt(const std::string& dir) {
   ModelSources sources;
@@ -40,9 +40,10 @@ std::string creationError(const SegmenterOptions& options, const ModelSources& s
 // person). In w_xyz_122 YOLACT missed the person cut by the right border, and so does NanoDet at the default
 // threshold, so a detection there would count against us.
 TEST(SegmenterDnn, PersonMasksMatchThePapersYolactMasks) {
-  AMOS_REQUIRE_SHARED("models");
-  AMOS_REQUIRE_SHARED("data/person_masks");
-  const std::string dir = testing::sharedPath("data/person_masks");
+  AMOS_REQUIRE_MODELS("nanodet_m_320.onnx");
+  AMOS_REQUIRE_MODELS("selfie_seg_256.onnx");
+  AMOS_REQUIRE_DATA("person_masks");
+  const std::string dir = testing::dataPath("person_masks");
   ASSERT_TRUE(fs::is_directory(dir + "/rgb")) << dir << " is missing";
   SegmenterOptions options;
   auto segmenter = createSegmenter(options, modelsAt(kModels), builtinSegmenterFactory());
@@ -69,7 +70,8 @@ TEST(SegmenterDnn, PersonMasksMatchThePapersYolactMasks) {
 }
 
 TEST(SegmenterDnn, NoPeopleInAnEmptyImage) {
-  AMOS_REQUIRE_SHARED("models");
+  AMOS_REQUIRE_MODELS("nanodet_m_320.onnx");
+  AMOS_REQUIRE_MODELS("selfie_seg_256.onnx");
   SegmenterOptions options;
   options.models_dir = kModels;
   auto segmenter = makeNanoDetSelfieSegmenter(options);
@@ -91,7 +93,8 @@ TEST(SegmenterDnn, MissingModelIsAClearStartUpError) {
 }
 
 TEST(SegmenterDnn, CorruptModelIsAClearStartUpError) {
-  AMOS_REQUIRE_SHARED("models");
+  AMOS_REQUIRE_MODELS("nanodet_m_320.onnx");
+  AMOS_REQUIRE_MODELS("selfie_seg_256.onnx");
   const fs::path dir = fs::temp_directory_path() / ("amos_bad_models_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   fs::copy_file(kModels + "/selfie_seg_256.onnx", dir / "selfie_seg_256.onnx", fs::copy_options::overwrite_existing);

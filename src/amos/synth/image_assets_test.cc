@@ -13,8 +13,8 @@ namespace {
 TEST(ImageAssets, CutoutsFromTheSharedPersonMasks) {
   // Two TUM fr3/walking_xyz frames: a seated man (feet at the bottom border), a standing man cut by the bottom
   // border at the thighs, and a man cut by the right border (not usable).
-  AMOS_REQUIRE_SHARED("data/person_masks");
-  const std::vector<PersonCutout> cutouts = loadPersonCutouts(testing::sharedPath("data/person_masks"));
+  AMOS_REQUIRE_DATA("person_masks");
+  const std::vector<PersonCutout> cutouts = loadPersonCutouts(testing::dataPath("person_masks"));
   int sitting = 0, upper = 0;
   for (const PersonCutout& c : cutouts) {
     EXPECT_EQ(c.bgr.size(), c.alpha.size());
@@ -45,13 +45,13 @@ TEST(ImageAssets, BorderCutRegionsAreSkipped) {
 }
 
 TEST(ImageAssets, PhotosSkipDepthAndMaskFolders) {
-  AMOS_REQUIRE_SHARED("data/tum_fr1_desk_first9");
-  AMOS_REQUIRE_SHARED("data/trajectories");
-  const std::vector<cv::Mat> photos = loadPhotos(testing::sharedPath("data/tum_fr1_desk_first9"), 4);
+  AMOS_REQUIRE_DATA("tum_fr1_desk_first9");
+  AMOS_REQUIRE_DATA("trajectories");
+  const std::vector<cv::Mat> photos = loadPhotos(testing::dataPath("tum_fr1_desk_first9"), 4);
   EXPECT_EQ(photos.size(), 4u);
   for (const cv::Mat& p : photos) EXPECT_EQ(p.type(), CV_8UC3);
-  EXPECT_THROW(loadPhotos(testing::sharedPath("data/no_such_folder")), core::Error);
-  EXPECT_THROW(loadPersonCutouts(testing::sharedPath("data/trajectories")), core::Error);
+  EXPECT_THROW(loadPhotos(testing::dataPath("no_such_folder")), core::Error);
+  EXPECT_THROW(loadPersonCutouts(testing::dataPath("trajectories")), core::Error);
 }
 
 }  // namespace

@@ -20,7 +20,7 @@
 namespace amos::system {
 namespace {
 
-const std::string kBonn = testing::sharedPath("data/bonn_crowd_dev");
+const std::string kBonn = testing::dataPath("bonn_crowd_dev");
 
 SlamOptions bonnOptions() {
   SlamOptions o;
@@ -45,7 +45,7 @@ std::vector<io::RgbdFrame> bonnFrames(std::size_t count, std::size_t first) {
 
 std::unique_ptr<segmentation::SegmentationWorker> realSegmentation() {
   segmentation::ModelSources sources;
-  sources.cli_dir = testing::sharedPath("models");
+  sources.cli_dir = testing::modelsDir();
   sources.default_dirs.clear();
   auto segmenter =
       segmentation::createSegmenter(segmentation::SegmenterOptions{}, sources, segmentation::builtinSegmenterFactory());
@@ -92,8 +92,9 @@ bool sameMask(const cv::Mat& a, const cv::Mat& b) {
 // no look-ahead, the one frame that `run` uses, and three (the stage-A tasks then wait for the hand-offs of
 // frames stage B has not reached).
 TEST(DynamicPipeline, LookAheadGivesTheSameMasksAndPoses) {
-  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
-  AMOS_REQUIRE_SHARED("models");
+  AMOS_REQUIRE_DATA("bonn_crowd_dev");
+  AMOS_REQUIRE_MODELS("nanodet_m_320.onnx");
+  AMOS_REQUIRE_MODELS("selfie_seg_256.onnx");
   const std::vector<io::RgbdFrame> frames = bonnFrames(12, 90);
   ASSERT_EQ(frames.size(), 12u);
   const RunRecord plain = runPipeline(frames, 0);
@@ -249,7 +250,7 @@ MaskedExtractionRun runLeftBand(const std::vector<io::RgbdFrame>& frames, double
 // priorMaskedExtractionCoverage) and a map in place, or with the option off, extraction ignores the mask and the
 // mask removes them.
 TEST(DynamicPipeline, MaskedExtractionPutsTheFeatureBudgetOutsideLargePriorMasks) {
-  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
+  AMOS_REQUIRE_DATA("bonn_crowd_dev");
   const std::vector<io::RgbdFrame> frames = bonnFrames(4, 0);
   const MaskedExtractionRun masked = runLeftBand(frames, 0.7, true);
   const MaskedExtractionRun unmasked = runLeftBand(frames, 0.7, false);
@@ -264,7 +265,7 @@ TEST(DynamicPipeline, MaskedExtractionPutsTheFeatureBudgetOutsideLargePriorMasks
 // Before the map exists the mask steers the extraction at any coverage: the frame alone must supply the points to
 // start the map. Here the first two frames have no depth, so no map exists before the third frame is prepared.
 TEST(DynamicPipeline, MaskedExtractionBeforeTheMapIgnoresTheCoverage) {
-  AMOS_REQUIRE_SHARED("data/bonn_crowd_dev");
+  AMOS_REQUIRE_DATA("bonn_crowd_dev");
   std::vector<io::RgbdFrame> frames = bonnFrames(3, 0);
   for (std::size_t k = 0; k < 2; ++k) frames[k].depth = cv::Mat(frames[k].depth.size(), CV_32F, cv::Scalar(0));
   const MaskedExtractionRun small = runLeftBand(frames, 0.3, true);
