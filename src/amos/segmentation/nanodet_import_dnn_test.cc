@@ -95,7 +95,9 @@ TEST(NanoDetImport, FrameShapedInputFindsThePeopleTheSquareInputFinds) {
   ASSERT_EQ(frame_input, cv::Size(320, 256));
   auto detect = [&](cv::Size input_size) {
     NanoDetImport import = loadNanoDet(kDetector, 320, input_size);
-    if (input_size.height != 320) EXPECT_EQ(import.reshapes_adapted, 32);
+    if (input_size.height != 320) {
+      EXPECT_EQ(import.reshapes_adapted, 32);
+    }
     const Letterbox lb = makeLetterbox(bgr.size(), input_size);
     cv::Mat input;
     applyLetterbox(bgr, lb).convertTo(input, CV_32FC3);
