@@ -13,6 +13,7 @@
 #include <vector>
 #include <cstdint>
 #include <fstream>
+#include <sstream>
 #include <opencv2/imgcodecs.hpp>
 #include <thread>
 #include <variant>
@@ -33,9 +34,9 @@ struct StampedFile {
   std::string file;
 };
 
-std::vector<StampedFile> readStampedList(const std::string& path) {
+std::vector<StampedFile> readStampedList(const std::vector<TextLine>& lines, const std::string& path) {
   std::vector<StampedFile> out;
-  for (const auto& line : readTextLines(path)) {
+  for (const auto& line : lines) {
     if (line.fields.size() < 2) {
       throw core::Error(fmt::format("{}:{}: expected 'timestamp filename', got {} field(s)", path, line.number,
                                     line.fields.size()));
@@ -46,7 +47,8 @@ std::vector<StampedFile> readStampedList(const std::string& path) {
 }
 
 // The rows of an association file; each of its two stamp columns must increase from row to row.
-std::vector<AssociatedFrame> readAssociationFile(const std::string& path, AssociationStats& stats) {
+std::vector<AssociatedFrame> readAssociationFile(const std::vector<TextLine>& lines, const std::string& path,
+                                                 AssociationStats& stats) {
   std::vector<AssociatedFrame> out;
   int previous_line = 0;
   int first_beyond_line = 0;
@@ -58,7 +60,7 @@ std::vector<AssociatedFrame> readAssociationFile(const std::string& path, Associ
                                     path, line, what, stamp, previous_line, previous));
     }
   };
-  for (const auto& line : readTextLines(path)) {
+  for (const auto& line : lines) {
     if (line.fields.size() < 4) {
       throw core::Error(fmt::format("{}:{}: expected 't_rgb rgb_file t_depth depth_file', got {} field(s)", path,
                                     line.number, line.fields.size()));
@@ -88,6 +90,19 @@ std::vector<AssociatedFrame> readAssociationFile(const std::string& path, Associ
                  path, stats.rows_beyond_window, stats.rows, stats.window_s, first_beyond_line, first_beyond_s);
   }
   return out;
+}
+
+// Pairs the frames of rgb.txt and depth.txt by their stamps.
+std::vector<AssociatedFrame> associateLists(const std::vector<StampedFile>& rgb, const std::vector<StampedFile>& depth,
+                                            double max_dt) {
+  std::vector<double> t_rgb, t_depth;
+  for (const auto& s : rgb) t_rgb.push_back(s.t);
+  for (const auto& s : depth) t_depth.push_back(s.t);
+  std::vector<AssociatedFrame> frames;
+  for (const auto& [i, j] : associateStamps(t_rgb, t_depth, max_dt)) {
+    frames.push_back({rgb[i].t, depth[j].t, rgb[i].file, depth[j].file});
+  }
+  return frames;
 }
 
 std::string firstExisting(const fs::path& dir, std::initializer_list<const char*> names) {
@@ -129,19 +144,13 @@ SequenceIndex indexSequence(const std::string& dir, double max_dt) {
   index.association.window_s = max_dt;
   const std::string association = firstExisting(root, {"associations.txt", "associate.txt", "association.txt"});
   if (!association.empty()) {
-    index.frames = readAssociationFile(association, index.association);
+    index.frames = readAssociationFile(readTextLines(association), association, index.association);
   } else {
     const std::string rgb_list = (root / "rgb.txt").string(), depth_list = (root / "depth.txt").string();
     core::require(fs::is_regular_file(rgb_list) && fs::is_regular_file(depth_list),
                   fmt::format("'{}' has neither an association file nor rgb.txt + depth.txt", dir));
-    const auto rgb = readStampedList(rgb_list);
-    const auto depth = readStampedList(depth_list);
-    std::vector<double> t_rgb, t_depth;
-    for (const auto& s : rgb) t_rgb.push_back(s.t);
-    for (const auto& s : depth) t_depth.push_back(s.t);
-    for (const auto& [i, j] : associateStamps(t_rgb, t_depth, max_dt)) {
-      index.frames.push_back({rgb[i].t, depth[j].t, rgb[i].file, depth[j].file});
-    }
+    index.frames = associateLists(readStampedList(readTextLines(rgb_list), rgb_list),
+                                  readStampedList(readTextLines(depth_list), depth_list), max_dt);
   }
   for (auto& f : index.frames) {
     f.rgb_file = (root / f.rgb_file).string();
@@ -151,6 +160,21 @@ SequenceIndex indexSequence(const std::string& dir, double max_dt) {
   core::require(!index.frames.empty(), fmt::format("sequence '{}' has no RGB-D frame to read", dir));
   index.groundtruth_file = firstExisting(root, {"groundtruth.txt"});
   return index;
+}
+
+std::vector<AssociatedFrame> parseAssociationFile(const std::string& text, const std::string& path, double max_dt,
+                                                  AssociationStats& stats) {
+  std::istringstream in(text);
+  stats.window_s = max_dt;
+  return readAssociationFile(readTextLines(in), path, stats);
+}
+
+std::vector<AssociatedFrame> associateFrameLists(const std::string& rgb_text, const std::string& rgb_path,
+                                                 const std::string& depth_text, const std::string& depth_path,
+                                                 double max_dt) {
+  std::istringstream rgb_in(rgb_text), depth_in(depth_text);
+  return associateLists(readStampedList(readTextLines(rgb_in), rgb_path),
+                        readStampedList(readTextLines(depth_in), depth_path), max_dt);
 }
 
 namespace {

@@ -50,6 +50,15 @@ struct SequenceIndex {
 // and counted in `association`.
 SequenceIndex indexSequence(const std::string& dir, double max_dt = 0.02);
 
+// indexSequence's reading of the lists, from their text (tests, the fuzz target): the frames of an association file
+// and its stats (window max_dt), or those paired from rgb.txt and depth.txt. Files are as listed, neither joined to
+// a folder nor checked; `*path` names the list in errors. Throws core::Error as indexSequence does.
+std::vector<AssociatedFrame> parseAssociationFile(const std::string& text, const std::string& path, double max_dt,
+                                                  AssociationStats& stats);
+std::vector<AssociatedFrame> associateFrameLists(const std::string& rgb_text, const std::string& rgb_path,
+                                                 const std::string& depth_text, const std::string& depth_path,
+                                                 double max_dt);
+
 struct ReaderOptions {
   double depth_factor = 5000.0;  // DepthMapFactor: raw 16-bit value / factor = metres
   int width = 640, height = 480; // expected image size (Camera.width/height)

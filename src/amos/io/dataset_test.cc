@@ -80,6 +80,33 @@ TEST(AssociateStamps, GreedyNearestWithinWindowLikeAssociatePy) {
   EXPECT_EQ(m[2], Pair(2, 3));
 }
 
+TEST(SequenceLists, ParsedFromTextAsIndexSequenceReadsThem) {
+  AssociationStats stats;
+  const auto rows = parseAssociationFile("# t_rgb rgb t_depth depth\n1.0 rgb/1.png 1.01 depth/1.png\n"
+                                         "2.0 rgb/2.png 2.5 depth/2.png\n",
+                                         "assoc.txt", 0.02, stats);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1].rgb_file, "rgb/2.png");
+  EXPECT_DOUBLE_EQ(rows[1].t_depth, 2.5);
+  EXPECT_EQ(stats.file, "assoc.txt");
+  EXPECT_EQ(stats.rows, 2u);
+  EXPECT_EQ(stats.rows_beyond_window, 1u);
+  EXPECT_NE(errorOf([] {
+              AssociationStats s;
+              parseAssociationFile("2.0 a 2.0 b\n1.0 c 1.0 d\n", "assoc.txt", 0.02, s);
+            }).find("assoc.txt:2:"),
+            std::string::npos);
+
+  const auto frames = associateFrameLists("1.0 rgb/1.png\n2.0 rgb/2.png\n", "rgb.txt", "1.01 depth/1.png\n",
+                                          "depth.txt", 0.02);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].rgb_file, "rgb/1.png");
+  EXPECT_EQ(frames[0].depth_file, "depth/1.png");
+  EXPECT_NE(errorOf([] { associateFrameLists("1.0 a\n", "rgb.txt", "x depth/1.png\n", "depth.txt", 0.02); })
+                .find("depth.txt:1: timestamp is not a number: 'x'"),
+            std::string::npos);
+}
+
 TEST_F(TinySequence, AssociatesListsAndSkipsMissingFile) {
   writeImages("1.000000");
   writeImages("1.033000");

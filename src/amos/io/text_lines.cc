@@ -14,6 +14,10 @@ namespace amos::io {
 std::vector<TextLine> readTextLines(const std::string& path) {
   std::ifstream in(path);
   core::require(in.good(), fmt::format("cannot open '{}'", path));
+  return readTextLines(in);
+}
+
+std::vector<TextLine> readTextLines(std::istream& in) {
   std::vector<TextLine> lines;
   std::string raw;
   int number = 0;

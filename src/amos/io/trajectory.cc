@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 
 #include "amos/core/error.h"
 #include "amos/io/atomic_file.h"
@@ -35,17 +36,13 @@ struct PoseLines {
   int lines = 0;  // pose lines read, skipped ones included
 };
 
-PoseLines readPoseLines(const std::string& path, const std::string& role) {
-  core::require(std::filesystem::is_regular_file(path),
-                fmt::format("{} '{}' does not exist (or is not a regular file)", role, path));
-  if (!std::ifstream(path).good()) {
-    throw core::Error(fmt::format("{} '{}' cannot be read: {}", role, path, std::strerror(errno)));
-  }
+// The poses of `lines`, read from `path`.
+PoseLines parsePoseLines(const std::vector<TextLine>& lines, const std::string& path) {
   PoseLines out;
   std::vector<StampedPose>& poses = out.poses;
   int skipped = 0;
   // readTextLines splits on blanks, tabs and commas and drops '#' comments and blank lines, like the TUM scripts.
-  for (const TextLine& line : readTextLines(path)) {
+  for (const TextLine& line : lines) {
     ++out.lines;
     const std::vector<std::string>& fields = line.fields;
     if (fields.size() != 8) {
@@ -75,10 +72,24 @@ PoseLines readPoseLines(const std::string& path, const std::string& role) {
   return out;
 }
 
+PoseLines readPoseLines(const std::string& path, const std::string& role) {
+  core::require(std::filesystem::is_regular_file(path),
+                fmt::format("{} '{}' does not exist (or is not a regular file)", role, path));
+  if (!std::ifstream(path).good()) {
+    throw core::Error(fmt::format("{} '{}' cannot be read: {}", role, path, std::strerror(errno)));
+  }
+  return parsePoseLines(readTextLines(path), path);
+}
+
 }  // namespace
 
 std::vector<StampedPose> readTumTrajectory(const std::string& path) {
   return readPoseLines(path, "trajectory file").poses;
+}
+
+std::vector<StampedPose> parseTumTrajectory(const std::string& text, const std::string& path) {
+  std::istringstream in(text);
+  return parsePoseLines(readTextLines(in), path).poses;
 }
 
 std::vector<StampedPose> readTumTrajectoryWithPoses(const std::string& path, const std::string& role) {

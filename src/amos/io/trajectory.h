@@ -22,6 +22,8 @@ struct StampedPose {
 // Throws core::Error for a missing/unreadable file, and for a malformed line (not exactly 8 numbers), naming
 // the file and the 1-based line number.
 std::vector<StampedPose> readTumTrajectory(const std::string& path);
+// readTumTrajectory of a file's text; `path` names it in errors and warnings (tests, the fuzz target).
+std::vector<StampedPose> parseTumTrajectory(const std::string& text, const std::string& path);
 
 // readTumTrajectory for a file that must hold poses, such as the ground truth or the estimate an evaluation
 // compares: errors call the file by its `role` ("ground-truth file"), one that cannot be opened is named

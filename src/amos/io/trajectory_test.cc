@@ -138,6 +138,26 @@ TEST(TumTrajectory, MalformedLineNamesFileAndLine) {
   }
 }
 
+TEST(TumTrajectory, ParsedTextGivesWhatTheFileGivesAndNamesThePathInErrors) {
+  const std::string text = "# header\n1.0 1 2 3 0 0 0 2\n2.0,4,5,6,0,0,1,0\n3.0 0 0 0 0 0 0 0\n";
+  const std::string path = scratchPath("parsed.txt");
+  writeText(path, text);
+  const std::vector<StampedPose> from_file = readTumTrajectory(path);
+  const std::vector<StampedPose> from_text = parseTumTrajectory(text, "named.txt");
+  ASSERT_EQ(from_text.size(), 2u);
+  ASSERT_EQ(from_file.size(), from_text.size());
+  for (std::size_t i = 0; i < from_text.size(); ++i) {
+    EXPECT_EQ(from_text[i].timestamp, from_file[i].timestamp);
+    EXPECT_EQ(from_text[i].T_wc.matrix(), from_file[i].T_wc.matrix());
+  }
+  try {
+    parseTumTrajectory("1 0 0 0 0 0 0 1\n2 0 0 0 0 0 1\n", "named.txt");
+    FAIL() << "no error for a line with 7 fields";
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("named.txt:2:"), std::string::npos) << e.what();
+  }
+}
+
 TEST(TumTrajectory, MissingFileIsAClearError) {
   const std::string path = scratchPath("does_not_exist.txt");
   try {

@@ -1,0 +1,20 @@
+// The corpora of the sequence-index and trajectory fuzz targets (fuzz/corpus/), replayed through the targets' entry
+// functions: no input may crash or throw anything but core::Error.
+#include <gtest/gtest.h>
+
+#include "amos/testing/fuzz_corpus.h"
+#include "fuzz/io_inputs.h"
+
+namespace amos::io {
+namespace {
+
+TEST(FuzzCorpus, SequenceIndexInputsGiveFramesOrCoreErrors) {
+  EXPECT_GE(testing::replayFuzzCorpus("sequence_index", fuzz::readSequenceIndexInput), 5u);
+}
+
+TEST(FuzzCorpus, TrajectoryInputsGivePosesOrCoreErrors) {
+  EXPECT_GE(testing::replayFuzzCorpus("trajectory", fuzz::readTrajectoryInput), 4u);
+}
+
+}  // namespace
+}  // namespace amos::io
