@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "amos/testing/scratch_dir.h"
+
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -15,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("amos_atomic_file_test_" + name);
+  const fs::path dir = amos::testing::scratchDir("amos_atomic_file_test_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

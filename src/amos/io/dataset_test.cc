@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "amos/testing/scratch_dir.h"
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -20,9 +22,8 @@ namespace fs = std::filesystem;
 class TinySequence : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / fs::path("amos_dataset_test_" + std::string(::testing::UnitTest::GetInstance()
-                                                                                     ->current_test_info()
-                                                                                     ->name()));
+    dir_ = amos::testing::scratchDir(
+        "amos_dataset_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "rgb");
     fs::create_directories(dir_ / "depth");

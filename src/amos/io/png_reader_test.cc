@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "amos/testing/scratch_dir.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdlib>
@@ -254,8 +256,8 @@ TEST(PngReaderRealData, TumFr2DeskFramesEqualImread) { expectSequenceLikeImread(
 class PngReaderFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("amos_png_reader_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = amos::testing::scratchDir(
+        "amos_png_reader_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

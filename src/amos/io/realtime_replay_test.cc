@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "amos/testing/scratch_dir.h"
+
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -25,8 +27,8 @@ using std::chrono::milliseconds;
 class ReplaySequence : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("amos_replay_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = amos::testing::scratchDir(
+        "amos_replay_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "rgb");
     fs::create_directories(dir_ / "depth");

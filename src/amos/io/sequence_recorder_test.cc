@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "amos/testing/scratch_dir.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -18,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("amos_recorder_test_" + name);
+  const fs::path dir = amos::testing::scratchDir("amos_recorder_test_" + name);
   fs::remove_all(dir);
   return dir;
 }
