@@ -11,8 +11,6 @@
 #include <mutex>
 #include <filesystem>
 #include <vector>
-#include <cstdint>
-#include <fstream>
 #include <sstream>
 #include <opencv2/imgcodecs.hpp>
 #include <thread>
@@ -179,26 +177,18 @@ std::vector<AssociatedFrame> associateFrameLists(const std::string& rgb_text, co
 
 namespace {
 
-// The image cv::imread would give, decoded by io::decodePng (libdeflate), with the reason when there is none.
+// The image cv::imread would give, decoded by io::readPng (libdeflate), with the reason when there is none.
 cv::Mat readImage(const std::string& file, int flags, const char* what) {
-  std::ifstream in(file, std::ios::binary | std::ios::ate);
-  if (!in) {
-    if (!fs::is_regular_file(file))
-      throw FrameLoadError(FrameProblem::kMissing, file, fmt::format("{} '{}' is missing", what, file));
-    throw FrameLoadError(FrameProblem::kUnreadable, file, fmt::format("cannot open {} '{}'", what, file));
-  }
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(std::max<std::streamoff>(0, in.tellg())));
-  in.seekg(0);
-  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!in) throw FrameLoadError(FrameProblem::kUnreadable, file, fmt::format("cannot read {} '{}'", what, file));
   PngReadInfo info;
   cv::Mat image;
   try {
-    image = decodePng(bytes.data(), bytes.size(), flags, &info);
+    image = readPng(file, flags, &info);
   } catch (const cv::Exception& e) {
     throw FrameLoadError(FrameProblem::kUnreadable, file, fmt::format("cannot read {} '{}': {}", what, file, e.what()));
   }
   if (!image.empty()) return image;
+  if (!fs::is_regular_file(file))
+    throw FrameLoadError(FrameProblem::kMissing, file, fmt::format("{} '{}' is missing", what, file));
   throw FrameLoadError(FrameProblem::kUnreadable, file,
                        fmt::format("cannot read {} '{}' ({})", what, file,
                                    info.reason.empty() ? "truncated or not an image" : info.reason));

@@ -462,6 +462,7 @@ cv::Mat decodePng(const std::uint8_t* data, std::size_t size, int imread_flags, 
 cv::Mat readPng(const std::string& path, int imread_flags, PngReadInfo* info) {
   PngReadInfo local;
   PngReadInfo& out = info != nullptr ? *info : local;
+  const bool caller_reports = info != nullptr;
   Decoded decoded;
   std::string problem;
   if (const auto why = notDecodedHere(imread_flags)) {
@@ -476,7 +477,7 @@ cv::Mat readPng(const std::string& path, int imread_flags, PngReadInfo* info) {
   threadScratch().trim();
   out = std::move(decoded.info);
   if (out.route == PngRoute::opencv) return cv::imread(path, imread_flags);
-  if (out.route == PngRoute::rejected) spdlog::warn("cannot decode PNG '{}': {}", path, out.reason);
+  if (out.route == PngRoute::rejected && !caller_reports) spdlog::warn("cannot decode PNG '{}': {}", path, out.reason);
   return decoded.image;
 }
 

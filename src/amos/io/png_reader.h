@@ -20,7 +20,8 @@
 // Rejected here, because libpng rejects them too: a missing or empty file; a truncated file (it ends before IEND);
 // a CRC mismatch in IHDR, IDAT or IEND; an invalid IHDR; no IDAT; image data that is too short or un-filters with
 // an invalid filter type. The result is then an empty Mat, as from cv::imread (the caller reports it, e.g.
-// loadRgbdFrame's core::Error naming the file); readPng also logs a warning naming the file and the problem.
+// loadRgbdFrame's error naming the file); readPng also logs a warning naming the file and the problem, unless
+// the caller takes the reason through `info` to report it itself.
 // Every length is checked before it is used. The CRCs of the critical chunks are checked (libdeflate_crc32, about
 // 50 us for a 440 kB frame, 2 % of its decoding; libpng checks them too); those of ancillary chunks are not: such
 // chunks are skipped, as libpng skips them after a warning.
@@ -54,7 +55,8 @@ bool pngFastPathAvailable();
 // given, receives the route and its reason.
 cv::Mat decodePng(const std::uint8_t* data, std::size_t size, int imread_flags, PngReadInfo* info = nullptr);
 
-// The image cv::imread(path, imread_flags) gives (see above); logs a warning naming `path` when it is rejected.
+// The image cv::imread(path, imread_flags) gives (see above); when it is rejected, logs a warning naming `path`
+// unless `info` is given (the caller then reports info->reason).
 cv::Mat readPng(const std::string& path, int imread_flags, PngReadInfo* info = nullptr);
 
 }  // namespace amos::io
