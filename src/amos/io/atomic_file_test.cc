@@ -17,10 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = amos::testing::scratchDir("amos_atomic_file_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return amos::testing::scratchDir("amos_atomic_file_test_" + name);
 }
 
 std::string readAll(const fs::path& path) {

@@ -22,9 +22,7 @@ namespace fs = std::filesystem;
 class TinySequence : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = amos::testing::scratchDir(
-        "amos_dataset_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
+    dir_ = amos::testing::scratchDirForThisTest("amos_dataset_test_");
     fs::create_directories(dir_ / "rgb");
     fs::create_directories(dir_ / "depth");
   }

@@ -256,10 +256,7 @@ TEST(PngReaderRealData, TumFr2DeskFramesEqualImread) { expectSequenceLikeImread(
 class PngReaderFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = amos::testing::scratchDir(
-        "amos_png_reader_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = amos::testing::scratchDirForThisTest("amos_png_reader_test_");
   }
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;

@@ -27,9 +27,7 @@ using std::chrono::milliseconds;
 class ReplaySequence : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = amos::testing::scratchDir(
-        "amos_replay_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
+    dir_ = amos::testing::scratchDirForThisTest("amos_replay_test_");
     fs::create_directories(dir_ / "rgb");
     fs::create_directories(dir_ / "depth");
   }

@@ -20,6 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
+  // The recorder makes the folder itself: it must not exist yet.
   const fs::path dir = amos::testing::scratchDir("amos_recorder_test_" + name);
   fs::remove_all(dir);
   return dir;

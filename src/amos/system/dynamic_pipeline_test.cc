@@ -43,13 +43,26 @@ std::vector<io::RgbdFrame> bonnFrames(std::size_t count, std::size_t first) {
   return frames;
 }
 
+// The segmentation lane around `segmenter`, with the default mask dilation.
+std::unique_ptr<segmentation::SegmentationWorker> workerOf(std::unique_ptr<segmentation::Segmenter> segmenter) {
+  return std::make_unique<segmentation::SegmentationWorker>(std::move(segmenter), segmentation::MaskDilationOptions{});
+}
+
 std::unique_ptr<segmentation::SegmentationWorker> realSegmentation() {
   segmentation::ModelSources sources;
   sources.cli_dir = testing::modelsDir();
   sources.default_dirs.clear();
-  auto segmenter =
-      segmentation::createSegmenter(segmentation::SegmenterOptions{}, sources, segmentation::builtinSegmenterFactory());
-  return std::make_unique<segmentation::SegmentationWorker>(std::move(segmenter), segmentation::MaskDilationOptions{});
+  return workerOf(
+      segmentation::createSegmenter(segmentation::SegmenterOptions{}, sources, segmentation::builtinSegmenterFactory()));
+}
+
+// Mode prior with the given person-segmentation schedule.
+dynamic::DynamicOptions priorOptions(int interval, int lag) {
+  dynamic::DynamicOptions options;
+  options.mode = dynamic::DynamicMode::kPrior;
+  options.prior.interval = interval;
+  options.prior.lag = lag;
+  return options;
 }
 
 struct RunRecord {
@@ -149,13 +162,8 @@ io::RgbdFrame codedFrame(std::size_t index) {
 TEST(DynamicPipeline, PushSchedulesStageAAtOnce) {
   auto log = std::make_shared<RecordingSegmenter::Log>();
   SlamSystem slam(bonnOptions());
-  dynamic::DynamicOptions options;
-  options.mode = dynamic::DynamicMode::kPrior;
-  options.prior.interval = 1;  // the paper's schedule: every frame segmented
-  options.prior.lag = 0;
-  DynamicPipeline pipeline(slam, options,
-                           std::make_unique<segmentation::SegmentationWorker>(
-                               std::make_unique<RecordingSegmenter>(log), segmentation::MaskDilationOptions{}));
+  // The paper's schedule: every frame segmented.
+  DynamicPipeline pipeline(slam, priorOptions(1, 0), workerOf(std::make_unique<RecordingSegmenter>(log)));
   EXPECT_EQ(pipeline.push(codedFrame(1)), 0u);
   EXPECT_EQ(pipeline.push(codedFrame(2)), 1u);
   EXPECT_EQ(pipeline.processNext().frame.index, 1u);
@@ -182,13 +190,7 @@ TEST(DynamicPipeline, PushSchedulesStageAAtOnce) {
 TEST(DynamicPipeline, SegmentsEveryIntervalthFrame) {
   auto log = std::make_shared<RecordingSegmenter::Log>();
   SlamSystem slam(bonnOptions());
-  dynamic::DynamicOptions options;
-  options.mode = dynamic::DynamicMode::kPrior;
-  options.prior.interval = 3;
-  options.prior.lag = 2;
-  DynamicPipeline pipeline(slam, options,
-                           std::make_unique<segmentation::SegmentationWorker>(
-                               std::make_unique<RecordingSegmenter>(log), segmentation::MaskDilationOptions{}));
+  DynamicPipeline pipeline(slam, priorOptions(3, 2), workerOf(std::make_unique<RecordingSegmenter>(log)));
   std::vector<io::RgbdFrame> frames;
   for (std::size_t code = 10; code < 18; ++code) frames.push_back(codedFrame(code));
   feedPipeline(pipeline, frames, 1, [&](const DynamicFrameOutput& out) {
@@ -231,9 +233,7 @@ MaskedExtractionRun runLeftBand(const std::vector<io::RgbdFrame>& frames, double
   dynamic::DynamicOptions options;
   options.mode = dynamic::DynamicMode::kPrior;
   options.prior_masked_extraction = masked;
-  DynamicPipeline pipeline(slam, options,
-                           std::make_unique<segmentation::SegmentationWorker>(
-                               std::make_unique<LeftBandSegmenter>(fraction), segmentation::MaskDilationOptions{}));
+  DynamicPipeline pipeline(slam, options, workerOf(std::make_unique<LeftBandSegmenter>(fraction)));
   MaskedExtractionRun run;
   std::size_t k = 0;
   feedPipeline(pipeline, frames, 1, [&](const DynamicFrameOutput& out) {
@@ -311,14 +311,8 @@ std::size_t feedUntilFailure(DynamicPipeline& pipeline, std::size_t count, std::
 
 TEST(DynamicPipelineFailure, SegmentationLaneFailureReachesItsFrame) {
   SlamSystem slam(bonnOptions());
-  dynamic::DynamicOptions options;
-  options.mode = dynamic::DynamicMode::kPrior;
-  options.prior.interval = 1;
-  options.prior.lag = 0;
   {
-    DynamicPipeline pipeline(slam, options,
-                             std::make_unique<segmentation::SegmentationWorker>(std::make_unique<FailingSegmenter>(2),
-                                                                                segmentation::MaskDilationOptions{}));
+    DynamicPipeline pipeline(slam, priorOptions(1, 0), workerOf(std::make_unique<FailingSegmenter>(2)));
     std::string error;
     EXPECT_EQ(feedUntilFailure(pipeline, 6, error), 2u);
     EXPECT_NE(error.find("segmenter: out of memory on frame 2"), std::string::npos) << error;

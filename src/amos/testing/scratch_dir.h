@@ -2,6 +2,7 @@
 // A scratch folder for one test, unique to this process: several test processes (two checkouts' ctest runs, a
 // test binary started by hand during ctest) may run on one machine at once, and a folder named by the test alone
 // would be removed or written by another of them.
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -16,6 +17,11 @@ inline std::filesystem::path scratchDir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// scratchDir(prefix + the name of the test that is running).
+inline std::filesystem::path scratchDirForThisTest(const std::string& prefix) {
+  return scratchDir(prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
 }
 
 }  // namespace amos::testing
