@@ -110,6 +110,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "the reference-keyframe model's tracks pass the forward-backward check too");
   s.add("Dynamic.InitialPose.keyframeMaxPoints", &o.initial_pose.keyframe_max_points,
         "reference-keyframe points that model tracks at most (0 = all)");
+  s.add("Dynamic.InitialPose.minimalSolver", &o.initial_pose.pnp.minimal_solver,
+        {{"ap3p", geometry::PnpMinimalSolver::kAp3p}, {"epnp", geometry::PnpMinimalSolver::kEpnp}},
+        "PnP RANSAC samples of models 1 and 2: ap3p = three points (AP3P), epnp = five points (EPnP, the paper's)");
   return s;
 }
 

@@ -3,9 +3,9 @@
 // (reprojection error below a threshold) over one common set of 3D-2D correspondences; the model with the most
 // inliers gives the initial pose used by the dynamic judgement.
 //   1. Reference keyframe: its keypoints (with their 3D world points) tracked into the current frame by LK,
-//      then EPnP + RANSAC.
+//      then PnP RANSAC (the paper's EPnP; here AP3P minimal samples by default, see InitialPoseOptions::pnp).
 //   2. Last frame: corners tracked from the last frame, lifted to 3D with the last depth and pose (Eq. 6),
-//      then EPnP + RANSAC. Robust when the reference keyframe is old or the motion fast.
+//      then PnP RANSAC. Robust when the reference keyframe is old or the motion fast.
 //   3. Constant velocity: the last inter-frame motion applied once more. Useful when PnP drifts.
 // Everything here is a pure function of its inputs; the caller keeps the keyframe, last frame and velocity.
 #include <Eigen/Core>
@@ -26,7 +26,8 @@ struct InitialPoseOptions {
   // sqrt(5.99) * 1 px = 2.45 px: the 95% chi-square bound for a 2-D error with ~1 px per-axis noise (LK track
   // noise plus the depth noise of the lifted point seen from a slightly moved camera).
   double inlier_threshold_px = 2.45;
-  // EPnP RANSAC for models 1 and 2 (its defaults; not read from the settings).
+  // PnP RANSAC for models 1 and 2 (its defaults; Dynamic.InitialPose.minimalSolver picks the minimal solver:
+  // AP3P by default, the paper's EPnP for ablation; see geometry/pnp_ransac.h for why three points).
   geometry::PnpRansacOptions pnp;
   // Dynamic.InitialPose.keyframeForwardBackward: 1 = model 1's LK tracks (reference keyframe -> current frame) pass
   // the forward-backward check like the corner tracks; 0 = only the forward pass runs (half the LK cost of model 1)
@@ -97,7 +98,7 @@ core::SE3 constantVelocityPose(const core::SE3& T_cw_last, const core::SE3& velo
 int countInliers(const core::SE3& T_cw, const PoseCorrespondences& correspondences, const core::PinholeCamera& camera,
                  double threshold_px);
 
-// EPnP RANSAC on one model's correspondences.
+// PnP RANSAC on one model's correspondences.
 PoseCandidate poseFromCorrespondences(PoseModel model, const PoseCorrespondences& correspondences,
                                       const core::PinholeCamera& camera, const InitialPoseOptions& options);
 

@@ -1,6 +1,8 @@
 #include "amos/geometry/pnp_ransac.h"
 
 #include <fmt/format.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
 
 #include <algorithm>
 #include <array>
@@ -27,7 +29,9 @@ void PnpRansacOptions::check() const {
 namespace {
 
 // EPnP is well conditioned from 5 points on (OpenCV's own RANSAC uses 5 for EPnP too); 4 would be the minimum.
-constexpr int kSampleSize = 5;
+constexpr int kEpnpSampleSize = 5;
+constexpr int kP3pSampleSize = 3;
+constexpr int kMaxSampleSize = kEpnpSampleSize;
 // Gauss-Newton rounds of the final refinement and re-evaluations of the inlier set after it.
 constexpr int kRefineIterations = 10;
 constexpr int kLocalRefineIterations = 3;
@@ -61,9 +65,9 @@ int countInliers(const core::SE3& T_cw, const std::vector<Eigen::Vector3d>& poin
 
 // k distinct indices in [0, n). Uses the raw mt19937 output (fully specified by the standard) rather than
 // std::uniform_int_distribution (implementation-defined), so a seed gives the same samples on every platform.
-std::array<int, kSampleSize> sampleIndices(std::mt19937& rng, int n) {
-  std::array<int, kSampleSize> idx{};
-  for (int k = 0; k < kSampleSize; ++k) {
+std::array<int, kMaxSampleSize> sampleIndices(std::mt19937& rng, int n, int sample_size) {
+  std::array<int, kMaxSampleSize> idx{};
+  for (int k = 0; k < sample_size; ++k) {
     bool fresh = false;
     while (!fresh) {
       idx[k] = static_cast<int>(rng() % static_cast<std::uint32_t>(n));
@@ -127,6 +131,45 @@ core::SE3 refinePose(core::SE3 T_cw, const std::vector<Eigen::Vector3d>& points_
   return T_cw;
 }
 
+// AP3P's up to four poses from three correspondences (normalised coordinates, so the camera matrix is the
+// identity). Degenerate samples (collinear points) give none.
+void ap3pPoses(const std::vector<Eigen::Vector3d>& sample_w, const std::vector<Eigen::Vector2d>& sample_xy,
+               std::vector<core::SE3>& poses) {
+  cv::Mat object(kP3pSampleSize, 1, CV_64FC3), image(kP3pSampleSize, 1, CV_64FC2);
+  for (int k = 0; k < kP3pSampleSize; ++k) {
+    object.at<cv::Vec3d>(k) = {sample_w[k].x(), sample_w[k].y(), sample_w[k].z()};
+    image.at<cv::Vec2d>(k) = {sample_xy[k].x(), sample_xy[k].y()};
+  }
+  std::vector<cv::Mat> rvecs, tvecs;
+  int found = 0;
+  try {
+    found = cv::solveP3P(object, image, cv::Matx33d::eye(), cv::noArray(), rvecs, tvecs, cv::SOLVEPNP_AP3P);
+  } catch (const cv::Exception&) {
+    return;  // a degenerate sample: no hypothesis
+  }
+  for (int s = 0; s < found; ++s) {
+    cv::Matx33d R;
+    cv::Rodrigues(rvecs[s], R);
+    const cv::Vec3d t(tvecs[s]);
+    Eigen::Matrix3d R_e;
+    cv::cv2eigen(R, R_e);
+    core::SE3 T = core::SE3::Identity();
+    T.linear() = R_e;
+    T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+    if (T.matrix().allFinite()) poses.push_back(T);
+  }
+}
+
+void hypothesesFromSample(PnpMinimalSolver solver, const std::vector<Eigen::Vector3d>& sample_w,
+                          const std::vector<Eigen::Vector2d>& sample_xy, std::vector<core::SE3>& poses) {
+  poses.clear();
+  if (solver == PnpMinimalSolver::kAp3p) {
+    ap3pPoses(sample_w, sample_xy, poses);
+  } else if (const std::optional<core::SE3> T = solveEpnp(sample_w, sample_xy)) {
+    poses.push_back(*T);
+  }
+}
+
 }  // namespace
 
 PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std::vector<Eigen::Vector2d>& pixels,
@@ -136,37 +179,40 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
                 fmt::format("solvePnpRansac: {} points but {} pixels", points_w.size(), pixels.size()));
   PnpResult result;
   const int n = static_cast<int>(points_w.size());
-  if (n < std::max(kSampleSize, options.min_inliers)) return result;
+  const int sample_size = options.minimal_solver == PnpMinimalSolver::kAp3p ? kP3pSampleSize : kEpnpSampleSize;
+  if (n < std::max(sample_size, options.min_inliers)) return result;
 
   const double threshold2 = options.reprojection_threshold_px * options.reprojection_threshold_px;
   std::mt19937 rng(options.seed);
-  // EPnP works on normalised image coordinates.
+  // The minimal solvers work on normalised image coordinates.
   std::vector<Eigen::Vector2d> normalized(pixels.size());
   for (size_t i = 0; i < pixels.size(); ++i)
     normalized[i] = {(pixels[i].x() - camera.cx()) / camera.fx(), (pixels[i].y() - camera.cy()) / camera.fy()};
-  std::vector<Eigen::Vector3d> sample_w(kSampleSize);
-  std::vector<Eigen::Vector2d> sample_xy(kSampleSize);
+  std::vector<Eigen::Vector3d> sample_w(sample_size);
+  std::vector<Eigen::Vector2d> sample_xy(sample_size);
+  std::vector<core::SE3> hypotheses;
   std::vector<int> support;
 
-  // RANSAC over EPnP hypotheses; the iteration budget shrinks as the best inlier ratio grows (confidence).
+  // LO-RANSAC over the minimal solver's hypotheses; the iteration budget shrinks as the best inlier ratio grows
+  // (confidence).
   core::SE3 best_T = core::SE3::Identity();
   int best_count = 0;
   int budget = options.max_iterations;
   for (int it = 0; it < budget; ++it) {
-    const auto idx = sampleIndices(rng, n);
-    for (int k = 0; k < kSampleSize; ++k) {
+    const auto idx = sampleIndices(rng, n, sample_size);
+    for (int k = 0; k < sample_size; ++k) {
       sample_w[k] = points_w[idx[k]];
       sample_xy[k] = normalized[idx[k]];
     }
-    const std::optional<core::SE3> T = solveEpnp(sample_w, sample_xy);
-    if (!T) continue;
-    int count = countInliers(*T, points_w, pixels, camera, threshold2);
-    if (count > best_count) {
-      core::SE3 T_best = *T;
-      // Local optimisation (LO-RANSAC, Chum et al. 2003): a hypothesis from five noisy points underestimates its
+    hypothesesFromSample(options.minimal_solver, sample_w, sample_xy, hypotheses);
+    for (const core::SE3& T : hypotheses) {
+      int count = countInliers(T, points_w, pixels, camera, threshold2);
+      if (count <= best_count) continue;
+      core::SE3 T_best = T;
+      // Local optimisation (LO-RANSAC, Chum et al. 2003): a hypothesis from a few noisy points underestimates its
       // support; refitting it to its inliers recovers the true inlier ratio, so the budget below shrinks as it
       // should and the final refinement starts closer.
-      if (count >= kSampleSize + 1) {
+      if (count >= sample_size + 1) {
         collectInliers(T_best, points_w, pixels, camera, threshold2, support);
         const core::SE3 T_lo = refinePose(T_best, points_w, pixels, camera, support, kLocalRefineIterations);
         const int count_lo = countInliers(T_lo, points_w, pixels, camera, threshold2);
@@ -178,7 +224,7 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
       best_count = count;
       best_T = T_best;
       const double w = static_cast<double>(count) / n;
-      const double p_all_inliers = std::pow(w, kSampleSize);
+      const double p_all_inliers = std::pow(w, sample_size);
       if (p_all_inliers >= 1.0 - 1e-12) {
         budget = it + 1;
       } else {
@@ -188,7 +234,7 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
       }
     }
   }
-  if (best_count < std::max(kSampleSize + 1, options.min_inliers)) return result;
+  if (best_count < std::max(kEpnpSampleSize + 1, options.min_inliers)) return result;
 
   // Refine on the inliers, then re-evaluate them with the refined pose, until the set is stable.
   std::vector<int> inliers;

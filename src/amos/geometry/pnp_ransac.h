@@ -1,6 +1,7 @@
 #pragma once
-// Camera pose from 3D world points and their undistorted pixel observations: EPnP inside RANSAC, then a
-// Levenberg-Marquardt refinement on the inliers. Deterministic for a given seed.
+// Camera pose from 3D world points and their undistorted pixel observations: minimal-sample hypotheses (AP3P by
+// default, EPnP on 5 points as the alternative) inside LO-RANSAC, then a Levenberg-Marquardt refinement on the
+// inliers. Deterministic for a given seed.
 #include <opencv2/core.hpp>
 
 #include <Eigen/Core>
@@ -11,12 +12,23 @@
 
 namespace amos::geometry {
 
+// The solver each RANSAC hypothesis comes from.
+//  kAp3p: three points, OpenCV's AP3P (Ke & Roumeliotis, CVPR 2017), up to four poses each scored on all
+//         correspondences. A three-point sample is all inliers with probability w^3 instead of w^5, so at an
+//         inlier ratio w = 0.3 the 99 %-confidence budget is 168 samples instead of 1900 (capped at
+//         max_iterations, i.e. a run that may miss the pose), and at w = 0.6 it is 19 instead of 57; each
+//         hypothesis is also cheaper than an EPnP (no 12x12 eigen-decomposition). COLMAP's absolute-pose
+//         LO-RANSAC uses P3P minimal samples the same way.
+//  kEpnp: five points, EPnP (this file's solver before; kept for ablation).
+enum class PnpMinimalSolver { kAp3p, kEpnp };
+
 struct PnpRansacOptions {
   double reprojection_threshold_px = 2.0;  // inlier if reprojection error below this (undistorted pixels)
   double confidence = 0.99;
   int max_iterations = 300;
   int min_inliers = 15;  // below this the result is a failure
   unsigned seed = 42;
+  PnpMinimalSolver minimal_solver = PnpMinimalSolver::kAp3p;
   void check() const;
 };
 

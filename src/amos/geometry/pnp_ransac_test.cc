@@ -140,4 +140,31 @@ TEST(PnpRansac, RejectsMismatchedInputsAndBadOptions) {
 }
 
 }  // namespace
+TEST(PnpRansac, BothMinimalSolversRecoverThePose) {
+  const Scene s = makeScene(300, 0.4, 0.5, 17);
+  for (const PnpMinimalSolver solver : {PnpMinimalSolver::kAp3p, PnpMinimalSolver::kEpnp}) {
+    PnpRansacOptions options;
+    options.minimal_solver = solver;
+    const PnpResult r = solvePnpRansac(s.points_w, s.pixels, tumCamera(), options);
+    ASSERT_TRUE(r.success) << static_cast<int>(solver);
+    const core::SE3 error = r.T_cw * s.T_cw.inverse();
+    EXPECT_LT(core::translationNorm(error), 2e-3) << static_cast<int>(solver);
+    EXPECT_LT(core::rotationAngle(error) * 180.0 / M_PI, 0.1) << static_cast<int>(solver);
+  }
+}
+
+TEST(PnpRansac, Ap3pFindsThePoseAtLowInlierRatiosWithinTheBudget) {
+  // 150 correspondences of which 30 % are right, as on a frame crowded with people: a three-point sample is all
+  // inliers with probability 0.027 (a five-point one with 0.0024), so 300 samples find one with near certainty.
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    const Scene s = makeScene(150, 0.7, 0.5, seed);
+    PnpRansacOptions options;
+    options.seed = seed;
+    const PnpResult r = solvePnpRansac(s.points_w, s.pixels, tumCamera(), options);
+    ASSERT_TRUE(r.success) << "seed " << seed;
+    const core::SE3 error = r.T_cw * s.T_cw.inverse();
+    EXPECT_LT(core::translationNorm(error), 1e-2) << "seed " << seed;
+  }
+}
+
 }  // namespace amos::geometry
