@@ -140,5 +140,20 @@ TEST(Texture, MipLevelsAverageAndAlphaCuts) {
   EXPECT_EQ(t.sample(0.123, 0.456, 0), t.sample(3.123, 0.456, 0));
 }
 
+// Without mipmaps a texture is sampled at full resolution however far away (the test scenes that must look as a
+// plain ray caster's); with them a far checkerboard is its mean grey.
+TEST(Texture, WithoutMipmapsSamplesTheFullResolutionAtAnyDistance) {
+  cv::Mat checker(8, 8, CV_8UC3);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) checker.at<cv::Vec3b>(y, x) = cv::Vec3b::all((x + y) % 2 ? 255 : 0);
+  const Texture mipmapped(checker), plain(checker, cv::Mat(), false, /*mipmaps=*/false);
+  EXPECT_GT(mipmapped.levelCount(), 1);
+  EXPECT_EQ(plain.levelCount(), 1);
+  const double s = 0.5 / 8, t = 0.5 / 8;  // the centre of texel (0, 0), black
+  EXPECT_NEAR(mipmapped.sample(s, t, 3.0)[0], 127.5, 1.0);
+  EXPECT_FLOAT_EQ(plain.sample(s, t, 3.0)[0], 0.0f);
+  EXPECT_FLOAT_EQ(plain.sample(s, t, 0.0)[0], mipmapped.sample(s, t, 0.0)[0]);
+}
+
 }  // namespace
 }  // namespace amos::synth
