@@ -75,18 +75,20 @@ cv::Mat noiseTexture(std::uint32_t seed, cv::Size size) {
   return out;
 }
 
-cv::Mat fineNoiseTexture(std::uint32_t seed, cv::Size size) {
+cv::Mat fineNoiseTexture(std::uint32_t seed, cv::Size size, double blur_texels) {
   cv::RNG rng(seed);
   cv::Mat t(size, CV_8U);
-  rng.fill(t, cv::RNG::UNIFORM, 0, 256);
-  cv::GaussianBlur(t, t, cv::Size(0, 0), 1.5);
+  rng.fill(t, cv::RNG::UNIFORM, 0, 255);
+  cv::GaussianBlur(t, t, cv::Size(0, 0), blur_texels);
   cv::normalize(t, t, 0, 255, cv::NORM_MINMAX);
   return t;
 }
 
 SyntheticScene::SyntheticScene(const core::CameraIntrinsics& intrinsics) : renderer_(intrinsics) {}
 
-int SyntheticScene::addTexture(const cv::Mat& image) { return textures_.add(synth::Texture(toBgr(image))); }
+int SyntheticScene::addTexture(const cv::Mat& image, bool mipmaps) {
+  return textures_.add(synth::Texture(toBgr(image), cv::Mat(), false, mipmaps));
+}
 
 void SyntheticScene::addRectangle(const Eigen::Vector3d& origin, const Eigen::Vector3d& edge_u,
                                   const Eigen::Vector3d& edge_v, int texture) {
@@ -170,15 +172,34 @@ SyntheticScene texturedRoom(const core::CameraIntrinsics& intrinsics, std::uint3
 SyntheticScene crateScene(const core::CameraIntrinsics& intrinsics) {
   SyntheticScene scene(intrinsics);
   using V = Eigen::Vector3d;
-  // Texture scales as in the front end's first tests: 350 texels per metre on the wall and the floor.
-  const cv::Mat crate = fineNoiseTexture(4, cv::Size(400, 400));
-  scene.addRectangle(V(-2.0, -1.5, 3.0), V(4.0, 0, 0), V(0, 4.0, 0), scene.addTexture(fineNoiseTexture(1, {1400, 1400})));
-  scene.addRectangle(V(-2.0, 0.7, 0.0), V(4.0, 0, 0), V(0, 0, 3.0), scene.addTexture(fineNoiseTexture(3, {1400, 1050})));
-  scene.addRectangle(V(0.3, -0.5, 2.0), V(0.5, 0, 0), V(0, 0.7, 0), scene.addTexture(crate(cv::Rect(0, 0, 350, 350))));
-  scene.addRectangle(V(0.25, -0.4, 1.0), V(0.15, 0, 0), V(0, 0.9, 0),
-                     scene.addTexture(crate(cv::Rect(0, 0, 225, 360))));
-  scene.addMovingRectangle(V(-0.4, -0.2, 1.5), V(0.4, 0, 0), V(0, 0.5, 0),
-                           scene.addTexture(fineNoiseTexture(2, {320, 350})));
+  // The textures and texel scales of the front end's first tests (350 texels per metre on the wall and the floor,
+  // 500 to 1500 on the crate, the pillar and the box), sampled bilinearly at full resolution as their ray caster
+  // did: the aliased fine grain is what the front end's corner tracking and superpixels were tuned on. That caster
+  // put texel k at texture coordinate k, synth::Texture puts it at k + 0.5: the wall and the floor, whose edges are
+  // out of view or hidden, start half a texel early (1.4 mm) so that their pixels sample the same texture values
+  // as before; the small objects keep their exact outlines (their textures move by a fifth of a pixel or less).
+  auto texture = [&](const cv::Mat& image) { return scene.addTexture(image, /*mipmaps=*/false); };
+  auto rectangle = [&](V origin, const V& edge_u, const V& edge_v, double texels_per_m_u, double texels_per_m_v,
+                       int tex, bool moving = false) {
+    if (texels_per_m_u > 0) {
+      origin -= 0.5 / texels_per_m_u * edge_u.normalized() + 0.5 / texels_per_m_v * edge_v.normalized();
+    }
+    if (moving) {
+      scene.addMovingRectangle(origin, edge_u, edge_v, tex);
+    } else {
+      scene.addRectangle(origin, edge_u, edge_v, tex);
+    }
+  };
+  const cv::Mat crate = fineNoiseTexture(4, cv::Size(400, 400), 1.5);
+  rectangle(V(-2.0, -1.5, 3.0), V(4.0, 0, 0), V(0, 4.0, 0), 350, 350,
+            texture(fineNoiseTexture(1, {1400, 1400}, 1.5)));  // wall
+  rectangle(V(-2.0, 0.7, 0.0), V(4.0, 0, 0), V(0, 0, 3.0), 350, 350,
+            texture(fineNoiseTexture(3, {1400, 1400}, 1.5)(cv::Rect(0, 0, 1400, 1050))));  // floor
+  rectangle(V(0.3, -0.5, 2.0), V(0.5, 0, 0), V(0, 0.7, 0), 0, 0, texture(crate(cv::Rect(0, 0, 350, 350))));
+  rectangle(V(0.25, -0.4, 1.0), V(0.15, 0, 0), V(0, 0.9, 0), 0, 0,
+            texture(crate(cv::Rect(0, 0, 225, 360))));  // pillar
+  rectangle(V(-0.4, -0.2, 1.5), V(0.4, 0, 0), V(0, 0.5, 0), 0, 0,
+            texture(fineNoiseTexture(2, {400, 400}, 1.5)(cv::Rect(0, 0, 320, 350))), /*moving=*/true);  // box
   return scene;
 }
 

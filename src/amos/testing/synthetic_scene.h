@@ -36,16 +36,16 @@ struct SyntheticView {
 // A grey texture (as BGR) of smoothed random noise: rich in corners at every scale, so ORB finds features on it
 // from near and far, and distinctive, so they match. `size` in texels; deterministic in `seed`.
 cv::Mat noiseTexture(std::uint32_t seed, cv::Size size);
-// The single-scale noise of the dynamic front end's tests: uniform noise smoothed by a Gaussian of 1.5 texels
-// and stretched to 0..255.
-cv::Mat fineNoiseTexture(std::uint32_t seed, cv::Size size);
+// Single-scale noise: uniform noise smoothed by a Gaussian of blur_texels and stretched to 0..255.
+cv::Mat fineNoiseTexture(std::uint32_t seed, cv::Size size, double blur_texels);
 
 class SyntheticScene {
  public:
   explicit SyntheticScene(const core::CameraIntrinsics& intrinsics);
 
-  // Adds a texture (CV_8UC3 or CV_8UC1) and returns its index for addRectangle().
-  int addTexture(const cv::Mat& image);
+  // Adds a texture (CV_8UC3 or CV_8UC1) and returns its index for addRectangle(). Without `mipmaps` it is always
+  // sampled at full resolution (see synth::Texture).
+  int addTexture(const cv::Mat& image, bool mipmaps = true);
   // A static textured rectangle origin + a * edge_u + b * edge_v (a, b in [0, 1]); edge_u and edge_v must be
   // perpendicular. The texture spans it once, its row 0 along edge_u at the origin.
   void addRectangle(const Eigen::Vector3d& origin, const Eigen::Vector3d& edge_u, const Eigen::Vector3d& edge_v,
@@ -83,7 +83,8 @@ SyntheticScene texturedRoom(const core::CameraIntrinsics& intrinsics, std::uint3
 
 // The dynamic front end's scene: a wall at z = 3 m, a floor at y = 0.7 m, a static crate face at z = 2 m (x in
 // [0.3, 0.8], y in [-0.5, 0.2]), a static pillar at z = 1 m (x in [0.25, 0.4]) and one mover, a box face at
-// z = 1.5 m (x in [-0.4, 0], y in [-0.2, 0.3]); fine noise textures. The static part spans three planes: with a
+// z = 1.5 m (x in [-0.4, 0], y in [-0.2, 0.3]); fine noise textures (about two texels per pixel) sampled
+// without mipmaps, as the front end's tests first rendered it with their own ray caster. The static part spans three planes: with a
 // single static plane any fundamental matrix through its homography would also fit the box.
 SyntheticScene crateScene(const core::CameraIntrinsics& intrinsics);
 
