@@ -64,6 +64,14 @@ double quantile(const std::vector<double>& sorted, double q) {
   return sorted.empty() ? -1.0 : sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))];
 }
 
+// The map points lie on the static surfaces, up to the depth resolution of the virtual stereo pair.
+void expectMapOnTheStaticSurfaces(const std::vector<Eigen::Vector3d>& points, const testing::SyntheticScene& scene) {
+  const std::vector<double> px = surfaceErrorsPx(points, scene);
+  EXPECT_LT(quantile(px, 0.5), 0.25);
+  EXPECT_LT(quantile(px, 0.9), 0.75);
+  EXPECT_LT(quantile(px, 0.99), 1.5);
+}
+
 void expectTrajectoryNear(const SlamRun& run, const testing::SyntheticSequence& seq, double max_m, double max_rad) {
   ASSERT_EQ(run.trajectory.size(), static_cast<std::size_t>(seq.size()));
   for (int i = 0; i < seq.size(); ++i) {
@@ -83,11 +91,7 @@ TEST(SlamSystem, TrajectoryOfASyntheticSequenceIsTheTrueOne) {
   EXPECT_GE(run.stats.keyframes, 2u);
   EXPECT_GT(run.stats.map_points, 500u);
   expectTrajectoryNear(run, seq, 0.005, 0.2 * kDeg);
-  // The map points lie on the surfaces of the room, up to the depth resolution of the virtual stereo pair.
-  const std::vector<double> px = surfaceErrorsPx(run.points, *room);
-  EXPECT_LT(quantile(px, 0.5), 0.25);
-  EXPECT_LT(quantile(px, 0.9), 0.75);
-  EXPECT_LT(quantile(px, 0.99), 1.5);
+  expectMapOnTheStaticSurfaces(run.points, *room);
 }
 
 // A large box slides across the view in front of a swaying camera, 2 cm per frame. With its pixels in the dynamic
@@ -102,10 +106,7 @@ TEST(SlamSystem, DynamicMaskKeepsAMoverOutOfTheMapAndThePose) {
   const SlamRun masked = runSlam(seq, true);
   EXPECT_EQ(masked.stats.tracked, 30u);
   expectTrajectoryNear(masked, seq, 0.005, 0.2 * kDeg);
-  const std::vector<double> px = surfaceErrorsPx(masked.points, *scene);
-  EXPECT_LT(quantile(px, 0.5), 0.25);
-  EXPECT_LT(quantile(px, 0.9), 0.75);
-  EXPECT_LT(quantile(px, 0.99), 1.5);
+  expectMapOnTheStaticSurfaces(masked.points, *scene);
   int removed = 0;
   for (const FrameOutput& f : masked.frames) removed += f.removed_dynamic;
   EXPECT_GT(removed, 30 * 50);
