@@ -3,18 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include "amos/testing/test_camera.h"
 
 namespace amos::synth {
 namespace {
 
-core::CameraIntrinsics tumFr3() {
-  core::CameraIntrinsics k;
-  k.fx = 535.4;
-  k.fy = 539.2;
-  k.cx = 320.1;
-  k.cy = 247.6;
-  return k;
-}
+// The camera of the synthetic sequences (TUM fr3); the expected extents below are worked out for it.
+core::CameraIntrinsics tumFr3() { return testing::testIntrinsics(); }
 
 // Camera at the world origin looking along world +z (T_cw = identity).
 const core::SE3 kIdentity = core::SE3::Identity();
