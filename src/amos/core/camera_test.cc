@@ -4,15 +4,12 @@
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
+#include "amos/testing/test_camera.h"
 
 namespace amos::core {
 namespace {
 
-CameraIntrinsics fr3() {
-  CameraIntrinsics c;
-  c.fx = 535.4; c.fy = 539.2; c.cx = 320.1; c.cy = 247.6;
-  return c;
-}
+CameraIntrinsics fr3() { return testing::testIntrinsics(); }
 
 TEST(Camera, ProjectInvertsBackProject) {
   PinholeCamera cam(fr3());
@@ -44,13 +41,11 @@ TEST(Camera, UndistortIsIdentityWithoutDistortion) {
 }
 
 TEST(Camera, UndistortMovesCornerPixelsWithFr1Distortion) {
-  CameraIntrinsics c;
-  c.fx = 517.306408; c.fy = 516.469215; c.cx = 318.643040; c.cy = 255.313989;
-  c.k1 = 0.262383; c.k2 = -0.953104; c.p1 = -0.005358; c.p2 = 0.002628; c.k3 = 1.163314;
+  const CameraIntrinsics c = testing::tumFr1Intrinsics();
   PinholeCamera cam(c);
-  const auto out = cam.undistort({{0.f, 0.f}, {318.643040f, 255.313989f}});
+  const auto out = cam.undistort({{0.f, 0.f}, {static_cast<float>(c.cx), static_cast<float>(c.cy)}});
   EXPECT_GT(std::abs(out[0].x) + std::abs(out[0].y), 1.0);  // the corner moves
-  EXPECT_NEAR(out[1].x, 318.643040, 1e-3);                   // the principal point does not
+  EXPECT_NEAR(out[1].x, c.cx, 1e-3);                   // the principal point does not
 }
 
 }  // namespace

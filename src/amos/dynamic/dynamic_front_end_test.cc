@@ -4,7 +4,6 @@
 
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -12,94 +11,24 @@
 #include "amos/core/error.h"
 #include "amos/dynamic/test_scenes.h"
 #include "amos/testing/shared_data.h"
+#include "amos/testing/synthetic_scene.h"
+#include "amos/testing/test_camera.h"
 
 namespace amos::dynamic {
 namespace {
 
-cv::Mat noiseTexture(int seed, int size) {
-  cv::Mat t(size, size, CV_8U);
-  cv::setRNGSeed(seed);
-  cv::randu(t, 0, 255);
-  cv::GaussianBlur(t, t, cv::Size(0, 0), 1.5);
-  cv::normalize(t, t, 0, 255, cv::NORM_MINMAX);
-  return t;
-}
-
-float bilinear(const cv::Mat& t, double x, double y) {
-  x = std::clamp(x, 0.0, t.cols - 1.001), y = std::clamp(y, 0.0, t.rows - 1.001);
-  const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-  const double fx = x - x0, fy = y - y0;
-  return static_cast<float>((1 - fy) * ((1 - fx) * t.at<uchar>(y0, x0) + fx * t.at<uchar>(y0, x0 + 1)) +
-                            fy * ((1 - fx) * t.at<uchar>(y0 + 1, x0) + fx * t.at<uchar>(y0 + 1, x0 + 1)));
-}
-
-// A ray-cast room: a wall at Z = 3 m, a floor at Y = 0.7 m, a static crate face at Z = 2 m (X in [0.3, 0.8],
-// Y in [-0.5, 0.2]), a static pillar at Z = 1 m (X in [0.25, 0.4]) and a moving box face at Z = 1.5 m (X in [-0.4, 0],
-// Y in [-0.2, 0.3], plus box_offset), all textured, seen by a camera at T_cw. The static part spans three planes: with
-// a single static plane any fundamental matrix through its homography would also fit the box, and the epipolar test
-// could not work.
+// The scene of testing::crateScene: a wall at Z = 3 m, a floor at Y = 0.7 m, a static crate face at Z = 2 m, a
+// static pillar at Z = 1 m and a moving box face at Z = 1.5 m (X in [-0.4, 0], Y in [-0.2, 0.3], plus box_offset),
+// all textured, seen by a camera at T_cw. The static part spans three planes: with a single static plane any
+// fundamental matrix through its homography would also fit the box, and the epipolar test could not work.
 struct Rendered {
   cv::Mat gray, bgr, depth, box_mask;
 };
 
-Rendered render(const core::SE3& T_cw, const Eigen::Vector3d& box_offset, const core::PinholeCamera& cam) {
-  static const cv::Mat wall_texture = noiseTexture(1, 1400), box_texture = noiseTexture(2, 400),
-                       floor_texture = noiseTexture(3, 1400), crate_texture = noiseTexture(4, 400);
-  Rendered r;
-  r.gray.create(480, 640, CV_8U);
-  r.depth.create(480, 640, CV_32F);
-  r.box_mask = cv::Mat(480, 640, CV_8U, cv::Scalar(0));
-  const core::SE3 T_wc = T_cw.inverse();
-  const Eigen::Vector3d o = T_wc.translation();
-  for (int v = 0; v < 480; ++v)
-    for (int u = 0; u < 640; ++u) {
-      const Eigen::Vector3d dir = T_wc.linear() * cam.backProject(u, v, 1.0);
-      double best_t = std::numeric_limits<double>::max();
-      float value = 0;
-      bool on_box = false;
-      auto consider = [&](double t, float texel, bool box) {
-        if (t > 0 && t < best_t) best_t = t, value = texel, on_box = box;
-      };
-      // Wall.
-      {
-        const double t = (3.0 - o.z()) / dir.z();
-        const Eigen::Vector3d p = o + t * dir;
-        consider(t, bilinear(wall_texture, (p.x() + 2.0) * 350, (p.y() + 1.5) * 350), false);
-      }
-      // Floor.
-      if (std::abs(dir.y()) > 1e-9) {
-        const double t = (0.7 - o.y()) / dir.y();
-        const Eigen::Vector3d p = o + t * dir;
-        if (p.z() < 3.0) consider(t, bilinear(floor_texture, (p.x() + 2.0) * 350, p.z() * 350), false);
-      }
-      // Static crate.
-      {
-        const double t = (2.0 - o.z()) / dir.z();
-        const Eigen::Vector3d p = o + t * dir;
-        if (p.x() >= 0.3 && p.x() <= 0.8 && p.y() >= -0.5 && p.y() <= 0.2)
-          consider(t, bilinear(crate_texture, (p.x() - 0.3) * 700, (p.y() + 0.5) * 500), false);
-      }
-      // Static pillar near the camera (gives the static scene parallax from 1 m to 3 m).
-      {
-        const double t = (1.0 - o.z()) / dir.z();
-        const Eigen::Vector3d p = o + t * dir;
-        if (p.x() >= 0.25 && p.x() <= 0.4 && p.y() >= -0.4 && p.y() <= 0.5)
-          consider(t, bilinear(crate_texture, (p.x() - 0.25) * 1500, (p.y() + 0.4) * 400), false);
-      }
-      // Moving box.
-      {
-        const double t = (1.5 + box_offset.z() - o.z()) / dir.z();
-        const Eigen::Vector3d p = o + t * dir - box_offset;
-        if (p.x() >= -0.4 && p.x() <= 0.0 && p.y() >= -0.2 && p.y() <= 0.3)
-          consider(t, bilinear(box_texture, (p.x() + 0.4) * 800, (p.y() + 0.2) * 700), true);
-      }
-      const Eigen::Vector3d hit = o + best_t * dir;
-      r.gray.at<uchar>(v, u) = cv::saturate_cast<uchar>(value);
-      r.depth.at<float>(v, u) = static_cast<float>((T_cw * hit).z());
-      if (on_box) r.box_mask.at<uchar>(v, u) = 255;
-    }
-  cv::cvtColor(r.gray, r.bgr, cv::COLOR_GRAY2BGR);
-  return r;
+Rendered render(const core::SE3& T_cw, const Eigen::Vector3d& box_offset) {
+  static const testing::SyntheticScene scene = testing::crateScene(testing::testIntrinsics());
+  const testing::SyntheticView view = scene.render(T_cw, {testing::translation(box_offset)});
+  return {view.gray, view.bgr, view.depth, view.mover_mask};
 }
 
 struct SyntheticPair {
@@ -110,14 +39,13 @@ struct SyntheticPair {
 // The camera slides 2 cm right and pans 0.3 deg; the box rises 5 cm (across the horizontal epipolar lines).
 const SyntheticPair& syntheticPair() {
   static const SyntheticPair pair = [] {
-    const core::PinholeCamera cam = testCamera();
     SyntheticPair p;
     p.T_cw_last = core::SE3::Identity();
     core::Vector6d xi;
     xi << -0.02, 0.0, 0.0, 0.0, 0.3 * M_PI / 180, 0.0;
     p.T_cw_current = core::expSE3(xi) * p.T_cw_last;
-    p.last = render(p.T_cw_last, Eigen::Vector3d::Zero(), cam);
-    p.current = render(p.T_cw_current, Eigen::Vector3d(0.0, -0.05, 0.0), cam);
+    p.last = render(p.T_cw_last, Eigen::Vector3d::Zero());
+    p.current = render(p.T_cw_current, Eigen::Vector3d(0.0, -0.05, 0.0));
     return p;
   }();
   return pair;
@@ -187,7 +115,7 @@ TEST(DynamicFrontEnd, StaticSceneGivesAnEmptyMask) {
   // The same camera motion without the box moving.
   const core::PinholeCamera cam = testCamera();
   SyntheticPair still = pair;
-  still.current = render(pair.T_cw_current, Eigen::Vector3d::Zero(), cam);
+  still.current = render(pair.T_cw_current, Eigen::Vector3d::Zero());
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   const DynamicFrameOutput out = DynamicFrontEnd(cam, options).process(inputFor(still));
@@ -281,10 +209,7 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
   cv::Mat last_bgr;
   load(100, last_bgr, in.last_gray, in.last_depth);
   load(101, in.bgr, in.gray, in.depth);
-  core::CameraIntrinsics intr;  // Bonn (ASUS Xtion), from the data README
-  intr.fx = 542.822841, intr.fy = 542.576870, intr.cx = 315.593520, intr.cy = 237.756098;
-  intr.k1 = 0.039903, intr.k2 = -0.099343, intr.p1 = -0.000730, intr.p2 = -0.000144;
-  const core::PinholeCamera cam(intr);
+  const core::PinholeCamera cam(testing::bonnIntrinsics());
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   const std::vector<PointTrack> tracks = trackCorners(in.last_gray, in.gray, options.tracking);
@@ -350,12 +275,13 @@ TEST(DynamicFrontEnd, FittingOnAllTracksLetsARigidMoverHide) {
 TEST(DynamicFrontEnd, RefittedPoseFindsAMoverSlidingAlongItsEpipolarLines) {
   const core::PinholeCamera cam = testCamera();
   SyntheticPair along = syntheticPair();
-  along.current = render(along.T_cw_current, Eigen::Vector3d(0.05, 0.0, 0.0), cam);
+  along.current = render(along.T_cw_current, Eigen::Vector3d(0.05, 0.0, 0.0));
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   options.reprojection.refit_pose = false;
   const DynamicFrameOutput epipolar_only = DynamicFrontEnd(cam, options).process(inputFor(along));
   EXPECT_LT(coverage(epipolar_only.mask, along.current.box_mask), 0.2);
+  { const auto& d = epipolar_only.diagnostics; std::cout << "DBG cand " << d.candidate_clusters << " dyn " << d.dynamic_clusters << " dynpts " << d.dynamic_points << " tracks " << d.tracks << " ffit " << d.f_fit_points << " finl " << d.f_final_inliers << " conf " << d.confirmed_clusters << " sp " << d.dynamic_superpixels << "\n"; }
   EXPECT_FALSE(epipolar_only.diagnostics.pose_refit_ok);
 
   options.reprojection.refit_pose = true;

@@ -6,15 +6,12 @@
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/testing/test_camera.h"
 
 namespace amos::dynamic {
 namespace {
 
-Eigen::Matrix3d testK() {
-  Eigen::Matrix3d K;
-  K << 535.4, 0, 320.1, 0, 539.2, 247.6, 0, 0, 1;
-  return K;
-}
+Eigen::Matrix3d testK() { return testing::testCamera().eigenK(); }
 
 Eigen::Vector2d project(const Eigen::Matrix3d& K, const Eigen::Vector3d& p) { return (K * p).hnormalized(); }
 

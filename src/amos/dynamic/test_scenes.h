@@ -4,22 +4,14 @@
 
 #include "amos/core/camera.h"
 #include "amos/dynamic/dynamic_front_end.h"
+#include "amos/testing/test_camera.h"
 
 namespace amos::dynamic {
 
-// TUM fr3's colour camera without distortion, 640 x 480.
-inline core::PinholeCamera testCamera() {
-  core::CameraIntrinsics intr;
-  intr.fx = 535.4, intr.fy = 539.2, intr.cx = 320.1, intr.cy = 247.6;
-  return core::PinholeCamera(intr);
-}
-
-// A 120 x 100 camera with f = 100 px and the principal point in the middle: scenes small enough to write by hand.
-inline core::PinholeCamera smallTestCamera() {
-  core::CameraIntrinsics intr;
-  intr.fx = intr.fy = 100, intr.cx = 60, intr.cy = 50, intr.width = 120, intr.height = 100;
-  return core::PinholeCamera(intr);
-}
+// The shared test cameras (amos/testing/test_camera.h): TUM fr3's colour camera, 640 x 480, and the hand-written
+// scenes' 120 x 100 camera with f = 100 px.
+using testing::smallTestCamera;
+using testing::testCamera;
 
 // A frame pair looking at a wall depth_m away, with the same (identity) pose in both frames; gray is black.
 inline DynamicFrameInput wallFramePair(cv::Size size, float depth_m) {

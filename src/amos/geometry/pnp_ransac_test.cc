@@ -7,18 +7,10 @@
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/testing/test_camera.h"
 
 namespace amos::geometry {
 namespace {
-
-core::PinholeCamera tumCamera() {
-  core::CameraIntrinsics k;
-  k.fx = 535.4;
-  k.fy = 539.2;
-  k.cx = 320.1;
-  k.cy = 247.6;
-  return core::PinholeCamera(k);
-}
 
 struct Scene {
   std::vector<Eigen::Vector3d> points_w;
@@ -30,7 +22,7 @@ struct Scene {
 // Points 1..5 m in front of a camera at pose T_cw, seen with Gaussian pixel noise; a fraction of the pixels are
 // replaced by uniformly random ones (outliers).
 Scene makeScene(int n, double outlier_fraction, double noise_px, unsigned seed) {
-  const auto camera = tumCamera();
+  const auto camera = testing::testCamera();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::normal_distribution<double> noise(0.0, noise_px);
@@ -57,7 +49,7 @@ Scene makeScene(int n, double outlier_fraction, double noise_px, unsigned seed) 
 TEST(PnpRansac, RecoversPoseWithHalfOutliers) {
   const Scene s = makeScene(400, 0.5, 0.5, 7);
   PnpRansacOptions options;
-  const PnpResult r = solvePnpRansac(s.points_w, s.pixels, tumCamera(), options);
+  const PnpResult r = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options);
   ASSERT_TRUE(r.success);
   const core::SE3 error = r.T_cw * s.T_cw.inverse();
   EXPECT_LT(core::translationNorm(error), 1e-3);
@@ -75,7 +67,7 @@ TEST(PnpRansac, RecoversPoseWithHalfOutliers) {
 TEST(PnpRansac, RecoversPoseFacingAWall) {
   // Every point on one plane (a wall 2.5 m in front of the camera): EPnP's general form degenerates there.
   Scene s = makeScene(300, 0.4, 0.5, 21);
-  const auto camera = tumCamera();
+  const auto camera = testing::testCamera();
   const core::SE3 T_wc = s.T_cw.inverse();
   std::mt19937 rng(4);
   std::normal_distribution<double> noise(0.0, 0.5);
@@ -99,14 +91,14 @@ TEST(PnpRansac, DeterministicForASeed) {
   const Scene s = makeScene(200, 0.3, 1.0, 11);
   PnpRansacOptions options;
   options.max_iterations = 40;  // a short budget makes the result depend on the samples drawn
-  const PnpResult a = solvePnpRansac(s.points_w, s.pixels, tumCamera(), options);
-  const PnpResult b = solvePnpRansac(s.points_w, s.pixels, tumCamera(), options);
+  const PnpResult a = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options);
+  const PnpResult b = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options);
   ASSERT_TRUE(a.success);
   EXPECT_EQ(a.inliers, b.inliers);
   EXPECT_EQ(a.T_cw.matrix(), b.T_cw.matrix());  // bitwise equal
   // A different seed draws different samples; the refined pose still agrees closely.
   options.seed = 43;
-  const PnpResult c = solvePnpRansac(s.points_w, s.pixels, tumCamera(), options);
+  const PnpResult c = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options);
   ASSERT_TRUE(c.success);
   EXPECT_LT(core::translationNorm(c.T_cw * a.T_cw.inverse()), 1e-3);
 }
@@ -114,23 +106,23 @@ TEST(PnpRansac, DeterministicForASeed) {
 TEST(PnpRansac, FailsWithTooFewPoints) {
   const Scene s = makeScene(10, 0.0, 0.5, 3);
   PnpRansacOptions options;  // min_inliers 15 > 10 points
-  EXPECT_FALSE(solvePnpRansac(s.points_w, s.pixels, tumCamera(), options).success);
+  EXPECT_FALSE(solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options).success);
   const std::vector<Eigen::Vector3d> none_w;
   const std::vector<Eigen::Vector2d> none_px;
-  EXPECT_FALSE(solvePnpRansac(none_w, none_px, tumCamera(), options).success);
+  EXPECT_FALSE(solvePnpRansac(none_w, none_px, testing::testCamera(), options).success);
 }
 
 TEST(PnpRansac, FailsOnPureNoise) {
   // Pixels unrelated to the points: no pose explains 15 of them within 2 px.
   Scene s = makeScene(100, 1.0, 0.0, 5);
-  const PnpResult r = solvePnpRansac(s.points_w, s.pixels, tumCamera(), PnpRansacOptions{});
+  const PnpResult r = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), PnpRansacOptions{});
   EXPECT_FALSE(r.success);
 }
 
 TEST(PnpRansac, RejectsMismatchedInputsAndBadOptions) {
   const Scene s = makeScene(30, 0.0, 0.5, 3);
   std::vector<Eigen::Vector2d> short_pixels(s.pixels.begin(), s.pixels.end() - 1);
-  EXPECT_THROW(solvePnpRansac(s.points_w, short_pixels, tumCamera(), PnpRansacOptions{}), core::Error);
+  EXPECT_THROW(solvePnpRansac(s.points_w, short_pixels, testing::testCamera(), PnpRansacOptions{}), core::Error);
   PnpRansacOptions bad;
   bad.confidence = 1.5;
   EXPECT_THROW(bad.check(), core::Error);

@@ -5,11 +5,11 @@
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/testing/test_camera.h"
 
 namespace amos::geometry {
 namespace {
 
-StereoProjection fr2Projection() { return {520.9, 521.0, 325.1, 249.7, 40.0}; }
 
 // Random points in front of a camera at T_cw, observed with pixel noise; `outlier_fraction` of them are moved.
 std::vector<PoseObservation> makeScene(const core::SE3& T_cw, int n, double noise_px, double outlier_fraction,
@@ -17,7 +17,7 @@ std::vector<PoseObservation> makeScene(const core::SE3& T_cw, int n, double nois
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> ux(-1.5, 1.5), uz(0.8, 4.0), unit(0, 1), big(-60, 60);
   std::normal_distribution<double> noise(0, noise_px);
-  const StereoProjection p = fr2Projection();
+  const StereoProjection p = testing::testProjection();
   std::vector<PoseObservation> obs;
   const core::SE3 T_wc = T_cw.inverse();
   for (int i = 0; i < n; ++i) {
@@ -56,7 +56,7 @@ TEST(PoseOptimizer, RecoversPerturbedPoseWithOutliersRgbd) {
   std::vector<bool> truth;
   const auto obs = makeScene(T, 400, 0.5, 0.2, true, 7, &truth);
   PoseOptimizerOptions options;
-  const auto result = optimizePose(obs, perturbed(T, 0.05, 0.03), fr2Projection(), options);
+  const auto result = optimizePose(obs, perturbed(T, 0.05, 0.03), testing::testProjection(), options);
   EXPECT_LT(core::translationNorm(result.T_cw.inverse() * T), 0.003);
   EXPECT_LT(core::rotationAngle(result.T_cw.inverse() * T), 0.002);
   int agree = 0;
@@ -68,7 +68,7 @@ TEST(PoseOptimizer, RecoversPerturbedPoseWithOutliersRgbd) {
 TEST(PoseOptimizer, RecoversPerturbedPoseMonocularResiduals) {
   const core::SE3 T = truePose();
   const auto obs = makeScene(T, 300, 0.5, 0.1, false, 11, nullptr);
-  const auto result = optimizePose(obs, perturbed(T, 0.04, 0.02), fr2Projection(), PoseOptimizerOptions{});
+  const auto result = optimizePose(obs, perturbed(T, 0.04, 0.02), testing::testProjection(), PoseOptimizerOptions{});
   EXPECT_LT(core::translationNorm(result.T_cw.inverse() * T), 0.005);
   EXPECT_LT(core::rotationAngle(result.T_cw.inverse() * T), 0.002);
 }
@@ -76,7 +76,7 @@ TEST(PoseOptimizer, RecoversPerturbedPoseMonocularResiduals) {
 TEST(PoseOptimizer, ExactDataGivesExactPose) {
   const core::SE3 T = truePose();
   const auto obs = makeScene(T, 100, 0.0, 0.0, true, 3, nullptr);
-  const auto result = optimizePose(obs, perturbed(T, 0.02, 0.01), fr2Projection(), PoseOptimizerOptions{});
+  const auto result = optimizePose(obs, perturbed(T, 0.02, 0.01), testing::testProjection(), PoseOptimizerOptions{});
   EXPECT_LT(core::translationNorm(result.T_cw.inverse() * T), 1e-7);
   EXPECT_LT(core::rotationAngle(result.T_cw.inverse() * T), 1e-8);
   EXPECT_EQ(result.num_inliers, 100);
@@ -88,7 +88,7 @@ TEST(PoseOptimizer, ConvergesFromFarStart) {
   const auto obs = makeScene(T, 200, 0.0, 0.0, true, 5, nullptr);
   PoseOptimizerOptions options;
   options.iterations_per_round = 20;
-  const auto result = optimizePose(obs, perturbed(T, 0.15, 0.08), fr2Projection(), options);
+  const auto result = optimizePose(obs, perturbed(T, 0.15, 0.08), testing::testProjection(), options);
   EXPECT_LT(core::translationNorm(result.T_cw.inverse() * T), 1e-6);
 }
 

@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <random>
+#include "amos/testing/test_camera.h"
 
 namespace amos::loop {
 namespace {
@@ -23,12 +24,7 @@ struct LoopScene {
 };
 
 std::shared_ptr<const map::Sensor> sensor() {
-  core::CameraIntrinsics c;
-  c.fx = 520;
-  c.fy = 520;
-  c.cx = 320;
-  c.cy = 240;
-  return std::make_shared<map::Sensor>(c, map::SensorOptions{}, feature::OrbOptions{});
+  return std::make_shared<map::Sensor>(testing::testIntrinsics(), map::SensorOptions{}, feature::OrbOptions{});
 }
 
 core::SE3 cameraAt(double x) {
@@ -46,7 +42,8 @@ map::KeyFramePtr addKeyFrame(LoopScene& s, map::FrameId id, const core::SE3& T_t
   cv::Mat gray(480, 640, CV_8U, cv::Scalar(0));
   for (std::size_t w = 0; w < s.wall.size(); ++w) {
     const Eigen::Vector3d pc = T_true * s.wall[w];
-    const double u = 520 * pc.x() / pc.z() + 320, v = 520 * pc.y() / pc.z() + 240;
+    const Eigen::Vector2d uv = s.sensor->camera().project(pc);
+    const double u = uv.x(), v = uv.y();
     if (u < 5 || v < 5 || u > 635 || v > 475) continue;
     f->keys.emplace_back(cv::Point2f(static_cast<float>(u), static_cast<float>(v)), 7.0f, 0.0f, 0.0f, 0);
     f->depth.push_back(static_cast<float>(pc.z()));

@@ -3,17 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include "amos/testing/test_camera.h"
 
 namespace amos::map {
 namespace {
 
 std::shared_ptr<const Sensor> testSensor() {
-  core::CameraIntrinsics c;
-  c.fx = 520;
-  c.fy = 520;
-  c.cx = 320;
-  c.cy = 240;
-  return std::make_shared<Sensor>(c, SensorOptions{}, feature::OrbOptions{});
+  return std::make_shared<Sensor>(testing::testIntrinsics(), SensorOptions{}, feature::OrbOptions{});
 }
 
 // A frame with n keypoints on a grid, all with depth 2 m, random descriptors, at pose T_cw.

@@ -4,11 +4,12 @@
 
 #include <algorithm>
 #include <random>
+#include "amos/testing/test_camera.h"
 
 namespace amos::mapping {
 namespace {
 
-geometry::StereoProjection projection() { return {520.9, 521.0, 325.1, 249.7, 40.0}; }
+geometry::StereoProjection projection() { return testing::testProjection(); }
 
 // Five cameras moving sideways in front of a cloud of points; every point seen by every camera.
 struct Scene {

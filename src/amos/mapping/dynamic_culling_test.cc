@@ -3,17 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "amos/core/error.h"
+#include "amos/testing/test_camera.h"
 
 namespace amos::mapping {
 namespace {
 
 std::shared_ptr<const map::Sensor> sensor() {
-  core::CameraIntrinsics c;
-  c.fx = 520;
-  c.fy = 520;
-  c.cx = 320;
-  c.cy = 240;
-  return std::make_shared<map::Sensor>(c, map::SensorOptions{}, feature::OrbOptions{});
+  return std::make_shared<map::Sensor>(testing::testIntrinsics(), map::SensorOptions{}, feature::OrbOptions{});
 }
 
 TEST(DynamicCulling, CullsPointsSeenOnMoversOftenEnough) {

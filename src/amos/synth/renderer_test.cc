@@ -3,18 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include "amos/testing/test_camera.h"
 
 namespace amos::synth {
 namespace {
 
-core::CameraIntrinsics tumFr3() {
-  core::CameraIntrinsics k;
-  k.fx = 535.4;
-  k.fy = 539.2;
-  k.cx = 320.1;
-  k.cy = 247.6;
-  return k;
-}
+// The camera of the synthetic sequences (TUM fr3); the expected extents below are worked out for it.
+core::CameraIntrinsics tumFr3() { return testing::testIntrinsics(); }
 
 // Camera at the world origin looking along world +z (T_cw = identity).
 const core::SE3 kIdentity = core::SE3::Identity();
@@ -138,6 +133,21 @@ TEST(Texture, MipLevelsAverageAndAlphaCuts) {
   EXPECT_NEAR(t.alpha(0.8, 0.5), 0.0, 1e-6);
   // Repeat wraps: s and s + 3 sample the same texel.
   EXPECT_EQ(t.sample(0.123, 0.456, 0), t.sample(3.123, 0.456, 0));
+}
+
+// Without mipmaps a texture is sampled at full resolution however far away (the test scenes that must look as a
+// plain ray caster's); with them a far checkerboard is its mean grey.
+TEST(Texture, WithoutMipmapsSamplesTheFullResolutionAtAnyDistance) {
+  cv::Mat checker(8, 8, CV_8UC3);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) checker.at<cv::Vec3b>(y, x) = cv::Vec3b::all((x + y) % 2 ? 255 : 0);
+  const Texture mipmapped(checker), plain(checker, cv::Mat(), false, /*mipmaps=*/false);
+  EXPECT_GT(mipmapped.levelCount(), 1);
+  EXPECT_EQ(plain.levelCount(), 1);
+  const double s = 0.5 / 8, t = 0.5 / 8;  // the centre of texel (0, 0), black
+  EXPECT_NEAR(mipmapped.sample(s, t, 3.0)[0], 127.5, 1.0);
+  EXPECT_FLOAT_EQ(plain.sample(s, t, 3.0)[0], 0.0f);
+  EXPECT_FLOAT_EQ(plain.sample(s, t, 0.0)[0], mipmapped.sample(s, t, 0.0)[0]);
 }
 
 }  // namespace

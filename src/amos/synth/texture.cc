@@ -8,12 +8,12 @@
 
 namespace amos::synth {
 
-Texture::Texture(const cv::Mat& bgr, const cv::Mat& alpha, bool repeat) : repeat_(repeat) {
+Texture::Texture(const cv::Mat& bgr, const cv::Mat& alpha, bool repeat, bool mipmaps) : repeat_(repeat) {
   core::require(!bgr.empty() && bgr.type() == CV_8UC3, "Texture: colour image must be a non-empty CV_8UC3");
   core::require(alpha.empty() || (alpha.type() == CV_8UC1 && alpha.size() == bgr.size()),
                 "Texture: alpha must be CV_8UC1 of the colour image's size");
   levels_.push_back(bgr.clone());
-  while (levels_.back().cols > 4 && levels_.back().rows > 4) {
+  while (mipmaps && levels_.back().cols > 4 && levels_.back().rows > 4) {
     const cv::Mat& prev = levels_.back();
     cv::Mat next;
     cv::resize(prev, next, cv::Size((prev.cols + 1) / 2, (prev.rows + 1) / 2), 0, 0, cv::INTER_AREA);

@@ -10,8 +10,10 @@ namespace amos::synth {
 class Texture {
  public:
   // bgr: CV_8UC3 (at least 1x1). alpha: empty or CV_8UC1 of the same size (255 = opaque). With `repeat` the
-  // coordinates wrap around (tiling); otherwise they clamp to the border.
-  Texture(const cv::Mat& bgr, const cv::Mat& alpha = cv::Mat(), bool repeat = false);
+  // coordinates wrap around (tiling); otherwise they clamp to the border. Without `mipmaps` every lookup is
+  // bilinear at full resolution (aliasing where a pixel covers several texels), for test scenes that must look
+  // as a plain ray caster's.
+  Texture(const cv::Mat& bgr, const cv::Mat& alpha = cv::Mat(), bool repeat = false, bool mipmaps = true);
 
   int width() const { return levels_.front().cols; }
   int height() const { return levels_.front().rows; }

@@ -16,6 +16,7 @@
 #include "amos/core/error.h"
 #include "amos/io/dataset.h"
 #include "amos/testing/shared_data.h"
+#include "amos/testing/test_camera.h"
 
 namespace amos::system {
 namespace {
@@ -24,9 +25,7 @@ const std::string kBonn = testing::dataPath("bonn_crowd_dev");
 
 SlamOptions bonnOptions() {
   SlamOptions o;
-  o.camera.fx = 542.822841, o.camera.fy = 542.576870, o.camera.cx = 315.593520, o.camera.cy = 237.756098;
-  o.camera.k1 = 0.039903, o.camera.k2 = -0.099343, o.camera.p1 = -0.000730, o.camera.p2 = -0.000144;
-  o.camera.width = 640, o.camera.height = 480;
+  o.camera = testing::bonnIntrinsics();
   o.sensor.bf = 40.0;
   o.sensor.th_depth = 40.0;
   o.deterministic = true;

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
+#include "amos/testing/test_camera.h"
 
 namespace amos::system {
 namespace {
@@ -16,8 +17,7 @@ using dynamic::DynamicMode;
 
 SlamOptions testOptions() {
   SlamOptions o;
-  o.camera.fx = o.camera.fy = 525.0, o.camera.cx = 319.5, o.camera.cy = 239.5;
-  o.camera.width = 640, o.camera.height = 480;
+  o.camera = testing::testIntrinsics();
   o.sensor.bf = 40.0;
   o.sensor.th_depth = 40.0;
   o.deterministic = true;
