@@ -32,7 +32,9 @@ struct CornerTrackingOptions {
   // 0.25 -> 0.51, 0.12 -> 0.30, 0.05 -> 0.51 on seeds 4, 5, 6 (box and door unchanged). Off by default: on the Bonn
   // crowd slice (full, --deterministic) one run gave 1.75 cm against 1.58 without it (the corners also feed the
   // initial pose's model 2; more of them now lie on people), within the 1.6-2.0 cm spread of runs after small
-  // front-end changes but not yet shown to be harmless there.
+  // front-end changes but not yet shown to be harmless there. Nor is it cheap yet: one goodFeaturesToTrack per
+  // cell cost ~9x the single call on a Bonn frame (10 -> 98 ms wall, loaded machine); one eigenvalue pass with the
+  // selection per cell would be needed before it can run live.
   int grid_cells = 1;
   // Dynamic.LK.window: 15x15 px: with 3 pyramid levels it follows flows up to 7 * 2^3 = 56 px per frame, above
   // a person walking 1.5 m/s at 1.5 m (~18 px at 30 Hz, f ~ 540 px) or a camera turning 1 rad/s (~18 px), at
