@@ -177,6 +177,17 @@ void BM_CornerTracking(benchmark::State& state) {
 }
 BENCHMARK(BM_CornerTracking)->Unit(benchmark::kMillisecond);
 
+// Corner detection alone on the real frame. Arg: Dynamic.Corners.gridCells (1 = the image's strongest only).
+void BM_DetectCorners(benchmark::State& state) {
+  const BenchData& d = data();
+  CornerTrackingOptions options;
+  options.grid_cells = static_cast<int>(state.range(0));
+  std::vector<cv::Point2f> corners;
+  for (auto _ : state) corners = detectCorners(d.last.gray, options);
+  state.counters["corners"] = static_cast<double>(corners.size());
+}
+BENCHMARK(BM_DetectCorners)->ArgName("grid")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+
 // One frame pair's LK pyramids (both frames, with derivatives), the part of BM_CornerTracking that can be reused.
 void BM_BuildPyramids(benchmark::State& state) {
   const BenchData& d = data();

@@ -137,6 +137,15 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
         "per-frame medians {:.3f} / {:.3f} / {:.3f};  {:.2f}% of pixels marked\n",
         m.frames, m.frames_with_truth, m.precision, m.recall, m.iou, m.median_precision, m.median_recall,
         m.median_iou, 100.0 * m.dynamic_fraction);
+    for (const eval::InstanceAccuracy& a : r.info.instance_accuracy) {
+      std::string releases;
+      for (const auto& [first, frames] : a.releases)
+        releases += fmt::format(" {}@{}", frames < 0 ? std::string("never") : std::to_string(frames), first);
+      std::cout << fmt::format(
+          "  mover {} {} ({}): moving {} frames, recall {:.3f} precision {:.3f}; at rest {} frames, {:.1f}% marked{}\n",
+          a.id, a.name, a.category, a.moving_frames, a.recall, a.precision, a.rest_frames,
+          100.0 * a.rest_marked_fraction, releases.empty() ? "" : "; frames to release after a stop:" + releases);
+    }
   }
   if (r.info.end.status != report::RunEnd::Status::kComplete) {
     std::cout << fmt::format("run {} after {} frames: {}; the outputs hold the frames processed until then\n",

@@ -56,6 +56,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.Corners.minDistance", &o.tracking.min_distance_px, "distance between corners at least (px)");
   s.add("Dynamic.Corners.detectionScale", &o.tracking.detection_scale,
         "corners are detected on the image scaled by this, and tracked at full resolution");
+  s.add("Dynamic.Corners.gridCells", &o.tracking.grid_cells,
+        "G > 1: half of the corners spread over a G x G grid (each cell ranked on its own), the rest the strongest; "
+        "1: the strongest only");
   s.add("Dynamic.LK.window", &o.tracking.lk_window, "side of the LK window (px, odd)");
   s.add("Dynamic.LK.pyramidLevels", &o.tracking.lk_levels, "LK pyramid levels above the image");
   s.add("Dynamic.LK.maxIterations", &o.tracking.lk_max_iterations, "LK iterations per level at most");

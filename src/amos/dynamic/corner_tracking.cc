@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
@@ -25,6 +26,8 @@ void CornerTrackingOptions::check() const {
   core::requireAtLeast(lk_max_iterations, "lk_max_iterations", 1);
   core::requirePositive(lk_epsilon, "lk_epsilon");
   core::requirePositive(forward_backward_px, "forward_backward_px");
+  core::requireOption(grid_cells >= 1 && grid_cells <= 16, core::option(grid_cells, "grid_cells"),
+                      fmt::format("must lie in [1, 16], got {}", grid_cells));
 }
 
 ImagePyramid buildPyramid(const cv::Mat& gray, const CornerTrackingOptions& options) {
@@ -102,6 +105,60 @@ std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const FramePairPy
   return trackPoints(pyramids, detectCorners(last_gray, options, mask), options);
 }
 
+namespace {
+
+// goodFeaturesToTrack with CornerTrackingOptions::grid_cells > 1: each cell's share first, then the image's strongest.
+std::vector<cv::Point2f> gridCorners(const cv::Mat& image, const cv::Mat& mask, const CornerTrackingOptions& options,
+                                     double min_distance) {
+  constexpr double kCellFloor = 1e-3;  // a cell's best corner against the image's best (see grid_cells)
+  const int g = options.grid_cells;
+  cv::Mat eig;
+  cv::cornerMinEigenVal(image, eig, 3, 3);
+  double image_best = 0;
+  cv::minMaxLoc(eig, nullptr, &image_best, nullptr, nullptr, mask);
+  std::vector<cv::Point2f> corners;
+  const int per_cell = std::max(1, options.max_corners / (2 * g * g));
+  for (int cy = 0; cy < g; ++cy)
+    for (int cx = 0; cx < g; ++cx) {
+      const cv::Rect cell(cx * image.cols / g, cy * image.rows / g, (cx + 1) * image.cols / g - cx * image.cols / g,
+                          (cy + 1) * image.rows / g - cy * image.rows / g);
+      const cv::Mat cell_mask = mask.empty() ? cv::Mat() : mask(cell);
+      double cell_best = 0;
+      cv::minMaxLoc(eig(cell), nullptr, &cell_best, nullptr, nullptr, cell_mask);
+      if (!(cell_best > kCellFloor * image_best)) continue;
+      std::vector<cv::Point2f> found;
+      cv::goodFeaturesToTrack(image(cell), found, per_cell, options.quality_level, min_distance, cell_mask);
+      for (const cv::Point2f& p : found) corners.emplace_back(p.x + cell.x, p.y + cell.y);
+    }
+  // The rest of the budget: the image's strongest corners, away from those already taken.
+  cv::Mat rest_mask = mask.empty() ? cv::Mat(image.size(), CV_8U, cv::Scalar(255)) : mask.clone();
+  for (const cv::Point2f& p : corners) cv::circle(rest_mask, p, static_cast<int>(std::ceil(min_distance)), 0, -1);
+  const int rest = options.max_corners - static_cast<int>(corners.size());
+  if (rest > 0) {
+    std::vector<cv::Point2f> strongest;
+    cv::goodFeaturesToTrack(image, strongest, rest, options.quality_level, min_distance, rest_mask);
+    corners.insert(corners.end(), strongest.begin(), strongest.end());
+  }
+  // Strongest first, as goodFeaturesToTrack returns them.
+  auto response = [&](const cv::Point2f& p) {
+    return eig.at<float>(std::clamp(static_cast<int>(std::lround(p.y)), 0, eig.rows - 1),
+                         std::clamp(static_cast<int>(std::lround(p.x)), 0, eig.cols - 1));
+  };
+  std::stable_sort(corners.begin(), corners.end(),
+                   [&](const cv::Point2f& a, const cv::Point2f& b) { return response(a) > response(b); });
+  return corners;
+}
+
+void goodCorners(const cv::Mat& image, std::vector<cv::Point2f>& corners, const CornerTrackingOptions& options,
+                 double min_distance, const cv::Mat& mask) {
+  if (options.grid_cells > 1)
+    corners = gridCorners(image, mask, options, min_distance);
+  else
+    cv::goodFeaturesToTrack(image, corners, options.max_corners, options.quality_level, min_distance, mask);
+}
+
+}  // namespace
+
 std::vector<cv::Point2f> detectCorners(const cv::Mat& gray, const CornerTrackingOptions& options, const cv::Mat& mask) {
   options.check();
   core::require(!gray.empty() && gray.type() == CV_8UC1, "detectCorners: the image must be a non-empty CV_8UC1");
@@ -113,14 +170,12 @@ std::vector<cv::Point2f> detectCorners(const cv::Mat& gray, const CornerTracking
     cv::Mat small, small_mask;
     cv::resize(gray, small, cv::Size(), s, s, cv::INTER_AREA);
     if (!mask.empty()) cv::resize(mask, small_mask, small.size(), 0, 0, cv::INTER_NEAREST);
-    cv::goodFeaturesToTrack(small, corners, options.max_corners, options.quality_level, options.min_distance_px * s,
-                            small_mask);
+    goodCorners(small, corners, options, options.min_distance_px * s, small_mask);
     // Pixel centres: small (x + 0.5) / s - 0.5 in the full image.
     for (cv::Point2f& c : corners)
       c = cv::Point2f(static_cast<float>((c.x + 0.5) / s - 0.5), static_cast<float>((c.y + 0.5) / s - 0.5));
   } else {
-    cv::goodFeaturesToTrack(gray, corners, options.max_corners, options.quality_level, options.min_distance_px,
-                            mask);
+    goodCorners(gray, corners, options, options.min_distance_px, mask);
   }
   return corners;
 }

@@ -120,6 +120,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   out.cluster_scores = std::move(candidates.cluster_scores);
   out.reprojection_error_px = std::move(candidates.errors_px);
   out.confirm_scores = std::move(confirmation.confirm_scores);
+  out.judged_error_px = residualNorms(confirmation.residuals);
   out.T_cw_judged = confirmation.refit.T_cw;
   out.dynamic_cluster = std::move(voting.dynamic_cluster);
   out.epipolar_distance_px = std::move(epipolar.distance_px);

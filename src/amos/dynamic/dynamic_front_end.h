@@ -96,6 +96,7 @@ struct DynamicFrameOutput {
   std::vector<bool> dynamic_cluster;                         // per cluster
   std::vector<PointTrack> tracks;                            // the tracks used
   std::vector<std::optional<double>> reprojection_error_px;  // per track (Eq. 5's ||e||), empty without depth
+  std::vector<std::optional<double>> judged_error_px;        // per track under T_cw_judged (points, else intervals)
   std::vector<double> epipolar_distance_px;                  // per track (infinity when there was no F)
 };
 

@@ -79,15 +79,21 @@ cv::Mat GroundTruthMasks::instanceMask(int frame) const {
   return m;
 }
 
-cv::Mat GroundTruthMasks::moverMask(int frame) const {
-  const cv::Mat ids = instanceMask(frame);
+cv::Mat GroundTruthMasks::moverMask(int frame) const { return moverMask(instanceMask(frame), movingIds(frame)); }
+
+std::vector<bool> GroundTruthMasks::movingIds(int frame) const {
   std::vector<bool> moving(65536, false);
   for (const GroundTruthInstance& inst : instances_) moving[inst.id] = inst.movingAt(frame);
+  return moving;
+}
+
+cv::Mat GroundTruthMasks::moverMask(const cv::Mat& ids, const std::vector<bool>& moving) {
+  core::require(ids.type() == CV_16UC1, "GroundTruthMasks::moverMask: instance ids must be CV_16U");
   cv::Mat out(ids.size(), CV_8U);
   for (int y = 0; y < ids.rows; ++y) {
     const std::uint16_t* id = ids.ptr<std::uint16_t>(y);
     uchar* o = out.ptr<uchar>(y);
-    for (int x = 0; x < ids.cols; ++x) o[x] = moving[id[x]] ? 255 : 0;
+    for (int x = 0; x < ids.cols; ++x) o[x] = id[x] < moving.size() && moving[id[x]] ? 255 : 0;
   }
   return out;
 }

@@ -39,6 +39,10 @@ class GroundTruthMasks {
   cv::Mat instanceMask(int frame) const;
   // CV_8U, 255 on the instances moving in that frame.
   cv::Mat moverMask(int frame) const;
+  // Per instance id (index), whether it moves in that frame (ids without an instance: false).
+  std::vector<bool> movingIds(int frame) const;
+  // CV_8U, 255 where `instances` (CV_16U ids) holds an id with moving[id].
+  static cv::Mat moverMask(const cv::Mat& instances, const std::vector<bool>& moving);
 
  private:
   std::vector<double> stamps_;     // sorted as in masks.txt

@@ -85,7 +85,10 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
   j["fps"] = info.wall_time_s > 0 ? static_cast<double>(s.frames) / info.wall_time_s : 0.0;
   if (info.mask_outputs_s > 0) j["mask_outputs_s"] = info.mask_outputs_s;
   if (info.evaluation) j["evaluation"] = eval::toJson(*info.evaluation);
-  if (info.mask_accuracy) j["mask_accuracy"] = eval::toJson(*info.mask_accuracy);
+  if (info.mask_accuracy) {
+    j["mask_accuracy"] = eval::toJson(*info.mask_accuracy);
+    if (!info.instance_accuracy.empty()) j["mask_accuracy"]["instances"] = eval::toJson(info.instance_accuracy);
+  }
   if (info.source) j["source"] = toJson(*info.source);
   if (info.association) j["association"] = toJson(*info.association);
   nlohmann::json skipped = nlohmann::json::object();

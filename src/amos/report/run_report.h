@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "amos/eval/evaluate.h"
+#include "amos/eval/instance_mask_metrics.h"
 #include "amos/eval/mask_metrics.h"
 #include "amos/io/dataset.h"
 #include "amos/io/frame_source.h"
@@ -64,6 +65,9 @@ struct RunInfo {
   // The final dynamic mask against the union of the ground-truth movers, over the frames where the front end
   // produced a mask; absent without ground-truth masks or in mode none.
   std::optional<eval::MaskAccuracy> mask_accuracy;
+  // The same per ground-truth instance (recall and precision while it moves, what stays marked while it rests;
+  // eval/instance_mask_metrics.h); written as mask_accuracy.instances.
+  std::vector<eval::InstanceAccuracy> instance_accuracy;
   // Time spent on --save-masks outputs and mask scoring (not part of wall_time_s).
   double mask_outputs_s = 0;
   std::optional<SourceReport> source;  // absent when the caller did not read frames from a FrameSource

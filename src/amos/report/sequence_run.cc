@@ -14,6 +14,7 @@
 #include "amos/eval/bonn_ground_truth.h"
 #include "amos/eval/evaluate.h"
 #include "amos/eval/ground_truth_masks.h"
+#include "amos/eval/instance_mask_metrics.h"
 #include "amos/eval/mask_metrics.h"
 #include "amos/io/dataset.h"
 #include "amos/io/frame_source.h"
@@ -166,6 +167,10 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   source_report.kind = sourceKindName(options.source, options.camera);
   source_report.recorded_to = options.record_dir;
   eval::MaskAccuracyAccumulator mask_accuracy;
+  eval::InstanceAccuracyAccumulator instance_accuracy;
+  if (truth_masks)
+    for (const eval::GroundTruthInstance& inst : truth_masks->instances())
+      instance_accuracy.describe(inst.id, inst.category, inst.name);
   core::Stopwatch wall;
   double outputs_ms = 0;  // mask scoring and writing, kept out of the run's wall time
   std::size_t n = 0;
@@ -186,7 +191,12 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     core::Stopwatch outputs;
     cv::Mat truth;
     if (truth_masks && (mask_writer || !out.dynamic_mask.empty())) {
-      if (const auto k = truth_masks->frameAt(frame.timestamp)) truth = truth_masks->moverMask(*k);
+      if (const auto k = truth_masks->frameAt(frame.timestamp)) {
+        const cv::Mat ids = truth_masks->instanceMask(*k);
+        const std::vector<bool> moving = truth_masks->movingIds(*k);
+        truth = eval::GroundTruthMasks::moverMask(ids, moving);
+        if (!out.dynamic_mask.empty()) instance_accuracy.add(*k, out.dynamic_mask, ids, moving);
+      }
     }
     if (!truth.empty() && !out.dynamic_mask.empty()) mask_accuracy.add(out.dynamic_mask, truth);
     if (mask_writer) mask_writer->add(frame.index, frame.rgb_file, frame.bgr, out.dynamic_mask, out.prior_mask, truth);
@@ -258,6 +268,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   if (result.pipeline->mode() != dynamic::DynamicMode::kNone)
     result.info.removed_fractions = result.pipeline->removedFractions();
   if (!mask_accuracy.empty()) result.info.mask_accuracy = mask_accuracy.summary();
+  if (!instance_accuracy.empty()) result.info.instance_accuracy = instance_accuracy.summary();
   result.info.mask_outputs_s = outputs_ms / 1000.0;
   result.info.wall_time_s = (wall.elapsedMs() - outputs_ms) / 1000.0;
   result.info.sequence = live ? options.camera : options.sequence_dir;

@@ -1,5 +1,6 @@
 #include "amos/synth/movers.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "amos/synth/random.h"
@@ -95,6 +96,13 @@ double SwingingDoor::angleAt(double t) const {
 
 void SwingingDoor::addGeometry(double t, const Eigen::Vector3d&, SceneGeometry& out) const {
   out.append(transformed(leaf_, floorPose(hinge_.x(), hinge_.y(), closed_yaw_ + angleAt(t), hinge_.z())));
+}
+
+ScheduledMover::ScheduledMover(std::unique_ptr<Mover> inner, double begin_s, double end_s)
+    : Mover(inner->info()), inner_(std::move(inner)), begin_(begin_s), end_(std::max(begin_s, end_s)) {}
+
+void ScheduledMover::addGeometry(double t, const Eigen::Vector3d& camera, SceneGeometry& out) const {
+  inner_->addGeometry(std::clamp(t, begin_, end_), camera, out);
 }
 
 }  // namespace amos::synth

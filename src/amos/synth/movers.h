@@ -5,6 +5,7 @@
 // an office chair that rolls, a door that swings. A mover's geometry is a pure function of time.
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,19 @@ class SwingingDoor : public Mover {
   SceneGeometry leaf_;
   Eigen::Vector3d hinge_;
   double closed_yaw_, open_angle_, period_, offset_;
+};
+
+// A mover that moves only within a time window [begin_s, end_s]: before it, it stands as the inner mover stands at
+// begin_s; after it, as at end_s. Movers that change state (issue 16): an object that rests and then is pushed
+// (start-moving), one that is pushed and then stays (stop-moving).
+class ScheduledMover : public Mover {
+ public:
+  ScheduledMover(std::unique_ptr<Mover> inner, double begin_s, double end_s);
+  void addGeometry(double t, const Eigen::Vector3d& camera_position_w, SceneGeometry& out) const override;
+
+ private:
+  std::unique_ptr<Mover> inner_;
+  double begin_, end_;
 };
 
 }  // namespace amos::synth

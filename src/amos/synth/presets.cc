@@ -19,7 +19,8 @@ const std::vector<Preset>& allPresets() {
        {},
        "static_still"},
       {"static_xyz",
-       "static room, camera moving along x/y/z (path of walking_xyz, sitting_xyz, box_push)",
+       "static room, camera moving along x/y/z (path of walking_xyz, sitting_xyz, box_push, box_starts, box_stops, "
+       "chair_push)",
        C::kXyz,
        300,
        {},
@@ -90,6 +91,25 @@ const std::vector<Preset>& allPresets() {
        300,
        {M::kPushedBox, M::kRollingChair, M::kSwingingDoor},
        "objects_xyz --no-movers"},
+      {"box_starts",
+       "a box at rest for 4 s, then pushed 2 m across the floor and at rest again, camera moving along x/y/z",
+       C::kXyz,
+       300,
+       {M::kBoxStarts},
+       "static_xyz"},
+      {"box_stops",
+       "a box pushed 2 m across the floor from the first frame, at rest from 4 s on, camera moving along x/y/z",
+       C::kXyz,
+       300,
+       {M::kBoxStops},
+       "static_xyz"},
+      {"chair_push",
+       "a person pushing an office chair 1.6 m from 3 s on, both at rest before and after, camera moving along "
+       "x/y/z",
+       C::kXyz,
+       300,
+       {M::kChairPush},
+       "static_xyz"},
   };
   return presets;
 }

@@ -5,6 +5,7 @@
 //   walking_static -> static_still      walking_xyz, sitting_xyz, box_push -> static_xyz
 //   walking_rpy -> static_rpy           walking_halfsphere -> static_halfsphere      walking_loop -> static_loop
 //   objects_xyz -> objects_xyz with --no-movers (its door is a mover, so the static room has an open doorway)
+//   box_starts, box_stops, chair_push -> static_xyz
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ enum class MoverKind {
   kPushedBox,     // cardboard box pushed across the floor (unknown object)
   kRollingChair,  // office chair rolling and turning (unknown object)
   kSwingingDoor,  // door in the back wall swinging open and shut (unknown object)
+  kBoxStarts,     // box at rest for the first 4 s, then pushed 2 m across the floor, then at rest (start-moving)
+  kBoxStops,      // box pushed 2 m from the first frame, at rest from 4 s on (stop-moving)
+  kChairPush,     // a person pushing an office chair 1.6 m from 3 s on (paper Fig. 4 (c)-(d)): two instances,
+                  // the person ("person", a prior object) and the chair ("object", which no detector knows)
 };
 
 struct Preset {

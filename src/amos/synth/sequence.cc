@@ -119,6 +119,38 @@ void SequenceGenerator::Impl::buildMovers(const std::vector<cv::Mat>& photos,
             info, doorLeaf(ctx, L.door_width, L.door_height, 0.04),
             Vector3d(L.half_extent.x() - 0.03, L.door_hinge_y + L.door_width, 0), M_PI, -1.3, 9.0, offset));
         break;
+      // Movers that change state: one traversal of a path (eased start and stop, PingPongPath's forward leg from
+      // its start at time `begin`), at rest before and after it (ScheduledMover).
+      case MoverKind::kBoxStarts:
+      case MoverKind::kBoxStops: {
+        const bool starts = kind == MoverKind::kBoxStarts;
+        info = {info.id, "object", starts ? "box_starting" : "box_stopping"};
+        // 2 m at 0.4 m/s (starts: 4 s .. 9 s) or 0.5 m/s (stops: 0 s .. 4 s; then 6 s at rest).
+        const double begin = starts ? 4.0 : 0.0, speed = starts ? 0.4 : 0.5, end = begin + 2.0 / speed;
+        auto box = std::make_unique<SlidingObject>(info, cardboardBox(ctx, {0.6, 0.5, 0.5}),
+                                                   PingPongPath({{1.2, -1.0}, {1.2, 1.0}}, speed, 1.0, 1.0, -begin),
+                                                   0.1, 0.12);
+        movers.push_back(std::make_unique<ScheduledMover>(std::move(box), begin, end));
+        break;
+      }
+      case MoverKind::kChairPush: {
+        // The chair rolls 1.6 m along +y from 3 s on; the person walks 0.55 m behind it on the same schedule, a
+        // hand's reach from its back. Both stand still (in view) before and after.
+        const double begin = 3.0, speed = 0.35, end = begin + 1.6 / speed;
+        const InstanceInfo person{info.id, "person", "chair_pusher"};
+        movers.push_back(std::make_unique<ScheduledMover>(
+            std::make_unique<WalkingPerson>(person, lookFor(false),
+                                            PingPongPath({{1.0, -1.05}, {1.0, 0.55}}, speed, 1.0, 1.0, -begin)),
+            begin, end));
+        instances.push_back(person);
+        info = {next_id++, "object", "pushed_chair"};
+        movers.push_back(std::make_unique<ScheduledMover>(
+            std::make_unique<SlidingObject>(info, officeChair(ctx),
+                                            PingPongPath({{1.0, -0.5}, {1.0, 1.1}}, speed, 1.0, 1.0, -begin),
+                                            -M_PI / 2, 0.3),
+            begin, end));
+        break;
+      }
     }
     instances.push_back(info);
   }

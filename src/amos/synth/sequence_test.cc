@@ -182,6 +182,42 @@ TEST(Sequence, EveryMoverShowsUpAndMovesInItsPreset) {
   }
 }
 
+// Movers that change state (issue 16): per phase, which instances move, and that each is in view and in the mask
+// (at rest too: the mask holds every instance; the truth of a frame is the subset that moves).
+TEST(Sequence, StateChangingMoversMoveOnlyInTheirPhase) {
+  struct Phase {
+    int frame;
+    std::vector<std::string> moving;  // instance names moving at that frame
+  };
+  const std::vector<std::pair<std::string, std::vector<Phase>>> cases = {
+      {"box_starts", {{30, {}}, {110, {}}, {150, {"box_starting"}}, {240, {"box_starting"}}, {290, {}}}},
+      {"box_stops", {{30, {"box_stopping"}}, {90, {"box_stopping"}}, {130, {}}, {280, {}}}},
+      {"chair_push", {{30, {}}, {80, {}}, {120, {"chair_pusher", "pushed_chair"}}, {270, {}}}},
+  };
+  for (const auto& [preset, phases] : cases) {
+    const SequenceGenerator gen(quick(preset, 300));
+    EXPECT_EQ(gen.preset().static_counterpart, "static_xyz") << preset;
+    for (const Phase& phase : phases) {
+      std::vector<std::string> moving;
+      for (std::uint16_t id : gen.movingInstances(gen.time(phase.frame)))
+        for (const InstanceInfo& info : gen.instances())
+          if (info.id == id) moving.push_back(info.name);
+      EXPECT_EQ(moving, phase.moving) << preset << " frame " << phase.frame;
+      const cv::Mat mask = gen.renderExact(phase.frame, true, true, false).instance;
+      for (const InstanceInfo& info : gen.instances())
+        EXPECT_GT(cv::countNonZero(mask == info.id), 500) << preset << " " << info.name << " frame " << phase.frame;
+      const MaskCheck c = checkMasks(gen, phase.frame);
+      EXPECT_EQ(c.mismatches, 0) << preset << " frame " << phase.frame;
+    }
+  }
+  // The person is a prior class, the chair it pushes is not.
+  const SequenceGenerator gen(quick("chair_push", 30));
+  ASSERT_EQ(gen.instances().size(), 2u);
+  EXPECT_EQ(gen.instances()[0].category, "person");
+  EXPECT_EQ(gen.instances()[1].category, "object");
+  EXPECT_NE(gen.instances()[0].id, gen.instances()[1].id);
+}
+
 TEST(Sequence, StaticCounterpartFliesTheSamePathThroughTheSameRoom) {
   for (const Preset& p : allPresets()) {
     if (p.static_counterpart.find(' ') != std::string::npos) continue;  // "X --no-movers"
