@@ -41,7 +41,9 @@ struct LoopClosureReport {
 
 class LoopCloser {
  public:
-  LoopCloser(const LoopClosingOptions& options, std::shared_ptr<map::Map> map);
+  // places: the keyframes' bag-of-words database for loop candidates (null: thumbnails, see loop_detector.h).
+  LoopCloser(const LoopClosingOptions& options, std::shared_ptr<map::Map> map,
+             std::shared_ptr<const place::KeyFrameDatabase> places = nullptr);
 
   // Looks for a loop at `kf` and closes it. Returns the closure when one was made.
   std::optional<LoopClosureReport> process(const map::KeyFramePtr& kf);
@@ -53,6 +55,7 @@ class LoopCloser {
 
   LoopClosingOptions options_;
   std::shared_ptr<map::Map> map_;
+  std::shared_ptr<const place::KeyFrameDatabase> places_;
   map::KeyFrameId last_loop_kf_ = map::kNoKeyFrame;
   LoopConsistency consistency_;
   std::vector<std::pair<map::KeyFrameId, map::KeyFrameId>> loop_edges_;  // kept in every later pose graph
