@@ -62,7 +62,7 @@ std::shared_ptr<const place::Vocabulary> loadPlaceVocabulary(const config::Setti
     if (!fs::is_regular_file(path)) continue;
     core::Stopwatch watch;
     auto vocabulary = std::make_shared<const place::Vocabulary>(place::Vocabulary::load(path));
-    spdlog::debug("place vocabulary {}: {} words, loaded in {:.0f} ms", path, vocabulary->numWords(), watch.elapsedMs());
+    spdlog::info("place vocabulary {}: {} words, loaded in {:.0f} ms", path, vocabulary->numWords(), watch.elapsedMs());
     return vocabulary;
   }
   spdlog::warn("Place.vocabulary {} not found (tried {}): keyframes are ranked by thumbnails", name,
@@ -175,9 +175,10 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   core::require(!options.localize || !options.load_map.empty(), "--localize needs a map to localize in (--load-map FILE)");
   result.slam = std::make_unique<system::SlamSystem>(slam_options);
   if (!options.load_map.empty()) {
+    core::Stopwatch watch;
     const mapio::MapFileSummary loaded = result.slam->loadMap(options.load_map);
-    spdlog::info("map {}: {} keyframes, {} map points{}", options.load_map, loaded.keyframes, loaded.map_points,
-                 options.localize ? " (localization only)" : "");
+    spdlog::info("map {}: {} keyframes, {} map points, loaded in {:.0f} ms{}", options.load_map, loaded.keyframes,
+                 loaded.map_points, watch.elapsedMs(), options.localize ? " (localization only)" : "");
   }
   result.pipeline = makeDynamicPipeline(settings, options, *result.slam);
   std::optional<eval::GroundTruthMasks> truth_masks;

@@ -26,7 +26,7 @@ SlamSystem::SlamSystem(const SlamOptions& options)
       extractor_(options.orb),
       map_(std::make_shared<map::Map>(options.covisibility)) {
   if (options_.vocabulary) places_ = std::make_shared<place::KeyFrameDatabase>(options_.vocabulary);
-  loop_closer_ = std::make_unique<loop::LoopCloser>(options_.loop, map_, places_);
+  loop_closer_ = std::make_unique<loop::LoopCloser>(options_.loop, map_, options_.loop.bag_of_words ? places_ : nullptr);
   mapper_ = std::make_unique<mapping::LocalMapper>(
       options_.mapping, map_, options_.deterministic, &times_,
       [closer = loop_closer_.get(), places = places_.get(), times = &times_,
