@@ -37,6 +37,9 @@ struct RunArgs {
   std::string sequence, config, output, mode = "full", models, camera, record;
   bool deterministic = false, save_masks = false, realtime = false, overwrite = false, strict = false;
   std::size_t max_frames = 0, overlays = 8, progress_every = 100;
+  std::size_t first_frame = 0;
+  std::string load_map, save_map;  // --load-map / --save-map
+  bool localize = false;
 };
 
 // SIGINT (Ctrl-C) and SIGTERM end the run at the next frame boundary: mapping is stopped and the outputs are
@@ -154,6 +157,14 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
   std::cout << "outputs written to " << output << "\n";
 }
 
+// --save-map: the map as the run left it (mapping finished), with its size and the time it took.
+void saveMap(const system::SlamSystem& slam, const std::string& path) {
+  core::Stopwatch watch;
+  const mapio::MapFileSummary saved = slam.saveMap(path);
+  std::cout << fmt::format("map saved to {}: {} keyframes, {} map points, {:.1f} MB in {:.0f} ms\n", path,
+                           saved.keyframes, saved.map_points, saved.bytes / 1e6, watch.elapsedMs());
+}
+
 void runSlam(const RunArgs& args, int& exit_code) {
   core::require(!args.sequence.empty() || !args.camera.empty(),
                 "run: give --sequence DIR (a recorded sequence) or --camera openni2[:URI] (a live camera)");
@@ -173,6 +184,9 @@ void runSlam(const RunArgs& args, int& exit_code) {
   options.deterministic = args.deterministic;
   options.strict = args.strict;
   options.max_frames = args.max_frames;
+  options.first_frame = args.first_frame;
+  options.load_map = args.load_map;
+  options.localize = args.localize;
   options.models_dir = args.models;
   if (args.save_masks) options.masks_output_dir = args.output;
   options.overlay_count = args.overlays;
@@ -209,6 +223,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   if (result.info.end.status == report::RunEnd::Status::kInterrupted) result.info.end.reason = signalName(signal_number);
   report::writeRunOutputs(args.output, *result.slam, result.info);
   printSummary(result, args.output);
+  if (!args.save_map.empty() && !result.failure) saveMap(*result.slam, args.save_map);
   result.rethrowFailure();  // main() reports it (stderr) and exits non-zero, after the outputs are written
   if (signal_number != 0) {
     spdlog::warn("run interrupted by {} after {} frames; the outputs in {} hold those frames",
@@ -253,6 +268,18 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                 "A frame that cannot be read (missing, unreadable, wrong size, depth not 16-bit) is an error that "
                 "ends the run; by default it is skipped with a warning and counted in stats.json");
   cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)");
+  cmd->add_option("--first-frame", args->first_frame,
+                  "Start at this frame of --sequence (0-based; the frames before it are skipped)");
+  auto* load_map = cmd->add_option("--load-map", args->load_map,
+                                   "Start from this saved map (see --save-map) instead of an empty one: the first "
+                                   "frame is relocalised in it, and the map is extended unless --localize");
+  cmd->add_flag("--localize", args->localize,
+                "With --load-map: only localise in the loaded map (no new keyframes or points), relocalising "
+                "from a cold start and after every loss; the trajectory holds the localised frames")
+      ->needs(load_map);
+  cmd->add_option("--save-map", args->save_map,
+                  "Write the map at the end of the run to this file (versioned binary with a checksum; keyframes, "
+                  "map points, covisibility, spanning tree and the camera), to --load-map it later");
   cmd->add_option("--progress-every", args->progress_every,
                   "When stderr is not a terminal, print a progress line every N frames (default 100); on a terminal "
                   "the progress is one live line");

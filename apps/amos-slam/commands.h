@@ -11,5 +11,6 @@ void addSynthCommand(CLI::App& app, int& exit_code);
 void addSegmentCommand(CLI::App& app, int& exit_code);
 void addConfigCommand(CLI::App& app, int& exit_code);
 void addDiagnoseMoversCommand(CLI::App& app, int& exit_code);
+void addVocabCommand(CLI::App& app, int& exit_code);
 
 }  // namespace amos::app

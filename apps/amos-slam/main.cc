@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   amos::app::addSegmentCommand(app, exit_code);
   amos::app::addConfigCommand(app, exit_code);
   amos::app::addDiagnoseMoversCommand(app, exit_code);
+  amos::app::addVocabCommand(app, exit_code);
   app.parse_complete_callback([&] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info); });
   try {
     app.parse(argc, argv);

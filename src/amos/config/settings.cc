@@ -56,6 +56,15 @@ KeySection datasetKeys(Settings& s) {
   return section;
 }
 
+KeySection placeKeys(Settings& s) {
+  KeySection section{"Place recognition"};
+  section.add("Place.vocabulary", &s.place_vocabulary,
+              "bag-of-words vocabulary (`amos-slam vocab`) ranking keyframes for relocalisation and loop detection; "
+              "a name that is not an existing path is looked for in $AMOS_MODELS, ./models, ../shared/models; \"\" = "
+              "rank by thumbnails");
+  return section;
+}
+
 // Replaces `word` in `text` where it stands alone (not inside a longer name).
 std::string replaceName(std::string text, const std::string& word, const std::string& by) {
   auto part_of_name = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.'; };
@@ -127,6 +136,7 @@ std::vector<KeySection> settingsKeys(Settings& s) {
   sections.push_back(trackingKeys(s.tracking, s.fps));
   sections.push_back(mappingKeys(s.mapping, s.covisibility));
   sections.push_back(loopKeys(s.loop, s.mapping));
+  sections.push_back(placeKeys(s));
   sections.push_back(dynamicKeys(s.dynamic));
   sections.push_back(segmentationKeys(s.segmentation));
   return sections;

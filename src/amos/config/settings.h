@@ -39,6 +39,10 @@ struct Settings {
   mapping::LocalMappingOptions mapping;    // Mapping.*, LocalBA.*
   map::CovisibilityOptions covisibility;   // Mapping.covisibilityMinWeight
   loop::LoopClosingOptions loop;           // Loop.*
+  // Place.vocabulary: the bag-of-words vocabulary file of place recognition (relocalisation, loop detection);
+  // a name that is not an existing path is looked for in $AMOS_MODELS, ./models and ../shared/models. "" = rank
+  // keyframes by thumbnails instead.
+  std::string place_vocabulary = "orb_vocabulary.voc";
 
   dynamic::DynamicOptions dynamic;         // Dynamic.* (the paper's two-stage front end)
   segmentation::SegmenterOptions segmentation;  // Segmentation.* (prior dynamic objects)

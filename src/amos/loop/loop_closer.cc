@@ -24,8 +24,9 @@ void LoopClosingOptions::check() const {
   fusion.check();
 }
 
-LoopCloser::LoopCloser(const LoopClosingOptions& options, std::shared_ptr<map::Map> map)
-    : options_(options), map_(std::move(map)), consistency_(options.detector.consistency) {
+LoopCloser::LoopCloser(const LoopClosingOptions& options, std::shared_ptr<map::Map> map,
+                       std::shared_ptr<const place::KeyFrameDatabase> places)
+    : options_(options), map_(std::move(map)), places_(std::move(places)), consistency_(options.detector.consistency) {
   options_.check();
   core::require(map_ != nullptr, "LoopCloser: map must not be null");
 }
@@ -35,7 +36,7 @@ std::optional<LoopClosureReport> LoopCloser::process(const map::KeyFramePtr& kf)
   std::optional<LoopCandidate> loop;
   {
     std::shared_lock lock(map_->mutex());
-    loop = detectLoop(*map_, kf, last_loop_kf_, options_.detector, &consistency_);
+    loop = detectLoop(*map_, kf, last_loop_kf_, options_.detector, &consistency_, places_.get());
   }
   if (!loop) return std::nullopt;
   LoopClosureReport report;

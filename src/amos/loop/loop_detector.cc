@@ -8,6 +8,7 @@
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
+#include "amos/map/place_candidates.h"
 #include "amos/match/brute_force_search.h"
 #include "amos/match/pose_from_matches.h"
 #include "amos/match/projection_search.h"
@@ -57,7 +58,8 @@ namespace {
 // neighbour's, best first, at most options.candidates. `connected` receives current and its covisible keyframes.
 std::vector<map::KeyFramePtr> rankCandidates(const map::Map& map, const map::KeyFramePtr& current,
                                              const LoopDetectorOptions& options,
-                                             std::unordered_set<map::KeyFrameId>& connected) {
+                                             std::unordered_set<map::KeyFrameId>& connected,
+                                             const place::KeyFrameDatabase* places) {
   connected = {current->id()};
   double max_neighbour_distance = 0;
   for (const auto& [w, id] : current->orderedConnections()) {
@@ -70,6 +72,25 @@ std::vector<map::KeyFramePtr> rankCandidates(const map::Map& map, const map::Key
   if (connected.size() < 2) return {};  // no neighbour: nothing to compare similarity with
 
   std::vector<std::pair<double, map::KeyFramePtr>> ranked;
+  if (places != nullptr) {
+    const place::BowVector v = places->vector(current->id());
+    if (v.empty()) return {};
+    double min_score = 1;
+    for (const auto& [w, id] : current->orderedConnections()) {
+      const place::BowVector n = places->vector(id);
+      if (!n.empty()) min_score = std::min(min_score, place::similarity(v, n));
+    }
+    map::PlaceQueryOptions query;
+    query.min_score = min_score;
+    query.max_candidates = static_cast<std::size_t>(options.candidates);
+    std::vector<map::KeyFramePtr> out;
+    for (const auto& [score, kf] : map::placeCandidates(map, *places, v, query, [&](map::KeyFrameId id) {
+           return connected.count(id) > 0 || id > current->id();
+         })) {
+      out.push_back(kf);
+    }
+    return out;
+  }
   for (const auto& kf : map.keyFrames()) {
     if (kf->isBad() || connected.count(kf->id()) || kf->id() > current->id()) continue;
     const double d = map::thumbnailDistance(current->thumbnail(), kf->thumbnail());
@@ -86,14 +107,14 @@ std::vector<map::KeyFramePtr> rankCandidates(const map::Map& map, const map::Key
 
 std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFramePtr& current,
                                         map::KeyFrameId last_loop_kf, const LoopDetectorOptions& options,
-                                        LoopConsistency* consistency) {
+                                        LoopConsistency* consistency, const place::KeyFrameDatabase* places) {
   options.check();
   if (!current || current->isBad()) return std::nullopt;
   if (map.numKeyFrames() < static_cast<std::size_t>(options.min_keyframes)) return std::nullopt;
   if (last_loop_kf != map::kNoKeyFrame && current->id() < last_loop_kf + options.min_keyframe_gap) return std::nullopt;
 
   std::unordered_set<map::KeyFrameId> connected;
-  std::vector<map::KeyFramePtr> candidates = rankCandidates(map, current, options, connected);
+  std::vector<map::KeyFramePtr> candidates = rankCandidates(map, current, options, connected, places);
   if (consistency != nullptr) {
     const std::size_t ranked = candidates.size();
     candidates = consistency->filter(map, candidates);

@@ -1,8 +1,9 @@
 #pragma once
 // Loop detection (ORB-SLAM2's DetectLoop + ComputeSim3, for RGB-D where scale is observed, so SE(3)):
-//   1. candidates: keyframes not connected to the current one in the covisibility graph, whose thumbnail is at
-//      least as similar to the current keyframe's as that of its least similar covisible neighbour (the same
-//      relative test ORB-SLAM2 applies to bag-of-words scores), best first;
+//   1. candidates: keyframes not connected to the current one in the covisibility graph, at least as similar to
+//      the current keyframe as its least similar covisible neighbour (ORB-SLAM2's relative test), best first. The
+//      similarity is that of the bag-of-words vectors when there is a database (grouped by covisibility,
+//      map/place_candidates.h), else that of the thumbnails;
 //   2. temporal consistency (loop_consistency.h): only candidates that candidates of the previous keyframes also
 //      pointed at go on;
 //   3. geometric verification: brute-force descriptor matches to the candidate's map points, PnP RANSAC,
@@ -16,6 +17,7 @@
 #include "amos/geometry/pose_optimizer.h"
 #include "amos/map/map.h"
 #include "amos/match/matching_options.h"
+#include "amos/place/keyframe_database.h"
 
 namespace amos::loop {
 
@@ -58,9 +60,11 @@ map::Frame frameOf(const map::KeyFrame& kf);
 
 // Returns the verified loop of `current`, or nothing. `last_loop_kf` is the id of the keyframe that closed the
 // previous loop (kNoKeyFrame when none). `consistency`: the temporal test's state, advanced by one keyframe
-// (null = no test: every candidate is verified at once).
+// (null = no test: every candidate is verified at once). `places`: the keyframes' bag-of-words database (null:
+// thumbnails).
 std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFramePtr& current,
                                         map::KeyFrameId last_loop_kf, const LoopDetectorOptions& options,
-                                        LoopConsistency* consistency = nullptr);
+                                        LoopConsistency* consistency = nullptr,
+                                        const place::KeyFrameDatabase* places = nullptr);
 
 }  // namespace amos::loop

@@ -10,6 +10,7 @@
 //     exclusive lock while solving, so tracking never waits for bundle adjustment.
 //   - Methods marked [exclusive] must be called with an exclusive lock held, [shared] with at least a shared one.
 //     The Map never locks by itself, so callers can group several calls into one critical section.
+#include <atomic>
 #include <map>
 #include <memory>
 #include <optional>
@@ -78,11 +79,25 @@ class Map {
   // in at least `min_ratio` of the masked frames that saw them. [shared]
   std::vector<MapPointId> dynamicPointCandidates(int min_hits, double min_ratio) const;
 
- private:
+  // A keyframe removed by culling, kept so frames that referred to it still have a pose (keyFramePose).
   struct RemovedKeyFrame {
     KeyFrameId parent = kNoKeyFrame;
     core::SE3 T_cp = core::SE3::Identity();  // pose relative to the parent at removal time
   };
+
+  // --- saving and restoring a map (mapio/) ---
+  KeyFrameId nextKeyFrameId() const { return next_kf_id_.load(); }
+  MapPointId nextMapPointId() const { return next_mp_id_.load(); }
+  const std::map<KeyFrameId, RemovedKeyFrame>& removedKeyFrames() const { return removed_; }  // [shared]
+  // [exclusive] Only on a map being restored: its next ids (at least one past every restored id) and the
+  // records of its removed keyframes.
+  void restoreNextIds(KeyFrameId next_kf, MapPointId next_mp) {
+    next_kf_id_ = next_kf;
+    next_mp_id_ = next_mp;
+  }
+  void restoreRemovedKeyFrame(KeyFrameId id, const RemovedKeyFrame& record) { removed_[id] = record; }
+
+ private:
 
   CovisibilityOptions options_;
   mutable std::shared_mutex mutex_;

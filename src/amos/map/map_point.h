@@ -49,6 +49,9 @@ class MapPoint {
   double minDistance() const { return 0.8 * min_distance_; }
   double maxDistance() const { return 1.2 * max_distance_; }
   void setNormalAndDistances(const Eigen::Vector3d& normal, double min_d, double max_d);
+  // The distances as given to setNormalAndDistances (without the margins above), to save and restore a point.
+  double minDistanceUnpadded() const { return min_distance_; }
+  double maxDistanceUnpadded() const { return max_distance_; }
   // Pyramid level at which a keypoint of this point is expected at distance `dist`.
   int predictScale(double dist, const Sensor& sensor) const;
 

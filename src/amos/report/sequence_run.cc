@@ -1,11 +1,14 @@
 #include "amos/report/sequence_run.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
@@ -28,6 +31,8 @@
 
 namespace amos::report {
 
+namespace fs = std::filesystem;
+
 system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bool deterministic) {
   system::SlamOptions o;
   o.camera = settings.camera;
@@ -39,7 +44,31 @@ system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bo
   o.loop = settings.loop;
   o.covisibility = settings.covisibility;
   o.deterministic = deterministic;
+  o.vocabulary = loadPlaceVocabulary(settings);
   return o;
+}
+
+std::shared_ptr<const place::Vocabulary> loadPlaceVocabulary(const config::Settings& settings) {
+  const std::string& name = settings.place_vocabulary;
+  if (name.empty()) return nullptr;
+  std::vector<std::string> tried{name};
+  if (!fs::exists(name)) {
+    std::vector<std::string> dirs;
+    if (const char* env = std::getenv("AMOS_MODELS"); env != nullptr && *env != 0) dirs.emplace_back(env);
+    dirs.emplace_back("./models");
+    dirs.emplace_back("../shared/models");
+    for (const std::string& dir : dirs) tried.push_back(segmentation::joinPath(dir, name));
+  }
+  for (const std::string& path : tried) {
+    if (!fs::is_regular_file(path)) continue;
+    core::Stopwatch watch;
+    auto vocabulary = std::make_shared<const place::Vocabulary>(place::Vocabulary::load(path));
+    spdlog::info("place vocabulary {}: {} words, loaded in {:.0f} ms", path, vocabulary->numWords(), watch.elapsedMs());
+    return vocabulary;
+  }
+  spdlog::warn("Place.vocabulary {} not found (tried {}): keyframes are ranked by thumbnails", name,
+               fmt::format("{}", fmt::join(tried, ", ")));
+  return nullptr;
 }
 
 namespace {
@@ -130,6 +159,11 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   std::optional<io::SequenceIndex> index;
   if (!live) {
     index = io::indexSequence(options.sequence_dir);
+    core::require(options.first_frame < index->frames.size() || index->frames.empty(),
+                  fmt::format("--first-frame {}: {} has only {} frames", options.first_frame, options.sequence_dir,
+                              index->frames.size()));
+    index->frames.erase(index->frames.begin(),
+                        index->frames.begin() + static_cast<std::ptrdiff_t>(std::min(options.first_frame, index->frames.size())));
     if (options.max_frames > 0 && index->frames.size() > options.max_frames) index->frames.resize(options.max_frames);
   } else {
     parseCameraSpec(options.camera);  // a wrong --camera is an error before any model is loaded
@@ -138,7 +172,15 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   if (index && !index->association.file.empty()) result.info.association = index->association;
   system::SlamOptions slam_options = slamOptionsFromSettings(settings, options.deterministic);
   slam_options.after_keyframe = options.after_keyframe;
+  slam_options.tracking.localization_only = options.localize;
+  core::require(!options.localize || !options.load_map.empty(), "--localize needs a map to localize in (--load-map FILE)");
   result.slam = std::make_unique<system::SlamSystem>(slam_options);
+  if (!options.load_map.empty()) {
+    core::Stopwatch watch;
+    const mapio::MapFileSummary loaded = result.slam->loadMap(options.load_map);
+    spdlog::info("map {}: {} keyframes, {} map points, loaded in {:.0f} ms{}", options.load_map, loaded.keyframes,
+                 loaded.map_points, watch.elapsedMs(), options.localize ? " (localization only)" : "");
+  }
   result.pipeline = makeDynamicPipeline(settings, options, *result.slam);
   std::optional<eval::GroundTruthMasks> truth_masks;
   if (!live) truth_masks = eval::GroundTruthMasks::find(options.sequence_dir);

@@ -30,6 +30,10 @@ namespace amos::report {
 
 // The SLAM options that follow from a settings file (camera, virtual baseline, ORB; defaults elsewhere).
 system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bool deterministic);
+// The vocabulary Place.vocabulary names (an existing path, else looked for in $AMOS_MODELS, ./models,
+// ../shared/models), or null, with a warning, when it is not found or the setting is "" (thumbnails then). A
+// file that is there but cannot be read is an error naming it.
+std::shared_ptr<const place::Vocabulary> loadPlaceVocabulary(const config::Settings& settings);
 
 struct SequenceProgress {
   std::size_t frame = 0, total = 0;  // frame: 1-based position of the processed frame in the stream; total 0 = live
@@ -68,6 +72,11 @@ struct SequenceRunOptions {
   // is skipped and counted (RunInfo::skipped_frames).
   bool strict = false;
   std::size_t max_frames = 0;  // 0 = all
+  std::size_t first_frame = 0;  // --first-frame: skip the sequence's frames before this one (0-based)
+  // --load-map: start from this saved map (system::SlamSystem::loadMap) instead of an empty one ("" = do not);
+  // --localize: only track against it (tracking::TrackerOptions::localization_only).
+  std::string load_map;
+  bool localize = false;
   // --save-masks: write every frame's final dynamic mask to <masks_output_dir>/masks/ and overlays of
   // overlay_count evenly spaced frames to <masks_output_dir>/overlays/ (see mask_outputs.h). "" = do not.
   std::string masks_output_dir;

@@ -34,8 +34,12 @@ struct Preset {
   int default_frames = 300;
   std::vector<MoverKind> movers;
   std::string static_counterpart;  // preset with the same camera path and room and no movers
+  // The lens is covered during [covered_from_s, covered_to_s): black image and no depth, while the camera goes on
+  // along its path (tests relocalisation after a loss). Not covered when from >= to.
+  double covered_from_s = 0, covered_to_s = 0;
 
   bool hasMover(MoverKind kind) const;
+  bool coveredAt(double t) const { return t >= covered_from_s && t < covered_to_s; }
 };
 
 const std::vector<Preset>& allPresets();

@@ -249,6 +249,11 @@ SyntheticFrame SequenceGenerator::render(int index) const {
   f.exact_depth = img.depth;
   f.mask = img.instance;
   f.moving = movingInstances(t);
+  if (m.preset->coveredAt(t)) {  // a hand over the lens: no light, no infrared pattern
+    f.bgr.setTo(cv::Scalar::all(0));
+    f.depth_raw.setTo(0);
+    f.depth.setTo(0);
+  }
   return f;
 }
 

@@ -25,14 +25,22 @@ SlamSystem::SlamSystem(const SlamOptions& options)
       sensor_((options.check(), std::make_shared<map::Sensor>(options.camera, options.sensor, options.orb))),
       extractor_(options.orb),
       map_(std::make_shared<map::Map>(options.covisibility)) {
-  loop_closer_ = std::make_unique<loop::LoopCloser>(options_.loop, map_);
+  if (options_.vocabulary) places_ = std::make_shared<place::KeyFrameDatabase>(options_.vocabulary);
+  loop_closer_ = std::make_unique<loop::LoopCloser>(options_.loop, map_, options_.loop.bag_of_words ? places_ : nullptr);
   mapper_ = std::make_unique<mapping::LocalMapper>(
       options_.mapping, map_, options_.deterministic, &times_,
-      [closer = loop_closer_.get(), after = options_.after_keyframe](const map::KeyFramePtr& kf) {
+      [closer = loop_closer_.get(), places = places_.get(), times = &times_,
+       after = options_.after_keyframe](const map::KeyFramePtr& kf) {
+        // A keyframe joins the place database once mapped (its descriptors never change), before the loop search.
+        if (places) {
+          core::Stopwatch watch;
+          places->add(kf->id(), places->transform(kf->features().descriptors));
+          times->add("place.add_keyframe", watch.elapsedMs());
+        }
         closer->process(kf);
         if (after) after(kf);
       });
-  tracker_ = std::make_unique<tracking::Tracker>(options_.tracking, map_, mapper_.get(), &times_);
+  tracker_ = std::make_unique<tracking::Tracker>(options_.tracking, map_, mapper_.get(), &times_, places_);
 }
 
 SlamSystem::~SlamSystem() { finish(); }
@@ -71,6 +79,8 @@ FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeature
   core::require(!finished_, "SlamSystem: frame given after finish()");
   mapper_->rethrowIfFailed();  // the frame boundary where a mapping failure reaches the caller
   core::require(frame.depth.type() == CV_32F, "SlamSystem: depth image must be CV_32F metres");
+  core::require(map_loaded_ || !options_.tracking.localization_only,
+                "SlamSystem: localization mode needs a loaded map (--load-map FILE)");
   core::Stopwatch total, watch;
   FrameOutput out;
   out.extract_ms = features.extract_ms;
@@ -111,6 +121,21 @@ FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeature
   return out;
 }
 
+mapio::MapFileSummary SlamSystem::loadMap(const std::string& path) {
+  core::require(records_.empty() && !map_loaded_, "SlamSystem::loadMap: only before the first frame, once");
+  const mapio::MapFileSummary summary = mapio::loadMap(path, sensor_, *map_);
+  if (places_) {
+    std::shared_lock lock(map_->mutex());
+    for (const auto& kf : map_->keyFrames()) places_->add(kf->id(), places_->transform(kf->features().descriptors));
+  }
+  // Frame ids go on after the loaded ones: map points and keyframes remember the frame they came from.
+  next_frame_id_ = summary.max_frame_id + 1;
+  map_loaded_ = true;
+  return summary;
+}
+
+mapio::MapFileSummary SlamSystem::saveMap(const std::string& path) const { return mapio::saveMap(path, *map_, *sensor_); }
+
 void SlamSystem::finish() {
   if (finished_) return;
   finished_ = true;
@@ -125,6 +150,7 @@ std::vector<io::StampedPose> SlamSystem::trajectory() const {
   std::shared_lock lock(map_->mutex());
   for (const FrameRecord& r : records_) {
     if (r.reference_kf == map::kNoKeyFrame) continue;  // before the map existed
+    if (options_.tracking.localization_only && r.state != tracking::TrackingState::kOk) continue;
     const core::SE3 T_cw = r.T_cr * map_->keyFramePose(r.reference_kf);
     out.push_back({r.timestamp, T_cw.inverse()});
   }

@@ -27,7 +27,9 @@
 #include "amos/loop/loop_closer.h"
 #include "amos/map/map.h"
 #include "amos/map/sensor.h"
+#include "amos/mapio/map_file.h"
 #include "amos/mapping/local_mapper.h"
+#include "amos/place/keyframe_database.h"
 #include "amos/tracking/tracker.h"
 
 namespace amos::system {
@@ -40,6 +42,9 @@ struct SlamOptions {
   tracking::TrackerOptions tracking;   // Tracking.*, Matching.*, Relocalization.*
   mapping::LocalMappingOptions mapping;  // Mapping.*, LocalBA.*
   loop::LoopClosingOptions loop;         // Loop.*
+  // Place.vocabulary, loaded: keyframes get bag-of-words vectors in a database that relocalisation and loop
+  // detection query (place/). Null: both rank keyframes by thumbnails.
+  std::shared_ptr<const place::Vocabulary> vocabulary;
   // System.deterministic: local mapping in lock-step with tracking (each keyframe fully processed before the
   // next frame is tracked), so the same input gives a bit-identical trajectory.
   bool deterministic = false;
@@ -91,12 +96,22 @@ class SlamSystem {
   static cv::Mat toGray(const io::RgbdFrame& frame);
   FrameOutput track(const io::RgbdFrame& frame, const ExtractedFeatures& features, const FrameExtras& extras = {});
 
+  // Starts from a saved map (mapio/map_file.h) instead of an empty one; call before the first frame. The first
+  // frame is then relocalised in it (cold start). Without options.tracking.localization_only the map is extended
+  // (new keyframes and points, loop closures with the loaded part); with it, it is only tracked against. Throws
+  // core::Error naming the file and the problem (unreadable, truncated, corrupt, another version or calibration).
+  mapio::MapFileSummary loadMap(const std::string& path);
+  // Writes the map to `path` (call after finish(), so local mapping has settled it).
+  mapio::MapFileSummary saveMap(const std::string& path) const;
+
   // Lets local mapping finish its queue and stops its thread. Further frames are not accepted. Never throws.
   void finish();
   // The failure that stopped the mapping thread, or null.
   std::exception_ptr workerFailure() const;
 
-  // One pose per processed frame (T_wc, TUM convention), composed with the current keyframe poses.
+  // One pose per processed frame (T_wc, TUM convention), composed with the current keyframe poses; none for the
+  // frames before the map existed (or before the first frame was localised in a loaded map). In localization
+  // mode only the frames localised in the map (a lost frame's pose would be a guess).
   std::vector<io::StampedPose> trajectory() const;
   // Poses of the keyframes in the map (T_wc).
   std::vector<io::StampedPose> keyframeTrajectory() const;
@@ -109,6 +124,8 @@ class SlamSystem {
   map::Map& map() { return *map_; }
   const map::Map& map() const { return *map_; }
   const std::shared_ptr<const map::Sensor>& sensor() const { return sensor_; }
+  // The keyframes' bag-of-words database (null without a vocabulary).
+  const place::KeyFrameDatabase* places() const { return places_.get(); }
 
  private:
   struct FrameRecord {
@@ -123,6 +140,7 @@ class SlamSystem {
   feature::OrbExtractor extractor_;
   std::shared_ptr<map::Map> map_;
   core::StageTimes times_;
+  std::shared_ptr<place::KeyFrameDatabase> places_;  // null without a vocabulary
   std::unique_ptr<loop::LoopCloser> loop_closer_;  // used by the mapping thread: declared (and outlives) before it
   std::unique_ptr<mapping::LocalMapper> mapper_;
   std::unique_ptr<tracking::Tracker> tracker_;
@@ -130,6 +148,7 @@ class SlamSystem {
   SlamStats stats_;
   map::FrameId next_frame_id_ = 0;
   bool finished_ = false;
+  bool map_loaded_ = false;
 };
 
 }  // namespace amos::system

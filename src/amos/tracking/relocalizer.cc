@@ -8,6 +8,7 @@
 #include "amos/match/brute_force_search.h"
 #include "amos/match/pose_from_matches.h"
 #include "amos/match/projection_search.h"
+#include "amos/map/place_candidates.h"
 
 namespace amos::tracking {
 
@@ -21,12 +22,23 @@ void RelocalizerOptions::check() const {
 }
 
 Relocalizer::Relocalizer(const RelocalizerOptions& options, const match::MatchingOptions& matching,
-                         const geometry::PoseOptimizerOptions& pose)
-    : options_(options), matching_(matching), pose_(pose) {}
+                         const geometry::PoseOptimizerOptions& pose,
+                         std::shared_ptr<const place::KeyFrameDatabase> places)
+    : options_(options), matching_(matching), pose_(pose), places_(std::move(places)) {}
 
 int Relocalizer::optimize(map::Frame& frame) const { return match::optimizeFramePoseDroppingOutliers(frame, pose_); }
 
-map::KeyFramePtr Relocalizer::relocalize(map::Frame& frame, const map::Map& map) const {
+std::vector<map::KeyFramePtr> Relocalizer::candidates(const map::Frame& frame, const map::Map& map) const {
+  std::vector<map::KeyFramePtr> out;
+  if (places_) {
+    map::PlaceQueryOptions query;
+    query.max_candidates = static_cast<std::size_t>(options_.num_candidates);
+    for (const auto& [score, kf] :
+         map::placeCandidates(map, *places_, places_->transform(frame.features->descriptors), query)) {
+      out.push_back(kf);
+    }
+    return out;
+  }
   // Rank keyframes by thumbnail distance (ties: older first, deterministic).
   std::vector<std::pair<double, map::KeyFramePtr>> ranked;
   for (const auto& kf : map.keyFrames()) {
@@ -34,8 +46,12 @@ map::KeyFramePtr Relocalizer::relocalize(map::Frame& frame, const map::Map& map)
   }
   std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (ranked.size() > static_cast<std::size_t>(options_.num_candidates)) ranked.resize(options_.num_candidates);
+  for (auto& entry : ranked) out.push_back(std::move(entry.second));
+  return out;
+}
 
-  for (const auto& [score, kf] : ranked) {
+map::KeyFramePtr Relocalizer::relocalize(map::Frame& frame, const map::Map& map) const {
+  for (const map::KeyFramePtr& kf : candidates(frame, map)) {
     int n = 0;
     std::vector<map::MapPointPtr> matches =
         match::matchFrameToKeyFrame(frame, *kf, options_.match_ratio, matching_, &n);

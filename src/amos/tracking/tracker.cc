@@ -73,12 +73,12 @@ const char* toString(TrackingState state) {
 }
 
 Tracker::Tracker(const TrackerOptions& options, std::shared_ptr<map::Map> map, KeyFrameSink* sink,
-                 core::StageTimes* times)
+                 core::StageTimes* times, std::shared_ptr<const place::KeyFrameDatabase> places)
     : options_(options),
       map_(std::move(map)),
       sink_(sink),
       times_(times),
-      relocalizer_(options.relocalization, options.matching, options.pose) {
+      relocalizer_(options.relocalization, options.matching, options.pose, std::move(places)) {
   options_.check();
   core::require(map_ != nullptr, "Tracker: map must not be null");
 }
@@ -111,7 +111,20 @@ TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& ext
   core::require(frame.features && frame.sensor, "Tracker::track: frame without features");
   if (frame.map_points.size() != frame.size()) frame.resetMatches();
   TrackResult result;
-  if (state_ == TrackingState::kNotInitialized) return initialize(frame);
+  if (state_ == TrackingState::kNotInitialized) {
+    bool has_map = false;
+    {
+      std::shared_lock lock(map_->mutex());
+      has_map = map_->numKeyFrames() > 0;
+    }
+    // A loaded map: localise in it (cold start) rather than start a new one beside it.
+    if (has_map) {
+      state_ = TrackingState::kLost;
+    } else {
+      core::require(!options_.localization_only, "Tracker: localization mode needs a loaded map (--load-map)");
+      return initialize(frame);
+    }
+  }
 
   bool ok = false, need_keyframe = false;
   int inliers = 0;
@@ -200,9 +213,10 @@ TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& ext
       frame.reference_kf = reference_kf_->id();
       last_T_cr_ = map::orthonormalized(frame.T_cw * map_->keyFramePose(frame.reference_kf).inverse());
     } else {
-      // Lost: keep the last relative pose (as ORB-SLAM2 does), so the trajectory still has a line per frame.
+      // Lost: keep the last relative pose (as ORB-SLAM2 does), so the trajectory still has a line per frame;
+      // none before the first frame localised in a loaded map.
       frame.reference_kf = last_frame_.reference_kf;
-      frame.T_cw = last_T_cr_ * map_->keyFramePose(frame.reference_kf);
+      if (frame.reference_kf != map::kNoKeyFrame) frame.T_cw = last_T_cr_ * map_->keyFramePose(frame.reference_kf);
     }
   }
   result.reference_kf = frame.reference_kf;
@@ -497,6 +511,7 @@ bool Tracker::trackLocalMap(map::Frame& frame, int& inliers) {
 }
 
 bool Tracker::needNewKeyFrame(const map::Frame& frame, int inliers) const {
+  if (options_.localization_only) return false;
   const int num_kfs = static_cast<int>(map_->numKeyFrames());
   const auto max_frames = static_cast<map::FrameId>(options_.max_frames_between_keyframes);
   if (relocalized_once_ && frame.id < last_reloc_frame_ + max_frames && num_kfs > options_.max_frames_between_keyframes) {

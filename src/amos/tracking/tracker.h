@@ -8,6 +8,9 @@
 // (MapPoint::dynamicHits); an externally supplied initial pose can replace or compete with the constant-velocity
 // prediction; lastPose(), velocity() and referenceKeyFrameView() expose what the front end needs.
 //
+// A tracker given a map that already has keyframes (a loaded map) starts lost: the first frame is relocalised in
+// that map (cold start) instead of initialising a new one.
+//
 // Threading: a Tracker is used from one thread (the caller's). It reads the map under a shared lock and takes
 // the exclusive lock only to insert a keyframe.
 #include <memory>
@@ -57,6 +60,10 @@ struct TrackerOptions {
   // image motion of ~0.5 s of hand-held rotation at 30 deg/s (~8 deg, ~75 px at f = 540) at the middle levels.
   double recovery_search_radius = 15;
   ExternalPosePolicy external_pose = ExternalPosePolicy::kCompete;  // Tracking.externalPose
+  // Localization mode (`run --load-map FILE --localize`, not a settings key): track against the map without
+  // adding keyframes or points (ORB-SLAM2's localization mode). The map must have been loaded; the first frame
+  // is localised by the relocaliser (cold start), as is every frame after a loss.
+  bool localization_only = false;
   geometry::PoseOptimizerOptions pose;  // Tracking.chi2Mono / chi2Stereo / poseRounds / poseIterations
   match::MatchingOptions matching;      // Matching.*
   RelocalizerOptions relocalization;    // Relocalization.*
@@ -90,8 +97,9 @@ struct ReferenceKeyFrameView {
 
 class Tracker {
  public:
+  // places: the keyframes' bag-of-words database for relocalisation (null: thumbnails, see relocalizer.h).
   Tracker(const TrackerOptions& options, std::shared_ptr<map::Map> map, KeyFrameSink* sink,
-          core::StageTimes* times = nullptr);
+          core::StageTimes* times = nullptr, std::shared_ptr<const place::KeyFrameDatabase> places = nullptr);
 
   // Tracks one frame (built with map::buildFrameFeatures / makeFrame). external_T_cw: optional initial pose from
   // outside (e.g. the dynamic front end), used according to options.external_pose.
