@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
@@ -29,6 +31,7 @@
 #include "amos/report/run_report.h"
 #include "amos/report/sequence_run.h"
 #include "commands.h"
+#include "run_watchers.h"
 
 namespace amos::app {
 namespace {
@@ -37,7 +40,17 @@ struct RunArgs {
   std::string sequence, config, output, mode = "full", models, camera, record;
   bool deterministic = false, save_masks = false, realtime = false, overwrite = false, strict = false;
   std::size_t max_frames = 0, overlays = 8, progress_every = 100;
+  ViewerArgs viewer;
 };
+
+// The command line's choices as report.html lists them.
+std::string runOptionsJson(const RunArgs& a) {
+  const nlohmann::json j = {{"sequence", a.sequence}, {"camera", a.camera},       {"realtime", a.realtime},
+                            {"mode", a.mode},         {"models", a.models},       {"deterministic", a.deterministic},
+                            {"strict", a.strict},     {"max_frames", a.max_frames}, {"save_masks", a.save_masks},
+                            {"record", a.record},     {"viewer", a.viewer.enabled}};
+  return j.dump();
+}
 
 // SIGINT (Ctrl-C) and SIGTERM end the run at the next frame boundary: mapping is stopped and the outputs are
 // written for the frames processed so far; exit status 128 + the signal (130, 143). The handler only stores the
@@ -151,6 +164,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   const config::Settings settings = config::loadSettings(args.config);
   // Before anything else runs (models, the camera, the first frame): a wrong --output is found at once.
   report::prepareOutputFolder(args.output, args.overwrite);
+  RunWatchers watchers(args.viewer);
   const bool tty = isatty(fileno(stderr)) != 0;
   report::SequenceRunOptions options;
   options.source = !args.camera.empty() ? report::FrameSourceKind::kCamera
@@ -167,6 +181,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   options.models_dir = args.models;
   if (args.save_masks) options.masks_output_dir = args.output;
   options.overlay_count = args.overlays;
+  options.observers = watchers.observers();
   bool line_open = false;  // a progress line without its newline on the terminal
   // Progress goes to stderr: a live line on a terminal, else (a log file, a pipe) one line every --progress-every
   // frames and the last one.
@@ -199,7 +214,9 @@ void runSlam(const RunArgs& args, int& exit_code) {
   const int signal_number = signals.received();
   if (result.info.end.status == report::RunEnd::Status::kInterrupted) result.info.end.reason = signalName(signal_number);
   report::writeRunOutputs(args.output, *result.slam, result.info);
+  watchers.writeReport(args.output, args.config, runOptionsJson(args));
   printSummary(result, args.output);
+  if (signal_number == 0) watchers.holdIfAsked();
   result.rethrowFailure();  // main() reports it (stderr) and exits non-zero, after the outputs are written
   if (signal_number != 0) {
     spdlog::warn("run interrupted by {} after {} frames; the outputs in {} hold those frames",
@@ -251,6 +268,14 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                 "Also write every frame's dynamic mask (masks/<rgb stamp>.png, 255 = dynamic) and overlays of a few "
                 "evenly spaced frames (overlays/)");
   cmd->add_option("--overlays", args->overlays, "Overlay images written with --save-masks (default 8)");
+  cmd->add_flag("--viewer", args->viewer.enabled,
+                "Serve a live view of the run (map, keyframes, trajectory, the frame with its dynamic mask, times) "
+                "on http://127.0.0.1:PORT/ while it goes; the address is printed on start");
+  cmd->add_option("--viewer-port", args->viewer.port, "Port of --viewer (default 8090; 0 = any free port)");
+  cmd->add_option("--viewer-bind", args->viewer.bind,
+                  "Address --viewer listens on (default 127.0.0.1: this machine only; 0.0.0.0 = every interface)");
+  cmd->add_flag("--viewer-hold", args->viewer.hold,
+                "With --viewer: keep serving after the run has ended, until Ctrl-C");
   cmd->callback([args, &exit_code] { runSlam(*args, exit_code); });
 }
 

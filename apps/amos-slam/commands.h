@@ -10,5 +10,6 @@ void addEvalCommand(CLI::App& app, int& exit_code);
 void addSynthCommand(CLI::App& app, int& exit_code);
 void addSegmentCommand(CLI::App& app, int& exit_code);
 void addConfigCommand(CLI::App& app, int& exit_code);
+void addViewCommand(CLI::App& app, int& exit_code);
 
 }  // namespace amos::app

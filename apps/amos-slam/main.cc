@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   amos::app::addSynthCommand(app, exit_code);
   amos::app::addSegmentCommand(app, exit_code);
   amos::app::addConfigCommand(app, exit_code);
+  amos::app::addViewCommand(app, exit_code);
   app.parse_complete_callback([&] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info); });
   try {
     app.parse(argc, argv);
