@@ -11,8 +11,7 @@ ReportRecorder::ReportRecorder(std::size_t overlay_count, int overlay_width)
 
 void ReportRecorder::onStart(const report::RunStart& start) {
   if (start.total_frames > 0) {
-    const auto picked = report::evenlySpacedFrames(start.total_frames, overlay_count_);
-    overlay_frames_.insert(picked.begin(), picked.end());
+    overlay_frames_ = report::evenlySpacedFrames(start.total_frames, overlay_count_);
   }
 }
 
@@ -28,8 +27,13 @@ void ReportRecorder::onFrame(const report::FrameSnapshot& f) {
   r.keypoints = static_cast<int>(f.keypoints.size());
   r.removed = f.keypoints_removed;
   frames_.push_back(std::move(r));
-  const bool picked = overlay_frames_.empty() ? f.index % 150 == 75 && overlays_.size() < 2 * overlay_count_
-                                              : overlay_frames_.count(f.index) > 0;
+  bool picked = false;
+  if (overlay_frames_.empty()) {
+    picked = f.index % 150 == 75 && overlays_.size() < 2 * overlay_count_;
+  } else if (next_overlay_ < overlay_frames_.size() && f.index >= overlay_frames_[next_overlay_]) {
+    picked = true;
+    while (next_overlay_ < overlay_frames_.size() && overlay_frames_[next_overlay_] <= f.index) ++next_overlay_;
+  }
   if (picked && !f.bgr.empty())
     overlays_.push_back(
         {f.index, f.timestamp, encodeJpeg(renderFrameOverlay(f.bgr, f.dynamic_mask, f.keypoints, overlay_width_), 80)});

@@ -5,7 +5,6 @@
 #include <nlohmann/json.hpp>
 
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -43,7 +42,10 @@ class ReportRecorder : public report::RunObserver {
  private:
   std::size_t overlay_count_;
   int overlay_width_;
-  std::set<std::size_t> overlay_frames_;  // empty for a live source: every 150th frame instead
+  // Frame indices the strip should show, ascending; a frame that was not processed (dropped by --realtime) is
+  // replaced by the next processed one. Empty for a live source: every 150th frame instead.
+  std::vector<std::size_t> overlay_frames_;
+  std::size_t next_overlay_ = 0;
   std::vector<ReportFrame> frames_;
   std::vector<ReportOverlay> overlays_;
   std::vector<io::StampedPose> trajectory_;
