@@ -1,7 +1,7 @@
 // amos-slam view OUTPUT_DIR: the viewer's page for a finished run (its trajectory, keyframes, map, stats and the
 // mask overlays saved with --save-masks), served on loopback until Ctrl-C. Only the files of that folder are served
 // (viewer/run_folder.h). All work is in amos::viewer.
-#include <spdlog/spdlog.h>
+#include <fmt/format.h>
 
 #include <memory>
 #include <string>
@@ -32,8 +32,7 @@ void viewRun(const ViewArgs& args) {
   options.port = args.port;
   options.run_folder = args.folder;
   viewer::ViewerServer server(state, options);
-  spdlog::info("viewer: {} (the run in {}; Ctrl-C ends)", server.url(), args.folder);
-  waitForStopSignal();
+  waitForStopSignal(fmt::format("viewer: {} (the run in {}; Ctrl-C ends)", server.url(), args.folder));
 #else
   (void)args;
   throw core::Error("view: this build has no viewer (install libcpp-httplib-dev and libjs-three, configure with "

@@ -1,5 +1,6 @@
 #include "run_watchers.h"
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
@@ -73,8 +74,7 @@ void RunWatchers::writeReport(const std::string& output, const std::string& conf
 
 void RunWatchers::holdIfAsked() {
   if (!parts_->args.hold || !parts_->server) return;
-  spdlog::info("viewer: the run has ended; still serving {} until Ctrl-C", parts_->server->url());
-  waitForStopSignal();
+  waitForStopSignal(fmt::format("viewer: the run has ended; still serving {} until Ctrl-C", parts_->server->url()));
 }
 #else
 struct RunWatchers::Parts {};
