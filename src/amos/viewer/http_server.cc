@@ -107,6 +107,11 @@ void ViewerServer::addRoutes() {
     res.set_header("Cache-Control", "no-store");
     res.set_content(state_.stateJson().dump(), "application/json");
   });
+  // The same as a script, loaded by the page itself (index.html) so that its load event waits for the state.
+  s.Get("/api/state.js", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_header("Cache-Control", "no-store");
+    res.set_content("window.amosInitialState = " + state_.stateJson().dump() + ";\n", "text/javascript; charset=utf-8");
+  });
   s.Get("/api/frame.jpg", [this](const httplib::Request&, httplib::Response& res) {
     const auto image = state_.frameImage();
     if (!image || image->empty()) {

@@ -2,7 +2,8 @@
 // The viewer's embedded HTTP server (Debian's cpp-httplib), read-only, on loopback unless told otherwise:
 //   GET /                      the page (index.html; viewer.js, viewer.css beside it)
 //   GET /three/three.min.js    three.js from Debian's libjs-three (and /three/OrbitControls.js)
-//   GET /api/state             everything the page shows, JSON (LiveState::stateJson)
+//   GET /api/state             everything the page shows, JSON (LiveState::stateJson); /api/state.js the same as
+//                              a script setting window.amosInitialState (the page loads it with itself)
 //   GET /api/events?since=SEQ  Server-Sent Events: one "update" per LiveState update after SEQ (delta_json.h);
 //                              "reload" when the browser fell too far behind; a comment every second otherwise
 //   GET /api/frame.jpg         the current frame with its dynamic mask and keypoints (404 before the first)

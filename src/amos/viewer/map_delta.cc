@@ -1,5 +1,6 @@
 #include "amos/viewer/map_delta.h"
 
+#include <algorithm>
 #include <mutex>
 #include <shared_mutex>
 
@@ -12,7 +13,7 @@ MapSnapshot takeMapSnapshot(const map::Map& map) {
   s.points.reserve(points.size());
   for (const map::MapPointPtr& p : points) {
     if (p->isBad()) continue;
-    s.points.push_back({p->id(), p->position().cast<float>(), p->dynamicHits()});
+    s.points.push_back({p->id(), p->position().cast<float>(), p->dynamicHits(), p->maskedViews()});
   }
   for (const map::KeyFramePtr& kf : map.keyFrames()) {
     if (kf->isBad()) continue;
@@ -54,7 +55,9 @@ MapDelta diffMaps(const MapSnapshot& before, const MapSnapshot& after, const Del
       [&](const PointSample& b) { d.points.push_back(b); },
       [&](const PointSample& a) {
         d.removed.push_back(a.id);
-        if (a.dynamic_hits >= options.culled_min_hits) d.culled.push_back(a);
+        if (a.dynamic_hits >= options.culled_min_hits &&
+            a.dynamic_hits >= options.culled_min_ratio * std::max(1, a.masked_views))
+          d.culled.push_back(a);
       });
   mergeById(
       before.keyframes, after.keyframes,

@@ -15,7 +15,8 @@ namespace amos::viewer {
 struct PointSample {
   std::uint64_t id = 0;
   Eigen::Vector3f position = Eigen::Vector3f::Zero();
-  int dynamic_hits = 0;  // how often it projected into a dynamic mask (map::MapPoint::dynamicHits)
+  int dynamic_hits = 0;  // how often it projected into a dynamic mask (map::MapPoint::dynamicHits) ...
+  int masked_views = 0;  // ... of the frames with a mask that saw it (map::MapPoint::maskedViews)
 };
 
 struct KeyFrameSample {
@@ -35,8 +36,9 @@ MapSnapshot takeMapSnapshot(const map::Map& map);
 struct MapDelta {
   std::vector<PointSample> points;        // new, or moved by more than DeltaOptions::min_move_m
   std::vector<std::uint64_t> removed;     // points gone from the map (culled, fused, ...)
-  // Of the removed points, those seen in dynamic masks at least DeltaOptions::culled_min_hits times: removed as
-  // dynamic (mapping/dynamic_culling.h) or most likely so; the viewer keeps them in another colour.
+  // Of the removed points, those that meet the dynamic culling rule (mapping/dynamic_culling.h, its default
+  // thresholds in DeltaOptions): removed as dynamic, or most likely so (the viewer does not see why a point went);
+  // the viewer keeps them in another colour.
   std::vector<PointSample> culled;
   std::vector<KeyFrameSample> keyframes;  // new or moved keyframes
   std::vector<std::uint64_t> removed_keyframes;
@@ -48,7 +50,8 @@ struct MapDelta {
 struct DeltaOptions {
   float min_move_m = 0.001f;      // a point moved by less (bundle adjustment jitter) is not sent again
   float min_turn_rad = 0.001f;    // likewise for keyframe rotations
-  int culled_min_hits = 2;
+  int culled_min_hits = 3;          // as mapping::DynamicCullingOptions::min_hits
+  double culled_min_ratio = 0.5;    // as mapping::DynamicCullingOptions::min_ratio
 };
 
 // What turns `before` into `after` (both sorted by id).

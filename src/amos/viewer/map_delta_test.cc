@@ -8,11 +8,13 @@
 namespace amos::viewer {
 namespace {
 
-PointSample point(std::uint64_t id, float x, int hits = 0) { return {id, Eigen::Vector3f(x, 0, 1), hits}; }
+PointSample point(std::uint64_t id, float x, int hits = 0, int masked_views = 0) {
+  return {id, Eigen::Vector3f(x, 0, 1), hits, masked_views};
+}
 
 TEST(MapDelta, SendsNewMovedAndRemovedPointsOnly) {
   MapSnapshot before, after;
-  before.points = {point(1, 0), point(2, 1), point(3, 2), point(5, 4, 3)};
+  before.points = {point(1, 0), point(2, 1), point(3, 2), point(5, 4, 3, 5)};
   // 1 unchanged, 2 moved by 0.5 mm (jitter: not sent), 3 moved by 5 cm, 4 new, 5 removed (seen in dynamic masks).
   after.points = {point(1, 0), point(2, 1.0005f), point(3, 2.05f), point(4, 3)};
   const MapDelta d = diffMaps(before, after);
@@ -26,12 +28,14 @@ TEST(MapDelta, SendsNewMovedAndRemovedPointsOnly) {
   EXPECT_TRUE(diffMaps(after, after).empty());
 }
 
-TEST(MapDelta, RemovedPointWithoutDynamicHitsIsNotCulled) {
+TEST(MapDelta, RemovedPointCountsAsCulledOnlyUnderTheCullingRule) {
   MapSnapshot before, after;
-  before.points = {point(7, 0, 1)};
+  // Too few hits; enough hits but in under half of its masked views; both met.
+  before.points = {point(7, 0, 2, 2), point(8, 0, 3, 7), point(9, 0, 3, 6)};
   const MapDelta d = diffMaps(before, after);
-  EXPECT_EQ(d.removed.size(), 1u);
-  EXPECT_TRUE(d.culled.empty());
+  EXPECT_EQ(d.removed.size(), 3u);
+  ASSERT_EQ(d.culled.size(), 1u);
+  EXPECT_EQ(d.culled[0].id, 9u);
 }
 
 TEST(MapDelta, KeyFramesThatTurnedOrMovedAreSentAgain) {
@@ -55,12 +59,14 @@ TEST(MapDelta, SnapshotCopiesTheGoodPointsOfTheMap) {
     for (int i = 0; i < 3; ++i)
       m.addMapPoint(std::make_shared<map::MapPoint>(m.newMapPointId(), Eigen::Vector3d(i, 2, 3), 0, 0));
     m.mapPoint(1)->increaseDynamicHits(4);
+    m.mapPoint(1)->increaseMaskedViews(6);
   }
   const MapSnapshot s = takeMapSnapshot(m);
   ASSERT_EQ(s.points.size(), 3u);
   EXPECT_EQ(s.points[2].id, 2u);
   EXPECT_FLOAT_EQ(s.points[2].position.x(), 2.0f);
   EXPECT_EQ(s.points[1].dynamic_hits, 4);
+  EXPECT_EQ(s.points[1].masked_views, 6);
   EXPECT_TRUE(s.keyframes.empty());
 }
 

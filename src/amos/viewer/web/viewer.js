@@ -316,11 +316,14 @@
   let events = null;
   async function loadState() {
     const response = await fetch('api/state', {cache: 'no-store'});
-    const s = await response.json();
+    useState(await response.json());
+  }
+  function useState(s) {
     seq = s.seq;
     apply(s, true);
     showFiles(s.files);
-    if (info.live) connect();
+    // ?nofollow: the state as it is now, no live updates (a still picture, e.g. a headless browser's screenshot).
+    if (info.live && !new URLSearchParams(location.search).has('nofollow')) connect();
   }
   function connect() {
     if (events) events.close();
@@ -338,5 +341,9 @@
   $('frame').addEventListener('load', () => { imageBusy = false; });
   $('frame').addEventListener('error', () => { imageBusy = false; });
   initScene();
-  loadState().catch((e) => noteError('loading the state: ' + e));
+  if (window.amosInitialState) {
+    useState(window.amosInitialState);
+  } else {
+    loadState().catch((e) => noteError('loading the state: ' + e));
+  }
 })();
