@@ -3,7 +3,8 @@
 // (--record DIR). Writes trajectory.txt, keyframes.txt, map.ply and stats.json into --output (with --save-masks
 // also masks/ and overlays/) and prints where the frames came from (delivered / processed / dropped, latency),
 // ATE / RPE when the sequence has ground truth and the dynamic mask's pixel precision / recall / IoU when it has
-// ground-truth mover masks. All work is in amos::report / amos::system.
+// ground-truth mover masks. With the viewer module it also writes report.html, and --viewer serves a live view of
+// the run (run_watchers.h). All work is in amos::report / amos::system / amos::viewer.
 // Streams: progress and warnings on stderr, the summary on stdout. Exit status: 0, 1 for an error (before the run,
 // or one that ended it: the outputs of the frames processed are written first), 130 / 143 when SIGINT / SIGTERM
 // ended it (outputs written likewise).

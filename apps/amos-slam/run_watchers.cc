@@ -4,9 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
@@ -17,6 +15,7 @@
 #include "amos/viewer/report_html.h"
 #include "amos/viewer/report_recorder.h"
 #include "amos/viewer/snapshot_publisher.h"
+#include "amos/viewer/whole_file.h"
 #endif
 
 namespace amos::app {
@@ -29,15 +28,6 @@ struct RunWatchers::Parts {
   std::optional<viewer::ViewerServer> server;
   std::optional<viewer::SnapshotPublisher> publisher;
 };
-
-namespace {
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-}  // namespace
 
 RunWatchers::RunWatchers(const ViewerArgs& viewer) : parts_(std::make_unique<Parts>()) {
   parts_->args = viewer;
@@ -63,10 +53,10 @@ void RunWatchers::writeReport(const std::string& output, const std::string& conf
                               const std::string& options_json) {
   core::Stopwatch watch;
   viewer::ReportInputs inputs;
-  const std::string stats = readText(output + "/stats.json");
+  const std::string stats = viewer::readWholeFile(output + "/stats.json");
   inputs.stats = nlohmann::json::parse(stats, nullptr, false);
   inputs.settings_file = config_file;
-  inputs.settings_text = readText(config_file);
+  inputs.settings_text = viewer::readWholeFile(config_file);
   inputs.run_options = nlohmann::json::parse(options_json, nullptr, false);
   viewer::writeReportHtml(output, parts_->recorder, inputs);
   spdlog::info("report.html written in {:.0f} ms", watch.elapsedMs());

@@ -6,23 +6,14 @@
 #include <spdlog/spdlog.h>
 
 #include <csignal>
-#include <fstream>
-#include <sstream>
 
 #include "amos/core/error.h"
 #include "amos/viewer/run_folder.h"
 #include "amos/viewer/web_assets.h"
+#include "amos/viewer/whole_file.h"
 
 namespace amos::viewer {
 namespace {
-
-std::string readFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::string sseMessage(std::uint64_t seq, const std::string& event, const std::string& data) {
   return fmt::format("id: {}\nevent: {}\ndata: {}\n\n", seq, event, data);
@@ -33,8 +24,8 @@ std::string sseMessage(std::uint64_t seq, const std::string& event, const std::s
 ViewerServer::ViewerServer(LiveState& state, ServerOptions options)
     : state_(state), options_(std::move(options)), server_(std::make_unique<httplib::Server>()) {
   const std::filesystem::path three = threeJsDir();
-  three_js_ = readFile(three / "build" / "three.min.js");
-  orbit_controls_js_ = readFile(three / "examples" / "js" / "controls" / "OrbitControls.js");
+  three_js_ = readWholeFile(three / "build" / "three.min.js");
+  orbit_controls_js_ = readWholeFile(three / "examples" / "js" / "controls" / "OrbitControls.js");
   if (three_js_.empty())
     spdlog::warn("viewer: {} is missing (install libjs-three): the page has no 3D view",
                  (three / "build" / "three.min.js").string());
@@ -159,7 +150,7 @@ void ViewerServer::addRoutes() {
       res.set_content("refused: only the files of this run, by a relative path without '..'\n", "text/plain");
       return;
     }
-    res.set_content(readFile(*file), std::string(mimeTypeOf(file->filename().string())).c_str());
+    res.set_content(readWholeFile(*file), std::string(mimeTypeOf(file->filename().string())).c_str());
   });
 }
 

@@ -8,6 +8,7 @@
 
 #include "amos/core/error.h"
 #include "amos/io/trajectory.h"
+#include "amos/viewer/whole_file.h"
 
 namespace amos::viewer {
 
@@ -33,13 +34,6 @@ std::optional<fs::path> runFilePath(const fs::path& root, const std::string& req
 }
 
 namespace {
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::vector<TrajectoryPoint> centres(const std::vector<io::StampedPose>& poses) {
   std::vector<TrajectoryPoint> out;
@@ -78,7 +72,7 @@ void loadRunFolder(const fs::path& dir, LiveState& state) {
   nlohmann::json info = {{"sequence", dir.string()}, {"live", false}};
   if (has_stats) {
     try {
-      const nlohmann::json stats = nlohmann::json::parse(readText(dir / "stats.json"));
+      const nlohmann::json stats = nlohmann::json::parse(readWholeFile(dir / "stats.json"));
       u.summary = stats;
       for (const char* key : {"sequence", "mode", "config"})
         if (stats.contains(key)) info[key] = stats[key];
