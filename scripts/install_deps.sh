@@ -8,4 +8,5 @@ apt_install install_deps \
   libeigen3-dev libopencv-dev libopencv-contrib-dev libceres-dev libpng-dev libdeflate-dev \
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev \
   libgtest-dev libgmock-dev libbenchmark-dev ccache \
-  libopenni2-dev
+  libopenni2-dev \
+  libcpp-httplib-dev libjs-three chromium

@@ -3,7 +3,8 @@
 // (--record DIR). Writes trajectory.txt, keyframes.txt, map.ply and stats.json into --output (with --save-masks
 // also masks/ and overlays/) and prints where the frames came from (delivered / processed / dropped, latency),
 // ATE / RPE when the sequence has ground truth and the dynamic mask's pixel precision / recall / IoU when it has
-// ground-truth mover masks. All work is in amos::report / amos::system.
+// ground-truth mover masks. With the viewer module it also writes report.html, and --viewer serves a live view of
+// the run (run_watchers.h). All work is in amos::report / amos::system / amos::viewer.
 // Streams: progress and warnings on stderr, the summary on stdout. Exit status: 0, 1 for an error (before the run,
 // or one that ended it: the outputs of the frames processed are written first), 130 / 143 when SIGINT / SIGTERM
 // ended it (outputs written likewise).
@@ -22,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
@@ -29,6 +32,7 @@
 #include "amos/report/run_report.h"
 #include "amos/report/sequence_run.h"
 #include "commands.h"
+#include "run_watchers.h"
 
 namespace amos::app {
 namespace {
@@ -40,7 +44,17 @@ struct RunArgs {
   std::size_t first_frame = 0;
   std::string load_map, save_map;  // --load-map / --save-map
   bool localize = false;
+  ViewerArgs viewer;
 };
+
+// The command line's choices as report.html lists them.
+std::string runOptionsJson(const RunArgs& a) {
+  const nlohmann::json j = {{"sequence", a.sequence}, {"camera", a.camera},       {"realtime", a.realtime},
+                            {"mode", a.mode},         {"models", a.models},       {"deterministic", a.deterministic},
+                            {"strict", a.strict},     {"max_frames", a.max_frames}, {"save_masks", a.save_masks},
+                            {"record", a.record},     {"viewer", a.viewer.enabled}};
+  return j.dump();
+}
 
 // SIGINT (Ctrl-C) and SIGTERM end the run at the next frame boundary: mapping is stopped and the outputs are
 // written for the frames processed so far; exit status 128 + the signal (130, 143). The handler only stores the
@@ -171,6 +185,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   const config::Settings settings = config::loadSettings(args.config);
   // Before anything else runs (models, the camera, the first frame): a wrong --output is found at once.
   report::prepareOutputFolder(args.output, args.overwrite);
+  RunWatchers watchers(args.viewer);
   const bool tty = isatty(fileno(stderr)) != 0;
   report::SequenceRunOptions options;
   options.source = !args.camera.empty() ? report::FrameSourceKind::kCamera
@@ -190,6 +205,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   options.models_dir = args.models;
   if (args.save_masks) options.masks_output_dir = args.output;
   options.overlay_count = args.overlays;
+  options.observers = watchers.observers();
   bool line_open = false;  // a progress line without its newline on the terminal
   // Progress goes to stderr: a live line on a terminal, else (a log file, a pipe) one line every --progress-every
   // frames and the last one.
@@ -222,8 +238,10 @@ void runSlam(const RunArgs& args, int& exit_code) {
   const int signal_number = signals.received();
   if (result.info.end.status == report::RunEnd::Status::kInterrupted) result.info.end.reason = signalName(signal_number);
   report::writeRunOutputs(args.output, *result.slam, result.info);
+  watchers.writeReport(args.output, args.config, runOptionsJson(args));
   printSummary(result, args.output);
   if (!args.save_map.empty() && !result.failure) saveMap(*result.slam, args.save_map);
+  if (signal_number == 0) watchers.holdIfAsked();
   result.rethrowFailure();  // main() reports it (stderr) and exits non-zero, after the outputs are written
   if (signal_number != 0) {
     spdlog::warn("run interrupted by {} after {} frames; the outputs in {} hold those frames",
@@ -287,6 +305,14 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                 "Also write every frame's dynamic mask (masks/<rgb stamp>.png, 255 = dynamic) and overlays of a few "
                 "evenly spaced frames (overlays/)");
   cmd->add_option("--overlays", args->overlays, "Overlay images written with --save-masks (default 8)");
+  cmd->add_flag("--viewer", args->viewer.enabled,
+                "Serve a live view of the run (map, keyframes, trajectory, the frame with its dynamic mask, times) "
+                "on http://127.0.0.1:PORT/ while it goes; the address is printed on start");
+  cmd->add_option("--viewer-port", args->viewer.port, "Port of --viewer (default 8090; 0 = any free port)");
+  cmd->add_option("--viewer-bind", args->viewer.bind,
+                  "Address --viewer listens on (default 127.0.0.1: this machine only; 0.0.0.0 = every interface)");
+  cmd->add_flag("--viewer-hold", args->viewer.hold,
+                "With --viewer: keep serving after the run has ended, until Ctrl-C");
   cmd->callback([args, &exit_code] { runSlam(*args, exit_code); });
 }
 

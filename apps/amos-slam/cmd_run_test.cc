@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "amos/synth/sequence.h"
+#include "child_process.h"
 
 namespace amos::app {
 namespace {
@@ -43,53 +44,6 @@ fs::path outputDir(const std::string& name) {
 std::vector<std::string> runArgs(const fs::path& output) {
   return {"run", "--sequence", sequence(), "--config", std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml",
           "--mode", "none", "--output", output.string(), "--progress-every", "1"};
-}
-
-struct Finished {
-  int status = 0;  // as waitpid gives it
-  std::string out, err;
-};
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Runs amos-slam with `args`: stdout to a file (empty: to a pipe whose reader has gone away, as in
-// `amos-slam run ... | head -0`), stderr through a pipe that is read line by line; `on_line` sees each stderr line
-// and may signal the child (its pid is given).
-Finished runChild(const std::vector<std::string>& args, const fs::path& stdout_file,
-                  const std::function<void(const std::string&, pid_t)>& on_line = {}) {
-  int err_pipe[2], out_pipe[2];
-  if (pipe(err_pipe) != 0 || pipe(out_pipe) != 0) throw std::runtime_error("pipe");
-  close(out_pipe[0]);  // nobody reads the child's stdout pipe
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int out = stdout_file.empty() ? out_pipe[1] : open(stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(out, STDOUT_FILENO);
-    dup2(err_pipe[1], STDERR_FILENO);
-    close(err_pipe[0]);
-    std::vector<char*> argv{const_cast<char*>(AMOS_SLAM_EXE)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(AMOS_SLAM_EXE, argv.data());
-    _exit(127);
-  }
-  close(err_pipe[1]);
-  close(out_pipe[1]);
-  Finished f;
-  std::FILE* err = fdopen(err_pipe[0], "r");
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof(buffer), err) != nullptr) {
-    f.err += buffer;
-    if (on_line) on_line(buffer, pid);
-  }
-  std::fclose(err);
-  waitpid(pid, &f.status, 0);
-  if (!stdout_file.empty()) f.out = readFile(stdout_file);
-  return f;
 }
 
 // Lines of a trajectory file that hold a pose.

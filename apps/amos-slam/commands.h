@@ -12,5 +12,6 @@ void addSegmentCommand(CLI::App& app, int& exit_code);
 void addConfigCommand(CLI::App& app, int& exit_code);
 void addDiagnoseMoversCommand(CLI::App& app, int& exit_code);
 void addVocabCommand(CLI::App& app, int& exit_code);
+void addViewCommand(CLI::App& app, int& exit_code);
 
 }  // namespace amos::app

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   amos::app::addConfigCommand(app, exit_code);
   amos::app::addDiagnoseMoversCommand(app, exit_code);
   amos::app::addVocabCommand(app, exit_code);
+  amos::app::addViewCommand(app, exit_code);
   app.parse_complete_callback([&] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info); });
   try {
     app.parse(argc, argv);

@@ -143,6 +143,41 @@ std::string errorMessage(const std::exception_ptr& error) {
   }
 }
 
+// The ground truth as camera poses for the observers; empty when there is none or it cannot be read (the
+// evaluation at the end reports that).
+std::vector<io::StampedPose> observedGroundTruth(const std::string& gt_file, config::GroundTruthFormat format) {
+  if (gt_file.empty()) return {};
+  try {
+    std::vector<io::StampedPose> gt = io::readTumTrajectory(gt_file);
+    if (format == config::GroundTruthFormat::kBonn) gt = eval::bonnMarkerToCamera(gt);
+    return gt;
+  } catch (const core::Error&) {
+    return {};
+  }
+}
+
+// What observers see of a processed frame: image headers are shared, the keypoints copied.
+FrameSnapshot frameSnapshot(const system::DynamicFrameOutput& out, std::size_t total, std::size_t processed) {
+  FrameSnapshot s;
+  s.index = out.frame.index;
+  s.total = total;
+  s.processed = processed;
+  s.timestamp = out.frame.timestamp;
+  s.rgb_file = out.frame.rgb_file;
+  s.state = out.slam.track.state;
+  s.T_cw = out.slam.track.T_cw;
+  s.new_keyframe = out.slam.track.new_keyframe;
+  s.inliers = out.slam.track.inliers;
+  s.bgr = out.frame.bgr;
+  s.dynamic_mask = out.dynamic_mask;
+  s.keypoints = out.keypoints;
+  s.keypoints_removed = out.slam.removed_dynamic;
+  s.extract_ms = out.slam.extract_ms;
+  s.build_ms = out.slam.build_ms;
+  s.track_ms = out.slam.track_ms;
+  return s;
+}
+
 double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
@@ -213,7 +248,18 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   if (truth_masks)
     for (const eval::GroundTruthInstance& inst : truth_masks->instances())
       instance_accuracy.describe(inst.id, inst.category, inst.name);
+  if (!options.observers.empty()) {
+    RunStart start;
+    start.map = result.slam->sharedMap();
+    start.camera = settings.camera;
+    start.total_frames = source->size();
+    start.sequence = live ? options.camera : options.sequence_dir;
+    start.mode = options.mode;
+    start.ground_truth = observedGroundTruth(gt_file, settings.groundtruth_format);
+    for (RunObserver* o : options.observers) o->onStart(start);
+  }
   core::Stopwatch wall;
+  double last_frame_ms = 0;  // wall.elapsedMs() when the previous frame was done
   double outputs_ms = 0;  // mask scoring and writing, kept out of the run's wall time
   std::size_t n = 0;
   auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
@@ -243,6 +289,14 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     if (!truth.empty() && !out.dynamic_mask.empty()) mask_accuracy.add(out.dynamic_mask, truth);
     if (mask_writer) mask_writer->add(frame.index, frame.rgb_file, frame.bgr, out.dynamic_mask, out.prior_mask, truth);
     outputs_ms += outputs.elapsedMs();
+    if (!options.observers.empty()) {
+      const double now_ms = wall.elapsedMs();
+      FrameSnapshot snapshot = frameSnapshot(out, source->size(), n);
+      snapshot.frame_ms = now_ms - last_frame_ms;
+      snapshot.elapsed_s = now_ms / 1000.0;
+      last_frame_ms = now_ms;
+      for (RunObserver* o : options.observers) o->onFrame(snapshot);
+    }
     if (options.on_frame)
       options.on_frame({frame.index + 1, source->size(), n, &out.slam, (wall.elapsedMs() - outputs_ms) / 1000.0});
     return options.max_frames == 0 || n < options.max_frames;  // a live source has no end of its own
@@ -327,6 +381,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
       spdlog::warn("no evaluation against {}: {}", gt_file, e.what());
     }
   }
+  for (RunObserver* o : options.observers) o->onEnd(result.trajectory, result.info);
   return result;
 }
 

@@ -22,6 +22,7 @@
 
 #include "amos/config/settings.h"
 #include "amos/io/trajectory.h"
+#include "amos/report/run_observer.h"
 #include "amos/report/run_report.h"
 #include "amos/system/dynamic_pipeline.h"
 #include "amos/system/slam_system.h"
@@ -87,6 +88,8 @@ struct SequenceRunOptions {
   const std::atomic<bool>* stop = nullptr;
   // Called in the mapping thread after each keyframe is mapped (system::SlamOptions::after_keyframe).
   mapping::KeyFrameHook after_keyframe;
+  // Watch the run (live viewer, report recorder; run_observer.h). Not owned; they must outlive the call.
+  std::vector<RunObserver*> observers;
 };
 
 struct SequenceRunResult {

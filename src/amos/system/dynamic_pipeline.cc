@@ -241,6 +241,8 @@ DynamicFrameOutput DynamicPipeline::processNext() {
   core::Stopwatch wait;
   const FrameFeatures features = slot.features.get();
   times_.add("dynamic.features_wait", wait.elapsedMs());
+  out.keypoints.reserve(features.features.keypoints.size());
+  for (const cv::KeyPoint& k : features.features.keypoints) out.keypoints.push_back(k.pt);
   stage_a_cpu += features.cpu_ms;
   if (tasks.masked_extraction) times_.add("dynamic.extraction_handoff_wait", features.handoff_wait_ms);
   times_.add("cpu.prepare", stage_a_cpu);

@@ -123,6 +123,8 @@ class SlamSystem {
   const tracking::Tracker& tracker() const { return *tracker_; }
   map::Map& map() { return *map_; }
   const map::Map& map() const { return *map_; }
+  // The map for observers that may outlive this system (the viewer's publisher thread; report/run_observer.h).
+  std::shared_ptr<const map::Map> sharedMap() const { return map_; }
   const std::shared_ptr<const map::Sensor>& sensor() const { return sensor_; }
   // The keyframes' bag-of-words database (null without a vocabulary).
   const place::KeyFrameDatabase* places() const { return places_.get(); }

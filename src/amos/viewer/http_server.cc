@@ -1,0 +1,157 @@
+#include "amos/viewer/http_server.h"
+
+#include <fmt/format.h>
+#include <httplib.h>
+#include <pthread.h>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+
+#include "amos/core/error.h"
+#include "amos/viewer/run_folder.h"
+#include "amos/viewer/web_assets.h"
+#include "amos/viewer/whole_file.h"
+
+namespace amos::viewer {
+namespace {
+
+std::string sseMessage(std::uint64_t seq, const std::string& event, const std::string& data) {
+  return fmt::format("id: {}\nevent: {}\ndata: {}\n\n", seq, event, data);
+}
+
+}  // namespace
+
+ViewerServer::ViewerServer(LiveState& state, ServerOptions options)
+    : state_(state), options_(std::move(options)), server_(std::make_unique<httplib::Server>()) {
+  const std::filesystem::path three = threeJsDir();
+  three_js_ = readWholeFile(three / "build" / "three.min.js");
+  orbit_controls_js_ = readWholeFile(three / "examples" / "js" / "controls" / "OrbitControls.js");
+  if (three_js_.empty())
+    spdlog::warn("viewer: {} is missing (install libjs-three): the page has no 3D view",
+                 (three / "build" / "three.min.js").string());
+  // Short timeouts: a browser that stops reading loses its connection instead of holding a thread.
+  server_->set_write_timeout(3, 0);
+  server_->set_read_timeout(3, 0);
+  server_->set_keep_alive_max_count(100);
+  addRoutes();
+  if (options_.port == 0) {
+    port_ = server_->bind_to_any_port(options_.bind);
+  } else {
+    port_ = server_->bind_to_port(options_.bind, options_.port) ? options_.port : -1;
+  }
+  core::require(port_ > 0, fmt::format("viewer: cannot listen on {}:{} (in use, or not an address of this machine); "
+                                       "choose another with --viewer-port / --viewer-bind",
+                                       options_.bind, options_.port));
+  thread_ = std::thread([this] {
+    // The request threads httplib starts from here inherit this mask: SIGINT / SIGTERM stay with the main thread.
+    sigset_t signals;
+    sigemptyset(&signals);
+    sigaddset(&signals, SIGINT);
+    sigaddset(&signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+    server_->listen_after_bind();
+  });
+}
+
+ViewerServer::~ViewerServer() { stop(); }
+
+std::string ViewerServer::url() const {
+  const std::string host = options_.bind == "0.0.0.0" ? "127.0.0.1" : options_.bind;
+  return fmt::format("http://{}:{}/", host, port_);
+}
+
+void ViewerServer::stop() {
+  state_.close();
+  if (server_) server_->stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+void ViewerServer::addRoutes() {
+  httplib::Server& s = *server_;
+  auto asset = [](const std::string& name) {
+    return [name](const httplib::Request&, httplib::Response& res) {
+      const WebAsset* a = findWebAsset(name);
+      if (a == nullptr) {
+        res.status = 404;
+        return;
+      }
+      res.set_content(std::string(a->content), std::string(a->mime).c_str());
+    };
+  };
+  s.Get("/", asset("index.html"));
+  s.Get("/index.html", asset("index.html"));
+  s.Get("/viewer.js", asset("viewer.js"));
+  s.Get("/viewer.css", asset("viewer.css"));
+  auto script = [](const std::string* text) {
+    return [text](const httplib::Request&, httplib::Response& res) {
+      if (text->empty()) {
+        res.status = 404;
+        return;
+      }
+      res.set_header("Cache-Control", "max-age=3600");
+      res.set_content(*text, "text/javascript; charset=utf-8");
+    };
+  };
+  s.Get("/three/three.min.js", script(&three_js_));
+  s.Get("/three/OrbitControls.js", script(&orbit_controls_js_));
+  s.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(state_.stateJson().dump(), "application/json");
+  });
+  // The same as a script, loaded by the page itself (index.html) so that its load event waits for the state.
+  s.Get("/api/state.js", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_header("Cache-Control", "no-store");
+    res.set_content("window.amosInitialState = " + state_.stateJson().dump() + ";\n", "text/javascript; charset=utf-8");
+  });
+  s.Get("/api/frame.jpg", [this](const httplib::Request&, httplib::Response& res) {
+    const auto image = state_.frameImage();
+    if (!image || image->empty()) {
+      res.status = 404;
+      return;
+    }
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(std::string(image->begin(), image->end()), "image/jpeg");
+  });
+  s.Get("/api/events", [this](const httplib::Request& req, httplib::Response& res) {
+    std::uint64_t since = state_.seq();
+    try {
+      if (req.has_param("since")) since = std::stoull(req.get_param_value("since"));
+      if (req.has_header("Last-Event-ID")) since = std::stoull(req.get_header_value("Last-Event-ID"));
+    } catch (const std::exception&) {
+      res.status = 400;
+      return;
+    }
+    res.set_header("Cache-Control", "no-store");
+    auto cursor = std::make_shared<std::uint64_t>(since);
+    res.set_chunked_content_provider("text/event-stream", [this, cursor](std::size_t, httplib::DataSink& sink) {
+      const EventBatch batch = state_.eventsAfter(*cursor, std::chrono::seconds(1));
+      if (batch.closed && batch.events.empty()) {
+        sink.done();
+        return true;
+      }
+      std::string out;
+      if (batch.reload) {
+        out = sseMessage(state_.seq(), "reload", "{}");
+        *cursor = state_.seq();
+      }
+      for (const auto& [seq, json] : batch.events) {
+        out += sseMessage(seq, "update", json);
+        *cursor = seq;
+      }
+      if (out.empty()) out = ": idle\n\n";  // finds a browser that went away
+      return sink.write(out.data(), out.size());
+    });
+  });
+  s.Get(R"(/files/(.*))", [this](const httplib::Request& req, httplib::Response& res) {
+    const std::string request = req.matches[1];
+    const auto file = options_.run_folder.empty() ? std::nullopt : runFilePath(options_.run_folder, request);
+    if (!file) {
+      res.status = 403;
+      res.set_content("refused: only the files of this run, by a relative path without '..'\n", "text/plain");
+      return;
+    }
+    res.set_content(readWholeFile(*file), std::string(mimeTypeOf(file->filename().string())).c_str());
+  });
+}
+
+}  // namespace amos::viewer

@@ -1,0 +1,56 @@
+#pragma once
+// The viewer's embedded HTTP server (Debian's cpp-httplib), read-only, on loopback unless told otherwise:
+//   GET /                      the page (index.html; viewer.js, viewer.css beside it)
+//   GET /three/three.min.js    three.js from Debian's libjs-three (and /three/OrbitControls.js)
+//   GET /api/state             everything the page shows, JSON (LiveState::stateJson); /api/state.js the same as
+//                              a script setting window.amosInitialState (the page loads it with itself)
+//   GET /api/events?since=SEQ  Server-Sent Events: one "update" per LiveState update after SEQ (delta_json.h);
+//                              "reload" when the browser fell too far behind; a comment every second otherwise
+//   GET /api/frame.jpg         the current frame with its dynamic mask and keypoints (404 before the first)
+//   GET /files/PATH            a file of the finished run (`view` only; run_folder.h: anything outside -> 403)
+// Requests run in the server's own threads, which never touch the SLAM run: a slow or vanished browser costs only
+// its own connection (a write times out after a few seconds).
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "amos/viewer/live_state.h"
+
+namespace httplib {
+class Server;
+}
+
+namespace amos::viewer {
+
+struct ServerOptions {
+  std::string bind = "127.0.0.1";  // --viewer-bind
+  int port = 8090;                 // --viewer-port; 0 = any free port
+  std::filesystem::path run_folder;  // served under /files/ (`view`); empty = no /files/
+};
+
+class ViewerServer {
+ public:
+  // Binds and starts serving; throws core::Error naming the address when it cannot bind.
+  ViewerServer(LiveState& state, ServerOptions options);
+  ~ViewerServer();
+  ViewerServer(const ViewerServer&) = delete;
+  ViewerServer& operator=(const ViewerServer&) = delete;
+
+  int port() const { return port_; }
+  std::string url() const;
+  // Ends the event streams and stops serving (also done by the destructor).
+  void stop();
+
+ private:
+  void addRoutes();
+
+  LiveState& state_;
+  ServerOptions options_;
+  std::string three_js_, orbit_controls_js_;
+  std::unique_ptr<httplib::Server> server_;
+  int port_ = 0;
+  std::thread thread_;
+};
+
+}  // namespace amos::viewer

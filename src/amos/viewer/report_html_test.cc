@@ -1,0 +1,90 @@
+#include "amos/viewer/report_html.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "amos/eval/evaluate.h"
+#include "amos/report/run_report.h"
+#include "amos/viewer/base64.h"
+
+namespace amos::viewer {
+namespace {
+
+std::vector<io::StampedPose> line(int n, double dx) {
+  std::vector<io::StampedPose> poses;
+  for (int i = 0; i < n; ++i) {
+    io::StampedPose p;
+    p.timestamp = 1.0 + 0.1 * i;
+    p.T_wc.translation() = Eigen::Vector3d(dx * i, 0.01 * std::sin(i), 0.02 * i);
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+// The JSON block of the page, as a reader would take it out.
+nlohmann::json dataOf(const std::string& html) {
+  const std::string open = "<script id=\"amos-report-data\" type=\"application/json\">";
+  const std::size_t begin = html.find(open);
+  EXPECT_NE(begin, std::string::npos);
+  const std::size_t end = html.find("</script>", begin);
+  return nlohmann::json::parse(html.substr(begin + open.size(), end - begin - open.size()));
+}
+
+TEST(ReportHtml, HoldsTheRunAsParsableJsonAndNeedsNoNetwork) {
+  ReportRecorder recorder(2);
+  report::RunStart start;
+  start.total_frames = 30;
+  recorder.onStart(start);
+  for (std::size_t i = 0; i < 30; ++i) {
+    report::FrameSnapshot f;
+    f.index = i;
+    f.timestamp = 1.0 + 0.1 * i;
+    f.bgr = cv::Mat(48, 64, CV_8UC3, cv::Scalar(40, 90, 160));
+    f.dynamic_mask = cv::Mat::zeros(48, 64, CV_8U);
+    f.dynamic_mask(cv::Rect(0, 0, 20, 20)).setTo(255);
+    f.keypoints = {{5, 5}, {40, 30}, {50, 40}, {10, 12}};
+    f.keypoints_removed = 2;
+    f.extract_ms = 5;
+    f.frame_ms = 30;
+    recorder.onFrame(f);
+  }
+  report::RunInfo info;
+  info.evaluation = eval::evaluate(line(30, 0.05), line(30, 0.051));
+  recorder.onEnd(line(30, 0.051), info);
+  ReportInputs inputs;
+  inputs.stats = {{"frames", 30}, {"mode", "full"}};
+  inputs.settings_file = "configs/x.yaml";
+  inputs.settings_text = "Camera.fx: 500\n# a comment with </script> in it\n";
+  inputs.run_options = {{"mode", "full"}};
+  const std::string html = reportHtml(reportData(recorder, inputs));
+
+  EXPECT_EQ(html.find("__AMOS_REPORT_DATA__"), std::string::npos);
+  // Nothing loads from elsewhere: no external script, style sheet or resource.
+  for (const char* external : {"<script src", "<link", "src=\"http", "href=\"http", "url(http", "fetch("})
+    EXPECT_EQ(html.find(external), std::string::npos) << external;
+  const nlohmann::json d = dataOf(html);
+  EXPECT_EQ(d["frames"]["index"].size(), 30u);
+  EXPECT_DOUBLE_EQ(d["frames"]["removed_fraction"][0].get<double>(), 0.5);
+  EXPECT_EQ(d["trajectory"].size(), 30u);
+  EXPECT_EQ(d["ground_truth"].size(), 30u);
+  EXPECT_EQ(d["ate"]["error_m"].size(), 30u);
+  EXPECT_FALSE(d["rpe"]["t"].empty());
+  EXPECT_EQ(d["settings"]["text"], inputs.settings_text);
+  ASSERT_EQ(d["overlays"].size(), 2u);
+  // The embedded overlay is a JPEG of the frame's size.
+  const std::string b64 = d["overlays"][0]["jpeg"];
+  EXPECT_GT(b64.size(), 100u);
+}
+
+TEST(Base64, EncodesAsRfc4648) {
+  auto enc = [](const std::string& s) { return base64Encode(std::vector<unsigned char>(s.begin(), s.end())); };
+  EXPECT_EQ(enc(""), "");
+  EXPECT_EQ(enc("f"), "Zg==");
+  EXPECT_EQ(enc("fo"), "Zm8=");
+  EXPECT_EQ(enc("foo"), "Zm9v");
+  EXPECT_EQ(enc("foobar"), "Zm9vYmFy");
+}
+
+}  // namespace
+}  // namespace amos::viewer

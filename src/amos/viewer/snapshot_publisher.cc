@@ -1,0 +1,168 @@
+#include "amos/viewer/snapshot_publisher.h"
+
+#include <pthread.h>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+
+#include "amos/core/thread_priority.h"
+#include "amos/report/run_report.h"
+#include "amos/viewer/delta_json.h"
+#include "amos/viewer/frame_image.h"
+#include "amos/viewer/ground_truth_overlay.h"
+
+namespace amos::viewer {
+namespace {
+
+TrajectoryPoint centreOf(double timestamp, const core::SE3& T_cw) {
+  return {timestamp, T_cw.inverse().translation().cast<float>()};
+}
+
+nlohmann::json infoJson(const report::RunStart& s) {
+  return {{"sequence", s.sequence},
+          {"mode", s.mode},
+          {"frames", s.total_frames},
+          {"live", true},
+          {"has_ground_truth", !s.ground_truth.empty()},
+          {"camera",
+           {{"fx", s.camera.fx}, {"fy", s.camera.fy}, {"cx", s.camera.cx}, {"cy", s.camera.cy},
+            {"width", s.camera.width}, {"height", s.camera.height}}}};
+}
+
+}  // namespace
+
+SnapshotPublisher::SnapshotPublisher(LiveState& state, PublisherOptions options)
+    : state_(state), options_(options) {}
+
+SnapshotPublisher::~SnapshotPublisher() { stopThread(); }
+
+void SnapshotPublisher::onStart(const report::RunStart& start) {
+  {
+    std::lock_guard lock(map_mutex_);
+    map_ = start.map;
+  }
+  ground_truth_ = start.ground_truth;
+  LiveUpdate u;
+  u.info = infoJson(start);
+  state_.apply(u);
+  thread_ = std::thread([this] { run(); });
+}
+
+void SnapshotPublisher::onFrame(const report::FrameSnapshot& frame) {
+  {
+    std::lock_guard lock(mutex_);
+    if (latest_) ++dropped_;
+    latest_ = frame;
+    new_poses_.push_back(centreOf(frame.timestamp, frame.T_cw));
+  }
+  wake_.notify_one();
+}
+
+std::size_t SnapshotPublisher::droppedSnapshots() const {
+  std::lock_guard lock(mutex_);
+  return dropped_;
+}
+
+void SnapshotPublisher::run() {
+  // The run's signals (SIGINT, SIGTERM) are for the main thread; background work runs after the frame's own.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  core::lowerThisThreadPriority(core::kBackgroundNice);
+  std::unique_lock lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [&] { return stop_ || latest_.has_value(); });
+    if (!latest_) break;  // stopped with nothing left
+    report::FrameSnapshot frame = std::move(*latest_);
+    latest_.reset();
+    std::vector<TrajectoryPoint> poses = std::move(new_poses_);
+    new_poses_.clear();
+    const bool stopping = stop_;
+    lock.unlock();
+    const Clock::time_point now = Clock::now();
+    const bool with_map = now - last_map_time_ >= options_.map_period;
+    if (with_map) last_map_time_ = now;
+    publishFrame(frame, std::move(poses), with_map);
+    lock.lock();
+    if (stopping) break;
+    // The rate bound: the next publication waits for the period (or the end), whatever arrives meanwhile.
+    wake_.wait_until(lock, now + options_.frame_period, [&] { return stop_; });
+  }
+}
+
+MapDelta SnapshotPublisher::mapDelta() {
+  MapSnapshot snapshot;
+  {
+    std::lock_guard lock(map_mutex_);
+    if (map_ == nullptr) return {};
+    snapshot = takeMapSnapshot(*map_);
+  }
+  MapDelta delta = diffMaps(last_map_, snapshot);
+  last_map_ = std::move(snapshot);
+  return delta;
+}
+
+void SnapshotPublisher::publishFrame(const report::FrameSnapshot& frame, std::vector<TrajectoryPoint> poses,
+                                     bool with_map) {
+  for (const TrajectoryPoint& p : poses) {
+    io::StampedPose s;
+    s.timestamp = p.timestamp;
+    s.T_wc.translation() = p.position.cast<double>();
+    estimate_.push_back(s);
+  }
+  LiveUpdate u;
+  const double dt = frame.elapsed_s - last_elapsed_s_;
+  const double fps = dt > 0 ? (frame.processed - last_processed_) / dt : 0.0;
+  last_elapsed_s_ = frame.elapsed_s;
+  last_processed_ = frame.processed;
+  u.frame = frameStatusJson(frame, fps);
+  u.trajectory = std::move(poses);
+  if (with_map) u.map = mapDelta();
+  const Clock::time_point now = Clock::now();
+  if (!ground_truth_.empty() && now - last_alignment_time_ >= options_.ground_truth_period) {
+    last_alignment_time_ = now;
+    if (const auto alignment = alignEstimate(ground_truth_, estimate_))
+      u.ground_truth = groundTruthInMapFrame(ground_truth_, *alignment);
+  }
+  if (!frame.bgr.empty()) {
+    state_.setFrameImage(
+        encodeJpeg(renderFrameOverlay(frame.bgr, frame.dynamic_mask, frame.keypoints, options_.image_width)));
+    u.frame_image = true;
+  }
+  state_.apply(u);
+}
+
+void SnapshotPublisher::stopThread() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  if (thread_.joinable()) thread_.join();
+}
+
+void SnapshotPublisher::onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) {
+  stopThread();
+  LiveUpdate u;
+  u.map = mapDelta();
+  {
+    std::lock_guard lock(map_mutex_);
+    map_ = nullptr;
+  }
+  u.trajectory_reset = true;
+  for (const io::StampedPose& p : trajectory)
+    u.trajectory.push_back({p.timestamp, p.T_wc.translation().cast<float>()});
+  if (info.evaluation && !ground_truth_.empty())
+    u.ground_truth = groundTruthInMapFrame(ground_truth_, info.evaluation->alignment);
+  nlohmann::json summary = {{"end", report::toString(info.end.status)},
+                            {"wall_time_s", info.wall_time_s},
+                            {"frames", trajectory.size()}};
+  if (info.evaluation) summary["evaluation"] = eval::toJson(*info.evaluation);
+  u.summary = std::move(summary);
+  state_.apply(u);
+  spdlog::debug("viewer: {} snapshots replaced before they were published", droppedSnapshots());
+}
+
+}  // namespace amos::viewer

@@ -1,0 +1,73 @@
+#pragma once
+// The live viewer's side of a run: a report::RunObserver that turns the run's per-frame snapshots into updates of
+// a LiveState, in its own thread, at a bounded rate.
+//
+// onFrame (the run's thread) only stores the snapshot as the newest one, replacing a waiting older one (counted
+// as dropped), appends the pose to the trajectory and wakes the thread: a constant, tiny cost whatever the
+// browsers do. The thread publishes at most every `frame_period` (frame status, trajectory, the frame image) and
+// takes a map snapshot at most every `map_period`, sending only what changed (map_delta.h). It never waits for a
+// browser: LiveState keeps the events for the server's threads.
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "amos/report/run_observer.h"
+#include "amos/viewer/live_state.h"
+#include "amos/viewer/map_delta.h"
+
+namespace amos::viewer {
+
+struct PublisherOptions {
+  std::chrono::milliseconds frame_period{200};   // frame status and image: at most 5 per second
+  std::chrono::milliseconds map_period{500};     // map snapshots: at most 2 per second
+  std::chrono::milliseconds ground_truth_period{3000};  // re-alignment of the ground truth to the estimate
+  int image_width = 640;
+};
+
+class SnapshotPublisher : public report::RunObserver {
+ public:
+  explicit SnapshotPublisher(LiveState& state, PublisherOptions options = {});
+  ~SnapshotPublisher() override;
+  SnapshotPublisher(const SnapshotPublisher&) = delete;
+  SnapshotPublisher& operator=(const SnapshotPublisher&) = delete;
+
+  void onStart(const report::RunStart& start) override;
+  void onFrame(const report::FrameSnapshot& frame) override;
+  // Publishes the final map, the corrected trajectory, the aligned ground truth and the summary, then the thread
+  // ends (the LiveState stays as it is for the server).
+  void onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) override;
+
+  // Snapshots replaced by a newer one before the thread took them.
+  std::size_t droppedSnapshots() const;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void run();
+  void stopThread();
+  void publishFrame(const report::FrameSnapshot& frame, std::vector<TrajectoryPoint> poses, bool with_map);
+  MapDelta mapDelta();
+
+  LiveState& state_;
+  PublisherOptions options_;
+  mutable std::mutex mutex_;  // guards the hand-off below
+  std::condition_variable wake_;
+  std::optional<report::FrameSnapshot> latest_;
+  std::vector<TrajectoryPoint> new_poses_;
+  bool stop_ = false;
+  std::size_t dropped_ = 0;
+  std::mutex map_mutex_;  // guards map_: onEnd releases it while the thread may be reading the map
+  std::shared_ptr<const map::Map> map_;
+  // Used by the publishing thread only (and by onEnd after it ended).
+  MapSnapshot last_map_;
+  std::vector<io::StampedPose> ground_truth_, estimate_;
+  Clock::time_point last_map_time_{}, last_alignment_time_{};
+  std::size_t last_processed_ = 0;
+  double last_elapsed_s_ = 0;
+  std::thread thread_;
+};
+
+}  // namespace amos::viewer

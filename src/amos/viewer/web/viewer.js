@@ -1,0 +1,349 @@
+// The Amos-SLAM viewer page: loads the whole state (api/state), then applies the updates the server pushes
+// (api/events, Server-Sent Events) to a three.js scene and the side panel. The same page shows a finished run
+// (`amos-slam view`), which sends no updates. Once the 3D view has drawn something that is not background (checked
+// with readPixels) the page sets document.body.dataset.drawn = "1"; script errors are collected in
+// document.body.dataset.errors (the browser test reads both).
+'use strict';
+(function () {
+  const errors = [];
+  function noteError(text) {
+    errors.push(String(text));
+    document.body.dataset.errors = errors.join(' | ');
+  }
+  window.addEventListener('error', (e) => noteError(e.message));
+  window.addEventListener('unhandledrejection', (e) => noteError(e.reason));
+  const $ = (id) => document.getElementById(id);
+  const BACKGROUND = 0x15181d;
+  const FRUSTUM_DEPTH = 0.06;  // metres
+
+  // ---------------------------------------------------------------- state as the page holds it
+  let info = {};
+  let seq = 0;
+  const keyframes = new Map();  // id -> [x, y, z, qx, qy, qz, qw]
+  let trajectory = [];          // [t, x, y, z]
+  let groundTruth = [];
+  let lastFrame = null;
+  let fitted = false;
+
+  // A growing point cloud with removal by id: positions live in one buffer, a removed point's slot is filled by
+  // the last point.
+  class PointCloud {
+    constructor(color, size) {
+      this.index = new Map();
+      this.ids = [];
+      this.data = new Float32Array(3 * 4096);
+      this.geometry = new THREE.BufferGeometry();
+      this.attribute = new THREE.BufferAttribute(this.data, 3);
+      this.geometry.setAttribute('position', this.attribute);
+      this.geometry.setDrawRange(0, 0);
+      this.object = new THREE.Points(this.geometry,
+          new THREE.PointsMaterial({color: color, size: size, sizeAttenuation: false}));
+      this.object.frustumCulled = false;
+    }
+    get count() { return this.ids.length; }
+    set(id, x, y, z) {
+      let i = this.index.get(id);
+      if (i === undefined) {
+        i = this.ids.length;
+        if (3 * (i + 1) > this.data.length) this.grow();
+        this.ids.push(id);
+        this.index.set(id, i);
+      }
+      this.data[3 * i] = x; this.data[3 * i + 1] = y; this.data[3 * i + 2] = z;
+    }
+    remove(id) {
+      const i = this.index.get(id);
+      if (i === undefined) return;
+      const last = this.ids.length - 1;
+      if (i !== last) {
+        const moved = this.ids[last];
+        this.ids[i] = moved;
+        this.index.set(moved, i);
+        this.data.copyWithin(3 * i, 3 * last, 3 * last + 3);
+      }
+      this.ids.pop();
+      this.index.delete(id);
+    }
+    grow() {
+      const bigger = new Float32Array(this.data.length * 2);
+      bigger.set(this.data);
+      this.data = bigger;
+      this.attribute = new THREE.BufferAttribute(this.data, 3);
+      this.geometry.setAttribute('position', this.attribute);
+    }
+    clear() { this.ids = []; this.index.clear(); }
+    commit() {
+      this.attribute.needsUpdate = true;
+      this.geometry.setDrawRange(0, this.ids.length);
+      this.geometry.computeBoundingSphere();
+    }
+  }
+
+  // ---------------------------------------------------------------- the 3D view
+  let renderer = null, scene, camera, controls, world, cloud, culled, trajLine, gtLine, kfLines, camLines;
+  let dirty = true, drawnChecked = false;
+
+  function lineObject(color) {
+    const line = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({color: color}));
+    line.frustumCulled = false;
+    return line;
+  }
+  function segmentsObject(color) {
+    const s = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({color: color}));
+    s.frustumCulled = false;
+    return s;
+  }
+
+  function initScene() {
+    if (typeof THREE === 'undefined') {
+      $('message').textContent = 'three.js is not available (install libjs-three): no 3D view';
+      return;
+    }
+    const canvas = $('canvas3d');
+    try {
+      renderer = new THREE.WebGLRenderer({canvas: canvas, antialias: true, preserveDrawingBuffer: true});
+    } catch (e) {
+      $('message').textContent = 'WebGL is not available: ' + e.message;
+      renderer = null;
+      return;
+    }
+    renderer.setClearColor(BACKGROUND);
+    scene = new THREE.Scene();
+    camera = new THREE.PerspectiveCamera(60, 1, 0.01, 1000);
+    camera.position.set(0, 1.5, 3);
+    controls = new THREE.OrbitControls(camera, canvas);
+    controls.addEventListener('change', () => { dirty = true; });
+    // SLAM's world is the first camera's frame (x right, y down, z forward): turned half a turn about x, so that
+    // "up" in the picture is up in the room.
+    world = new THREE.Group();
+    world.rotation.x = Math.PI;
+    scene.add(world);
+    cloud = new PointCloud(0xe8e8e8, 2);
+    culled = new PointCloud(0xff4040, 3);
+    trajLine = lineObject(0x40d060);
+    gtLine = lineObject(0x909090);
+    kfLines = segmentsObject(0x4090ff);
+    camLines = segmentsObject(0xffd040);
+    for (const o of [cloud.object, culled.object, trajLine, gtLine, kfLines, camLines]) world.add(o);
+    world.add(new THREE.AxesHelper(0.2));
+    window.addEventListener('resize', () => { dirty = true; });
+    $('show-culled').addEventListener('change', (e) => { culled.object.visible = e.target.checked; dirty = true; });
+    $('fit').addEventListener('click', () => { fitView(); });
+    requestAnimationFrame(frameLoop);
+  }
+
+  function frameLoop() {
+    requestAnimationFrame(frameLoop);
+    if (!renderer) return;
+    const canvas = renderer.domElement;
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    if (canvas.width !== w || canvas.height !== h) {
+      renderer.setSize(w, h, false);
+      camera.aspect = w / Math.max(1, h);
+      camera.updateProjectionMatrix();
+      dirty = true;
+    }
+    if (!dirty) return;
+    dirty = false;
+    renderer.render(scene, camera);
+    if (!drawnChecked && (cloud.count > 0 || trajectory.length > 1)) checkDrawn();
+  }
+
+  // Sets the DOM mark once the canvas shows anything but the background.
+  function checkDrawn() {
+    const gl = renderer.getContext();
+    const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    const pixels = new Uint8Array(4 * w * h);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+    const r = (BACKGROUND >> 16) & 255, g = (BACKGROUND >> 8) & 255, b = BACKGROUND & 255;
+    let different = 0;
+    for (let i = 0; i < pixels.length; i += 4) {
+      if (Math.abs(pixels[i] - r) + Math.abs(pixels[i + 1] - g) + Math.abs(pixels[i + 2] - b) > 30) different++;
+    }
+    if (different > 20) {
+      drawnChecked = true;
+      document.body.dataset.drawn = '1';
+      document.body.dataset.drawnPixels = String(different);
+    }
+  }
+
+  function fitView() {
+    if (!renderer) return;
+    const box = new THREE.Box3();
+    box.setFromObject(world);
+    if (box.isEmpty()) return;
+    const centre = box.getCenter(new THREE.Vector3());
+    const size = Math.max(0.5, box.getSize(new THREE.Vector3()).length());
+    controls.target.copy(centre);
+    camera.position.set(centre.x + 0.3 * size, centre.y + 0.6 * size, centre.z + 0.8 * size);
+    camera.near = size / 1000;
+    camera.far = size * 100;
+    camera.updateProjectionMatrix();
+    controls.update();
+    dirty = true;
+  }
+
+  // The image corners at depth FRUSTUM_DEPTH, in the camera's frame.
+  function frustumCorners() {
+    const c = info.camera || {fx: 525, fy: 525, cx: 319.5, cy: 239.5, width: 640, height: 480};
+    const d = FRUSTUM_DEPTH;
+    return [[0, 0], [c.width, 0], [c.width, c.height], [0, c.height]].map(
+        ([u, v]) => new THREE.Vector3((u - c.cx) / c.fx * d, (v - c.cy) / c.fy * d, d));
+  }
+  // Line segments of camera frusta (apex to corners, then the image rectangle) for poses [x,y,z,qx,qy,qz,qw].
+  function frustaGeometry(poses) {
+    const corners = frustumCorners();
+    const out = [];
+    const q = new THREE.Quaternion(), t = new THREE.Vector3(), p = new THREE.Vector3();
+    for (const pose of poses) {
+      t.set(pose[0], pose[1], pose[2]);
+      q.set(pose[3], pose[4], pose[5], pose[6]);
+      const w = corners.map((c) => p.copy(c).applyQuaternion(q).add(t).toArray());
+      for (let i = 0; i < 4; i++) out.push(t.x, t.y, t.z, ...w[i]);
+      for (let i = 0; i < 4; i++) out.push(...w[i], ...w[(i + 1) % 4]);
+    }
+    const g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.Float32BufferAttribute(out, 3));
+    return g;
+  }
+  function setGeometry(object, geometry) {
+    object.geometry.dispose();
+    object.geometry = geometry;
+  }
+  function polylineGeometry(samples) {
+    const out = [];
+    for (const s of samples) out.push(s[1], s[2], s[3]);
+    const g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.Float32BufferAttribute(out, 3));
+    return g;
+  }
+
+  // ---------------------------------------------------------------- applying state and updates
+  function apply(u, whole) {
+    if (u.info) info = u.info;
+    if (whole) {
+      keyframes.clear();
+      trajectory = [];
+      if (renderer) { cloud.clear(); culled.clear(); }
+    }
+    if (renderer) {
+      for (const p of u.points || []) cloud.set(p[0], p[1], p[2], p[3]);
+      for (const id of u.removed || []) cloud.remove(id);
+      for (const p of u.culled || []) culled.set(p[0], p[1], p[2], p[3]);
+      cloud.commit();
+      culled.commit();
+    }
+    for (const k of u.keyframes || []) keyframes.set(k[0], k.slice(1));
+    for (const id of u.removed_keyframes || []) keyframes.delete(id);
+    if (u.trajectory_reset) trajectory = [];
+    if (u.trajectory) trajectory = trajectory.concat(u.trajectory);
+    if (u.ground_truth) groundTruth = u.ground_truth;
+    if (u.frame && u.frame.index !== undefined) lastFrame = u.frame;
+    if (renderer) {
+      if (u.keyframes || u.removed_keyframes || whole) setGeometry(kfLines, frustaGeometry(keyframes.values()));
+      if (u.trajectory || whole) setGeometry(trajLine, polylineGeometry(trajectory));
+      if (u.ground_truth || whole) setGeometry(gtLine, polylineGeometry(groundTruth));
+      if (lastFrame) setGeometry(camLines, frustaGeometry([lastFrame.T_wc]));
+      dirty = true;
+      if (!fitted && (cloud.count > 50 || (!info.live && trajectory.length > 1))) {
+        fitView();
+        fitted = true;
+      }
+    }
+    if (u.frame_image) refreshImage();
+    if (u.summary && Object.keys(u.summary).length) showSummary(u.summary);
+    showStatus();
+  }
+
+  let imageBusy = false;
+  function refreshImage() {
+    if (imageBusy) return;  // the previous image is still loading: skip, the next update brings a newer one
+    imageBusy = true;
+    $('frame').src = 'api/frame.jpg?seq=' + seq;
+  }
+
+  function row(name, value, cls) {
+    return '<tr><td>' + name + '</td><td class="num ' + (cls || '') + '">' + value + '</td></tr>';
+  }
+  function fixed(v, digits) { return typeof v === 'number' ? v.toFixed(digits) : '-'; }
+
+  function showStatus() {
+    $('mode').textContent = info.mode ? 'mode ' + info.mode : '';
+    $('sequence').textContent = (info.live ? 'live: ' : 'finished run: ') + (info.sequence || '');
+    const f = lastFrame;
+    let html = '';
+    if (f) {
+      html += row('frame', (f.index + 1) + (f.total ? ' / ' + f.total : ''));
+      const state = String(f.state).toUpperCase();
+      html += row('tracking', state, 'state-' + state);
+      html += row('frames per second', fixed(f.fps, 1));
+      html += row('inliers', f.inliers);
+      html += row('keypoints kept / removed', (f.keypoints - f.removed) + ' / ' + f.removed);
+    }
+    html += row('map points', renderer ? cloud.count : '-');
+    html += row('removed as dynamic (shown)', renderer ? culled.count : '-');
+    html += row('keyframes', keyframes.size);
+    html += row('trajectory poses', trajectory.length);
+    $('status').innerHTML = html;
+    if (f && f.times_ms) {
+      const t = f.times_ms;
+      $('times').innerHTML = row('ORB extraction', fixed(t.extract, 1)) + row('frame build (mask)', fixed(t.build, 1)) +
+          row('tracking', fixed(t.track, 1)) + row('whole frame (1 / fps)', fixed(t.frame, 1));
+    }
+    $('frame-box').style.display = (f || info.live) ? '' : 'none';
+  }
+
+  function showSummary(s) {
+    let html = '<h2>Run</h2><table>';
+    if (s.end) html += row('ended', s.end.status || s.end);
+    if (s.frames !== undefined) html += row('frames', s.frames);
+    if (s.wall_time_s !== undefined) html += row('wall time', fixed(s.wall_time_s, 2) + ' s');
+    const e = s.evaluation;
+    if (e) {
+      html += row('ATE RMSE', fixed(e.ate_rmse_m * 100, 2) + ' cm');
+      if (e.rpe_trans_rmse_m !== null) html += row('RPE (1 s)', fixed(e.rpe_trans_rmse_m * 100, 2) + ' cm, ' + fixed(e.rpe_rot_rmse_deg, 2) + ' deg');
+    }
+    $('summary').innerHTML = html + '</table>';
+  }
+
+  function showFiles(files) {
+    if (!files || !files.length) return;
+    $('overlays').innerHTML = '<h2>Mask overlays</h2>' +
+        files.map((f) => '<img loading="lazy" src="files/' + encodeURI(f) + '" title="' + f + '">').join('');
+  }
+
+  // ---------------------------------------------------------------- talking to the server
+  let events = null;
+  async function loadState() {
+    const response = await fetch('api/state', {cache: 'no-store'});
+    useState(await response.json());
+  }
+  function useState(s) {
+    seq = s.seq;
+    apply(s, true);
+    showFiles(s.files);
+    // ?nofollow: the state as it is now, no live updates (a still picture, e.g. a headless browser's screenshot).
+    if (info.live && !new URLSearchParams(location.search).has('nofollow')) connect();
+  }
+  function connect() {
+    if (events) events.close();
+    events = new EventSource('api/events?since=' + seq);
+    events.addEventListener('update', (e) => {
+      const u = JSON.parse(e.data);
+      seq = u.seq;
+      apply(u, false);
+      $('message').textContent = '';
+    });
+    events.addEventListener('reload', () => { events.close(); loadState(); });
+    events.onerror = () => { $('message').textContent = 'no connection to the run (it may have ended)'; };
+  }
+
+  $('frame').addEventListener('load', () => { imageBusy = false; });
+  $('frame').addEventListener('error', () => { imageBusy = false; });
+  initScene();
+  if (window.amosInitialState) {
+    useState(window.amosInitialState);
+  } else {
+    loadState().catch((e) => noteError('loading the state: ' + e));
+  }
+})();
