@@ -137,7 +137,7 @@ TEST(PnpRansac, BothMinimalSolversRecoverThePose) {
   for (const PnpMinimalSolver solver : {PnpMinimalSolver::kAp3p, PnpMinimalSolver::kEpnp}) {
     PnpRansacOptions options;
     options.minimal_solver = solver;
-    const PnpResult r = solvePnpRansac(s.points_w, s.pixels, tumCamera(), options);
+    const PnpResult r = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options);
     ASSERT_TRUE(r.success) << static_cast<int>(solver);
     const core::SE3 error = r.T_cw * s.T_cw.inverse();
     EXPECT_LT(core::translationNorm(error), 2e-3) << static_cast<int>(solver);
@@ -152,7 +152,7 @@ TEST(PnpRansac, Ap3pFindsThePoseAtLowInlierRatiosWithinTheBudget) {
     const Scene s = makeScene(150, 0.7, 0.5, seed);
     PnpRansacOptions options;
     options.seed = seed;
-    const PnpResult r = solvePnpRansac(s.points_w, s.pixels, tumCamera(), options);
+    const PnpResult r = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options);
     ASSERT_TRUE(r.success) << "seed " << seed;
     const core::SE3 error = r.T_cw * s.T_cw.inverse();
     EXPECT_LT(core::translationNorm(error), 1e-2) << "seed " << seed;
