@@ -5,7 +5,8 @@
 # -O1 keeps the instrumented build affordable on 2 cores (~40 min for the whole suite's targets).
 # OpenNI2 loads its device drivers as plug-ins and unloads them at exit with memory still allocated; LeakSanitizer
 # reports those blocks with no symbols (the module is gone). The camera tests therefore run with leak detection
-# off (ASan's memory-error checks and UBSan stay on); every other test runs with it on.
+# off (ASan's memory-error checks and UBSan stay on); every other test runs with it on. Third-party TSan reports
+# (GDAL inside OpenCV's codecs, OpenNI2) are suppressed by scripts/tsan.supp, library by library.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 WHAT="${1:-all}"
@@ -26,6 +27,6 @@ if [ "$WHAT" = tsan ] || [ "$WHAT" = all ]; then
     -DAMOS_BUILD_BENCH=OFF -DAMOS_SANITIZE=thread >/dev/null
   cmake --build build-tsan -j "$JOBS" --target amos-slam
   SEQ="${AMOS_DATA_DIR:-../shared/data}/bonn_crowd_dev"
-  TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build-tsan/bin/amos-slam run --sequence "$SEQ" \
+  TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/tsan.supp" build-tsan/bin/amos-slam run --sequence "$SEQ" \
     --config configs/bonn.yaml --mode full --output out/tsan_bonn --overwrite
 fi

@@ -184,7 +184,7 @@ BrowserResult loadInBrowser(const std::string& browser, const std::string& url, 
                             const std::string& tag) {
   const fs::path dom = scratch / (tag + ".dom.html"), log = scratch / (tag + ".log");
   const std::string command = "timeout 120 " + browser +
-                              " --headless=new --no-sandbox --use-gl=swiftshader --enable-unsafe-swiftshader"
+                              " --headless=new --no-sandbox --use-gl=angle --use-angle=swiftshader --enable-unsafe-swiftshader"
                               " --user-data-dir=" + (scratch / "profile").string() +
                               " --enable-logging=stderr --v=0 --timeout=20000 --window-size=1200,800 --dump-dom '" +
                               url + "' > " + dom.string() + " 2> " + log.string();

@@ -81,7 +81,7 @@
 
   // ---------------------------------------------------------------- the 3D view
   let renderer = null, scene, camera, controls, world, cloud, culled, trajLine, gtLine, kfLines, camLines;
-  let dirty = true, drawnChecked = false;
+  let dirty = true, drawnChecked = false, drawnRetries = 0;
 
   function lineObject(color) {
     const line = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({color: color}));
@@ -134,6 +134,12 @@
 
   function frameLoop() {
     requestAnimationFrame(frameLoop);
+    drawIfChanged();
+  }
+
+  // Also called straight after a whole state arrives: the first picture (and the drawn mark) does not wait for the
+  // next animation frame, which a busy or headless browser may deliver late.
+  function drawIfChanged() {
     if (!renderer) return;
     const canvas = renderer.domElement;
     const w = canvas.clientWidth, h = canvas.clientHeight;
@@ -164,13 +170,25 @@
       drawnChecked = true;
       document.body.dataset.drawn = '1';
       document.body.dataset.drawnPixels = String(different);
+    } else if (drawnRetries++ < 40) {
+      // The first pictures can come out blank while a software GL context is still starting, and a headless or
+      // hidden page gets few animation frames: draw again shortly, for up to 10 s.
+      setTimeout(() => { dirty = true; drawIfChanged(); }, 250);
     }
   }
 
   function fitView() {
     if (!renderer) return;
+    // The box of the map points and the trajectory, from the page's own arrays (finite values only): three.js's
+    // Box3.setFromObject also takes in helper and placeholder geometries, and one early state gave it an
+    // unbounded box, which put the camera at NaN and drew nothing.
     const box = new THREE.Box3();
-    box.setFromObject(world);
+    const p = new THREE.Vector3();
+    const take = (x, y, z) => {
+      if (Number.isFinite(x) && Number.isFinite(y) && Number.isFinite(z)) box.expandByPoint(p.set(x, y, z));
+    };
+    for (let i = 0; i < cloud.count; ++i) take(cloud.data[3 * i], cloud.data[3 * i + 1], cloud.data[3 * i + 2]);
+    for (const s of trajectory) take(s[1], s[2], s[3]);
     if (box.isEmpty()) return;
     const centre = box.getCenter(new THREE.Vector3());
     const size = Math.max(0.5, box.getSize(new THREE.Vector3()).length());
@@ -322,6 +340,7 @@
     seq = s.seq;
     apply(s, true);
     showFiles(s.files);
+    drawIfChanged();
     // ?nofollow: the state as it is now, no live updates (a still picture, e.g. a headless browser's screenshot).
     if (info.live && !new URLSearchParams(location.search).has('nofollow')) connect();
   }
