@@ -3,7 +3,8 @@
 # included), whole-process CPU per frame (all threads, from /usr/bin/time), the CPU of each pipeline thread per
 # frame (the "cpu.*" stages of stats.json), ATE and lost frames; medians of RUNS runs, the variants interleaved so
 # that a drifting machine affects them alike. Optional variant "paper": --mode full with the schedule and settings
-# of before issue 12 (every-frame segmentation, LK window 15, local BA over every covisible keyframe).
+# of before issue 12 (every-frame segmentation, LK window 15 run to 30 iterations / 0.01 px, local BA over every
+# covisible keyframe).
 #   bash bench/bonn_speed.sh [RUNS=3] [VARIANTS="none full paper realtime"]
 # Needs build/bin/amos-slam, ../shared/data/bonn_crowd_dev and python3. Run on an otherwise idle machine.
 set -euo pipefail
@@ -18,7 +19,8 @@ OUT="${AMOS_BENCH_OUT:-out/bonn_speed}"
 mkdir -p "$OUT"
 PAPER_CONFIG="$OUT/bonn_paper.yaml"
 # configs/bonn.yaml with these keys set (replaced where the file sets them: a key set twice is an error).
-paper_keys=("Dynamic.Prior.interval: 1" "Dynamic.Prior.lag: 0" "Dynamic.LK.window: 15" "LocalBA.maxKeyFrames: 0")
+paper_keys=("Dynamic.Prior.interval: 1" "Dynamic.Prior.lag: 0" "Dynamic.LK.window: 15" "Dynamic.LK.maxIterations: 30"
+            "Dynamic.LK.epsilon: 0.01" "LocalBA.maxKeyFrames: 0")
 cp configs/bonn.yaml "$PAPER_CONFIG"
 for kv in "${paper_keys[@]}"; do
   key="${kv%%:*}"

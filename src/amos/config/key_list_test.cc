@@ -303,7 +303,7 @@ TEST(SettingsKeys, TheTablesShowDefaultsChoicesAndFormerNames) {
   for (const char* row : {
            "| `Camera.fx` | required | focal length along x (px) |",
            "| `Tracking.maxFrames` | `Camera.fps` |",
-           "| `Dynamic.LK.epsilon` | `0.01` |",
+           "| `Dynamic.LK.epsilon` | `0.03` |",
            "| `Dynamic.Epipolar.maxIterations` | `2000` |",
            "| `Dynamic.mode` | `full` |",
            "(`none`, `prior`, `geometry`, `full`) |",

@@ -133,43 +133,88 @@ std::vector<std::vector<int>> superpixelNeighbours(const cv::Mat& labels, int co
   return neighbours;
 }
 
+namespace {
+
+// Border pixel pairs with known depth on both sides, and how many of them are depth steps, per neighbour slot.
+class OcclusionCounter {
+ public:
+  OcclusionCounter(const std::vector<std::vector<int>>& neighbours, const cv::Mat& depth, double ratio)
+      : neighbours_(neighbours), depth_(depth), ratio_(static_cast<float>(ratio)) {
+    const std::size_t count = neighbours.size();
+    pairs_.resize(count), steps_.resize(count);
+    for (std::size_t a = 0; a < count; ++a)
+      pairs_[a].assign(neighbours[a].size(), 0), steps_[a].assign(neighbours[a].size(), 0);
+  }
+
+  // The full-resolution pixels (xa, ya) of label a and (xb, yb) of label b, 4-neighbours.
+  void add(int a, int b, int xa, int ya, int xb, int yb) {
+    // The label map may come from a lower working resolution, so its border can sit a pixel or two off the depth
+    // step: compare depths two pixels away on either side (along the row or the column the pair lies on).
+    constexpr int kReach = 2;
+    const int w = depth_.cols, h = depth_.rows;
+    const int dx = xb - xa, dy = yb - ya;
+    const int xa2 = std::max(0, xa - dx * (kReach - 1)), ya2 = std::max(0, ya - dy * (kReach - 1));
+    const int xb2 = std::min(w - 1, xb + dx * (kReach - 1)), yb2 = std::min(h - 1, yb + dy * (kReach - 1));
+    const float za = depth_.ptr<float>(ya2)[xa2], zb = depth_.ptr<float>(yb2)[xb2];
+    if (!(za > 0.f) || !(zb > 0.f)) return;  // unknown (or NaN) depth: no say
+    if (a != last_a_ || b != last_b_) {
+      const int count = static_cast<int>(neighbours_.size());
+      if (a < 0 || b < 0 || a >= count || b >= count) throw core::Error("occlusionEdges: label out of range");
+      slot_a_ = findIn(neighbours_[a], b), slot_b_ = findIn(neighbours_[b], a);
+      if (slot_a_ < 0 || slot_b_ < 0) throw core::Error("occlusionEdges: neighbours do not match the labels");
+      last_a_ = a, last_b_ = b;
+    }
+    const bool step = std::fabs(za - zb) > ratio_ * std::min(za, zb);
+    ++pairs_[a][slot_a_], ++pairs_[b][slot_b_];
+    if (step) ++steps_[a][slot_a_], ++steps_[b][slot_b_];
+  }
+
+  std::vector<std::vector<bool>> occluding() const {
+    std::vector<std::vector<bool>> out(neighbours_.size());
+    for (std::size_t a = 0; a < neighbours_.size(); ++a) {
+      out[a].resize(neighbours_[a].size());
+      for (std::size_t k = 0; k < neighbours_[a].size(); ++k) out[a][k] = 2 * steps_[a][k] > pairs_[a][k];
+    }
+    return out;
+  }
+
+ private:
+  const std::vector<std::vector<int>>& neighbours_;
+  const cv::Mat& depth_;
+  float ratio_;
+  std::vector<std::vector<int>> pairs_, steps_;
+  int last_a_ = -1, last_b_ = -1, slot_a_ = -1, slot_b_ = -1;
+};
+
+}  // namespace
+
 std::vector<std::vector<bool>> occlusionEdges(const cv::Mat& labels, const std::vector<std::vector<int>>& neighbours,
                                               const cv::Mat& depth, double ratio) {
   core::require(labels.type() == CV_32S && depth.type() == CV_32F && depth.size() == labels.size(),
                 "occlusionEdges: labels CV_32S and depth CV_32F of the same size");
-  const int count = static_cast<int>(neighbours.size());
-  // Per neighbour slot: border pixel pairs with known depth on both sides, and how many of them are steps.
-  std::vector<std::vector<int>> pairs(count), steps(count);
-  for (int a = 0; a < count; ++a) pairs[a].assign(neighbours[a].size(), 0), steps[a].assign(neighbours[a].size(), 0);
-  // The label map may come from a lower working resolution, so its border can sit a pixel or two off the depth
-  // step: compare depths two pixels away on either side.
-  constexpr int kReach = 2;
-  const int w = labels.cols, h = labels.rows;
-  const float r = static_cast<float>(ratio);
-  int last_a = -1, last_b = -1, slot_a = -1, slot_b = -1;
-  forEachLabelChange(labels, [&](int a, int b, int xa, int ya, int xb, int yb) {
-    // Step outwards from the border on both sides (along the row or the column the pair lies on).
-    const int dx = xb - xa, dy = yb - ya;
-    const int xa2 = std::max(0, xa - dx * (kReach - 1)), ya2 = std::max(0, ya - dy * (kReach - 1));
-    const int xb2 = std::min(w - 1, xb + dx * (kReach - 1)), yb2 = std::min(h - 1, yb + dy * (kReach - 1));
-    const float za = depth.ptr<float>(ya2)[xa2], zb = depth.ptr<float>(yb2)[xb2];
-    if (!(za > 0.f) || !(zb > 0.f)) return;  // unknown (or NaN) depth: no say
-    if (a != last_a || b != last_b) {
-      if (a < 0 || b < 0 || a >= count || b >= count) throw core::Error("occlusionEdges: label out of range");
-      slot_a = findIn(neighbours[a], b), slot_b = findIn(neighbours[b], a);
-      if (slot_a < 0 || slot_b < 0) throw core::Error("occlusionEdges: neighbours do not match the labels");
-      last_a = a, last_b = b;
+  OcclusionCounter counter(neighbours, depth, ratio);
+  forEachLabelChange(labels, [&](int a, int b, int xa, int ya, int xb, int yb) { counter.add(a, b, xa, ya, xb, yb); });
+  return counter.occluding();
+}
+
+std::vector<std::vector<bool>> occlusionEdgesOfBlocks(const cv::Mat& block_labels, int factor,
+                                                      const std::vector<std::vector<int>>& neighbours,
+                                                      const cv::Mat& depth, double ratio) {
+  core::require(factor >= 1 && block_labels.type() == CV_32S && depth.type() == CV_32F &&
+                    depth.cols == factor * block_labels.cols && depth.rows == factor * block_labels.rows,
+                "occlusionEdgesOfBlocks: labels CV_32S, depth CV_32F of factor times their size");
+  // A label change between two blocks is a change between the facing pixels of every row (or column) of them,
+  // and the blocks hold no change inside: the same pairs as a scan of the upsampled map, a factor^2 fewer pixels.
+  OcclusionCounter counter(neighbours, depth, ratio);
+  const int f = factor;
+  forEachLabelChange(block_labels, [&](int a, int b, int xa, int ya, int xb, int yb) {
+    if (yb == ya) {  // side by side: the pairs along the shared column border
+      for (int r = 0; r < f; ++r) counter.add(a, b, f * xa + f - 1, f * ya + r, f * xb, f * yb + r);
+    } else {  // one above the other
+      for (int c = 0; c < f; ++c) counter.add(a, b, f * xa + c, f * ya + f - 1, f * xb + c, f * yb);
     }
-    const bool step = std::fabs(za - zb) > r * std::min(za, zb);
-    ++pairs[a][slot_a], ++pairs[b][slot_b];
-    if (step) ++steps[a][slot_a], ++steps[b][slot_b];
   });
-  std::vector<std::vector<bool>> occluding(count);
-  for (int a = 0; a < count; ++a) {
-    occluding[a].resize(neighbours[a].size());
-    for (std::size_t k = 0; k < neighbours[a].size(); ++k) occluding[a][k] = 2 * steps[a][k] > pairs[a][k];
-  }
-  return occluding;
+  return counter.occluding();
 }
 
 double superpixelDissimilarity(const Superpixel& a, const Superpixel& b, double colour_scale, double depth_scale_m) {
@@ -306,7 +351,15 @@ SuperpixelGraph superpixelGraph(const SuperpixelSegmentation& segmentation, cons
   // and loses none.
   const cv::Mat& adjacency_labels = segmentation.working_labels.empty() ? segmentation.labels : segmentation.working_labels;
   graph.neighbours = superpixelNeighbours(adjacency_labels, static_cast<int>(segmentation.superpixels.size()));
-  graph.occlusion_edges = occlusionEdges(segmentation.labels, graph.neighbours, depth, depth_edge_ratio);
+  // The full-resolution labels are the working ones upsampled by nearest neighbour: for an integer factor the
+  // block scan gives the same edges at a quarter (factor 2) of the pixels.
+  const cv::Mat& working = segmentation.working_labels;
+  const int factor = working.empty() ? 0 : segmentation.labels.cols / working.cols;
+  if (factor >= 1 && segmentation.labels.cols == factor * working.cols &&
+      segmentation.labels.rows == factor * working.rows)
+    graph.occlusion_edges = occlusionEdgesOfBlocks(working, factor, graph.neighbours, depth, depth_edge_ratio);
+  else
+    graph.occlusion_edges = occlusionEdges(segmentation.labels, graph.neighbours, depth, depth_edge_ratio);
   return graph;
 }
 

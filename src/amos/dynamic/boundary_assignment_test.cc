@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <opencv2/imgproc.hpp>
+#include <random>
 
 namespace amos::dynamic {
 namespace {
@@ -168,6 +170,43 @@ struct FiveByFiveBlocks {
   // Centre of block s.
   static cv::Point2f at(int s) { return cv::Point2f(10.f * (s % 5) + 5, 10.f * (s / 5) + 5); }
 };
+
+// The block scan on the working-resolution labels is the full-resolution scan of their upsampling, edge for edge:
+// irregular superpixels (nearest of 40 random seeds), a depth per superpixel with steps of every size between
+// them, a slope, holes and near-ties, at factors 2 and 3.
+TEST(SuperpixelRegions, OcclusionEdgesOfBlocksEqualThoseOfTheUpsampledLabels) {
+  std::mt19937 random(7);
+  for (const int factor : {2, 3}) {
+    const cv::Size small(53, 41);
+    std::vector<cv::Point> seeds;
+    std::uniform_int_distribution<int> sx(0, small.width - 1), sy(0, small.height - 1);
+    for (int i = 0; i < 40; ++i) seeds.emplace_back(sx(random), sy(random));
+    cv::Mat block_labels(small, CV_32S);
+    for (int y = 0; y < small.height; ++y)
+      for (int x = 0; x < small.width; ++x) {
+        int best = 0;
+        for (int i = 1; i < 40; ++i)
+          if (cv::norm(seeds[i] - cv::Point(x, y)) < cv::norm(seeds[best] - cv::Point(x, y))) best = i;
+        block_labels.at<int>(y, x) = best;
+      }
+    cv::Mat labels;
+    cv::resize(block_labels, labels, cv::Size(), factor, factor, cv::INTER_NEAREST);
+    std::uniform_real_distribution<float> base(1.f, 4.f), hole(0.f, 1.f);
+    std::vector<float> level(40);
+    for (float& z : level) z = base(random);
+    cv::Mat depth(labels.size(), CV_32F);
+    for (int y = 0; y < depth.rows; ++y)
+      for (int x = 0; x < depth.cols; ++x)
+        depth.at<float>(y, x) = hole(random) < 0.05f ? 0.f : level[labels.at<int>(y, x)] + 0.002f * x;
+    const auto neighbours = superpixelNeighbours(block_labels, 40);
+    ASSERT_EQ(neighbours, superpixelNeighbours(labels, 40));
+    const auto full = occlusionEdges(labels, neighbours, depth, 0.05);
+    EXPECT_EQ(occlusionEdgesOfBlocks(block_labels, factor, neighbours, depth, 0.05), full) << "factor " << factor;
+    int edges = 0;
+    for (const auto& row : full) edges += static_cast<int>(std::count(row.begin(), row.end(), true));
+    EXPECT_GT(edges, 10);  // the comparison is not between two empty answers
+  }
+}
 
 TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
   // Cluster 0 is dynamic and moves by (3, 0) px; cluster 1 is static.
