@@ -8,15 +8,10 @@
 #   bash bench/bonn_speed.sh [RUNS=3] [VARIANTS="none full paper realtime"]
 # Needs build/bin/amos-slam, ../shared/data/bonn_crowd_dev and python3. Run on an otherwise idle machine.
 set -euo pipefail
-cd "$(dirname "$0")/.."
 RUNS="${1:-3}"
 VARIANTS="${2:-none full paper realtime}"
-BIN=build/bin/amos-slam
-SEQ="${AMOS_DATA_DIR:-../shared/data}/bonn_crowd_dev"
-OUT="${AMOS_BENCH_OUT:-out/bonn_speed}"
-[ -x "$BIN" ] || { echo "bonn_speed: $BIN is missing: run bash scripts/build.sh first" >&2; exit 2; }
-[ -d "$SEQ" ] || { echo "bonn_speed: $SEQ is missing" >&2; exit 2; }
-mkdir -p "$OUT"
+NAME=bonn_speed
+source "$(dirname "$0")/common.sh"
 PAPER_CONFIG="$OUT/bonn_paper.yaml"
 # configs/bonn.yaml with these keys set (replaced where the file sets them: a key set twice is an error).
 paper_keys=("Dynamic.Prior.interval: 1" "Dynamic.Prior.lag: 0" "Dynamic.LK.window: 15" "Dynamic.LK.maxIterations: 30"

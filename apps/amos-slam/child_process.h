@@ -1,5 +1,6 @@
 #pragma once
-// For the tests of the program (*_test.cc here): amos-slam run in a child process, its stderr read line by line.
+// For the tests of the program (*_test.cc here): amos-slam run in a child process, its stderr read line by line;
+// the output folders and synthetic input those tests share.
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,7 +14,33 @@
 #include <string>
 #include <vector>
 
+#include "amos/synth/sequence.h"
+#include "amos/testing/scratch_dir.h"
+
 namespace amos::app {
+
+// A folder for one test's run outputs: <group>/<name> inside this process's scratch folder (testing::scratchDir,
+// so two test processes never share one), absent (its parent exists), as `run --output` is given it.
+inline std::filesystem::path testOutputDir(const std::string& group, const std::string& name) {
+  static const std::filesystem::path root = testing::scratchDir("amos_app_tests");
+  const std::filesystem::path dir = root / group / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir.parent_path());
+  return dir;
+}
+
+// A synthetic sequence (synth preset, seed 1, `frames` frames), rendered once into the build folder's cache.
+inline std::string syntheticSequence(const std::string& preset, int frames) {
+  return synth::cachedSequence((std::filesystem::path(AMOS_BINARY_DIR) / "test_outputs" / "synth_cache").string(),
+                               preset, 1, frames);
+}
+
+// `run` of `sequence` with configs/tum3.yaml in `mode`, a progress line for every frame.
+inline std::vector<std::string> runArgs(const std::string& sequence, const std::string& mode,
+                                        const std::filesystem::path& output) {
+  return {"run", "--sequence", sequence, "--config", std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml",
+          "--mode", mode, "--output", output.string(), "--progress-every", "1"};
+}
 
 struct Finished {
   int status = 0;  // as waitpid gives it

@@ -29,22 +29,11 @@ namespace fs = std::filesystem;
 
 constexpr int kFrames = 40;
 
-std::string sequence() {
-  return synth::cachedSequence((fs::path(AMOS_BINARY_DIR) / "test_outputs" / "synth_cache").string(), "static_xyz",
-                               1, kFrames);
-}
+std::string sequence() { return syntheticSequence("static_xyz", kFrames); }
 
-fs::path outputDir(const std::string& name) {
-  const fs::path dir = fs::path(AMOS_BINARY_DIR) / "test_outputs" / "app" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir.parent_path());
-  return dir;
-}
+fs::path outputDir(const std::string& name) { return testOutputDir("run", name); }
 
-std::vector<std::string> runArgs(const fs::path& output) {
-  return {"run", "--sequence", sequence(), "--config", std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml",
-          "--mode", "none", "--output", output.string(), "--progress-every", "1"};
-}
+std::vector<std::string> runArgs(const fs::path& output) { return app::runArgs(sequence(), "none", output); }
 
 // Lines of a trajectory file that hold a pose.
 std::size_t poses(const fs::path& trajectory) {

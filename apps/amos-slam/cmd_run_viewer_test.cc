@@ -28,22 +28,14 @@ namespace {
 namespace fs = std::filesystem;
 
 // 120 frames replayed at 30 Hz (--realtime): four seconds in which the viewer is looked at.
-std::string sequence() {
-  return synth::cachedSequence((fs::path(AMOS_BINARY_DIR) / "test_outputs" / "synth_cache").string(), "walking_xyz",
-                               1, 120);
-}
+std::string sequence() { return syntheticSequence("walking_xyz", 120); }
 
-fs::path outputDir(const std::string& name) {
-  const fs::path dir = fs::path(AMOS_BINARY_DIR) / "test_outputs" / "app_viewer" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir.parent_path());
-  return dir;
-}
+fs::path outputDir(const std::string& name) { return testOutputDir("viewer", name); }
 
 std::vector<std::string> viewerRunArgs(const fs::path& output) {
-  return {"run", "--sequence", sequence(), "--config", std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml",
-          "--mode", "geometry", "--output", output.string(), "--progress-every", "1", "--realtime",
-          "--viewer", "--viewer-port", "0", "--viewer-hold"};
+  std::vector<std::string> args = runArgs(sequence(), "geometry", output);
+  for (const char* a : {"--realtime", "--viewer", "--viewer-port", "0", "--viewer-hold"}) args.emplace_back(a);
+  return args;
 }
 
 // The port in "viewer: http://127.0.0.1:PORT/".
@@ -129,6 +121,42 @@ TEST(RunViewer, EndpointsShowTheRunWhileItGoes) {
   EXPECT_FALSE(data["ate"]["error_m"].empty());
   EXPECT_FALSE(data["overlays"].empty());
   EXPECT_EQ(data["settings"]["options"]["mode"], "geometry");
+}
+
+// --load-map passes through the viewer: the page shows the map the run started from and says where it came from.
+TEST(RunViewer, ALoadedMapIsShownFromTheStart) {
+  const fs::path first = outputDir("map_first_half"), second = outputDir("map_second_half");
+  const fs::path map_file = first.parent_path() / "first_half.map";
+  std::vector<std::string> save = runArgs(sequence(), "geometry", first);
+  save.insert(save.end(), {"--max-frames", "60", "--save-map", map_file.string()});
+  const Finished saved = runChild(save, first.string() + ".stdout");
+  ASSERT_TRUE(WIFEXITED(saved.status) && WEXITSTATUS(saved.status) == 0) << saved.err;
+  ASSERT_TRUE(fs::exists(map_file)) << saved.err;
+
+  std::vector<std::string> args = viewerRunArgs(second);
+  args.insert(args.end(), {"--first-frame", "60", "--load-map", map_file.string(), "--localize"});
+  int port = 0;
+  nlohmann::json at_start, at_end;
+  const Finished f = runChild(args, second.string() + ".stdout", [&](const std::string& line, pid_t pid) {
+    if (const auto p = viewerPort(line)) port = *p;
+    if (port > 0 && at_start.is_null() && progressFrame(line) >= 1) at_start = getState(port);
+    if (port > 0 && contains(line, "still serving")) {
+      at_end = getState(port);
+      kill(pid, SIGTERM);
+    }
+  });
+  ASSERT_TRUE(WIFEXITED(f.status)) << f.err;
+  ASSERT_TRUE(at_start.is_object()) << f.err;
+  const nlohmann::json& loaded = at_start["info"]["loaded_map"];
+  ASSERT_TRUE(loaded.is_object()) << at_start["info"].dump();
+  EXPECT_EQ(loaded["file"], map_file.string());
+  EXPECT_EQ(loaded["localize"], true);
+  EXPECT_GT(loaded["keyframes"].get<int>(), 2);
+  EXPECT_GT(loaded["points"].get<int>(), 100);
+  // The page shows the loaded map, to which localising adds nothing.
+  EXPECT_EQ(at_end["keyframes"].size(), loaded["keyframes"].get<std::size_t>());
+  EXPECT_EQ(at_end["points"].size(), loaded["points"].get<std::size_t>());
+  EXPECT_GT(at_end["trajectory"].size(), 40u);
 }
 
 TEST(ViewCommand, ServesAFinishedRunAndNothingOutsideIt) {

@@ -31,6 +31,9 @@ struct RunStart {
   core::CameraIntrinsics camera;
   std::size_t total_frames = 0;  // 0 = live source
   std::string sequence, mode;
+  // --load-map: the map file the run started from ("" = an empty map) and whether it only localises in it.
+  std::string loaded_map;
+  bool localize = false;
   // The sequence's ground truth as camera poses (T_wc; Bonn marker poses already converted), empty when none.
   std::vector<io::StampedPose> ground_truth;
 };

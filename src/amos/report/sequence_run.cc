@@ -255,6 +255,8 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     start.total_frames = source->size();
     start.sequence = live ? options.camera : options.sequence_dir;
     start.mode = options.mode;
+    start.loaded_map = options.load_map;
+    start.localize = options.localize;
     start.ground_truth = observedGroundTruth(gt_file, settings.groundtruth_format);
     for (RunObserver* o : options.observers) o->onStart(start);
   }

@@ -1,5 +1,7 @@
 #include "amos/viewer/snapshot_publisher.h"
 
+#include <shared_mutex>
+
 #include <pthread.h>
 #include <spdlog/spdlog.h>
 
@@ -19,8 +21,19 @@ TrajectoryPoint centreOf(double timestamp, const core::SE3& T_cw) {
 }
 
 nlohmann::json infoJson(const report::RunStart& s) {
+  nlohmann::json map_source = nullptr;  // an empty map
+  if (!s.loaded_map.empty()) {
+    // What the run started from: the page shows it, so that the first map seen is known to be the loaded one.
+    std::size_t keyframes = 0, points = 0;
+    if (s.map) {
+      std::shared_lock lock(s.map->mutex());
+      keyframes = s.map->numKeyFrames(), points = s.map->numMapPoints();
+    }
+    map_source = {{"file", s.loaded_map}, {"localize", s.localize}, {"keyframes", keyframes}, {"points", points}};
+  }
   return {{"sequence", s.sequence},
           {"mode", s.mode},
+          {"loaded_map", map_source},
           {"frames", s.total_frames},
           {"live", true},
           {"has_ground_truth", !s.ground_truth.empty()},

@@ -287,7 +287,13 @@
 
   function showStatus() {
     $('mode').textContent = info.mode ? 'mode ' + info.mode : '';
-    $('sequence').textContent = (info.live ? 'live: ' : 'finished run: ') + (info.sequence || '');
+    let source = (info.live ? 'live: ' : 'finished run: ') + (info.sequence || '');
+    const m = info.loaded_map;
+    if (m) {
+      source += ' · started from the map ' + m.file + ' (' + m.keyframes + ' keyframes, ' + m.points + ' points)' +
+                (m.localize ? ', localising only' : ', extended by this run');
+    }
+    $('sequence').textContent = source;
     const f = lastFrame;
     let html = '';
     if (f) {
