@@ -50,6 +50,13 @@ struct Centre {
   float z_weight = 0;  // 1 when the centre has a valid mean depth, else 0
 };
 
+// The integer factor by which `small` divides `big` in both directions, or 0 when there is none.
+int integerFactor(cv::Size big, cv::Size small) {
+  if (small.width <= 0 || small.height <= 0 || big.width % small.width != 0) return 0;
+  const int f = big.width / small.width;
+  return f >= 1 && big.height == f * small.height ? f : 0;
+}
+
 Planes makePlanes(const cv::Mat& bgr, const cv::Mat& depth, double scale) {
   Planes p;
   p.width = std::max(1, static_cast<int>(std::lround(bgr.cols * scale)));
@@ -62,20 +69,35 @@ Planes makePlanes(const cv::Mat& bgr, const cv::Mat& depth, double scale) {
   } else {
     cv::resize(bgr, small_bgr, size, 0, 0, cv::INTER_AREA);
     // Nearest neighbour: averaging would blend foreground and background depths at edges and mix in zeros.
-    cv::resize(depth, small_depth, size, 0, 0, cv::INTER_NEAREST);
+    // For an integer factor f that is every f-th pixel of every f-th row (what cv::resize's nearest neighbour
+    // picks too, floor(x * f)), taken directly: OpenCV's general path costs twice the colour resize.
+    if (const int f = integerFactor(depth.size(), size); f > 0) {
+      small_depth.create(size, CV_32F);
+      for (int y = 0; y < p.height; ++y) {
+        const float* in = depth.ptr<float>(f * y);
+        float* out = small_depth.ptr<float>(y);
+        for (int x = 0; x < p.width; ++x) out[x] = in[f * x];
+      }
+    } else {
+      cv::resize(depth, small_depth, size, 0, 0, cv::INTER_NEAREST);
+    }
   }
   // The 8-bit conversion runs on lookup tables (several times faster than the float path) and its 1/255
   // quantisation is far below SLIC's colour scale. Undo its packing: L8 = L * 255 / 100, a8 = a + 128.
   cv::Mat lab8;
   cv::cvtColor(small_bgr, lab8, cv::COLOR_BGR2Lab);
-  cv::Mat channels[3];
-  cv::split(lab8, channels);
-  channels[0].convertTo(p.L, CV_32F, 100.0 / 255.0);
-  channels[1].convertTo(p.A, CV_32F, 1.0, -128.0);
-  channels[2].convertTo(p.B, CV_32F, 1.0, -128.0);
+  p.L.create(size, CV_32F), p.A.create(size, CV_32F), p.B.create(size, CV_32F);
   p.Z.create(size, CV_32F);
   p.valid.create(size, CV_32F);
+  constexpr float kL8ToL = static_cast<float>(100.0 / 255.0);
   for (int y = 0; y < p.height; ++y) {
+    const std::uint8_t* lab = lab8.ptr<std::uint8_t>(y);
+    float *L = p.L.ptr<float>(y), *A = p.A.ptr<float>(y), *B = p.B.ptr<float>(y);
+    for (int x = 0; x < p.width; ++x) {
+      L[x] = static_cast<float>(lab[3 * x]) * kL8ToL;
+      A[x] = static_cast<float>(lab[3 * x + 1]) - 128.f;
+      B[x] = static_cast<float>(lab[3 * x + 2]) - 128.f;
+    }
     const float* d = small_depth.ptr<float>(y);
     float* z = p.Z.ptr<float>(y);
     float* v = p.valid.ptr<float>(y);
@@ -288,41 +310,68 @@ void updateCentres(const Planes& p, const cv::Mat& labels, std::vector<Centre>& 
 // surfaces glues fragments across depth edges. Relabels consecutively; returns the label count.
 int enforceConnectivity(const Planes& p, cv::Mat& labels, int min_size, float inv_colour, float inv_depth) {
   const int w = labels.cols, h = labels.rows;
-  cv::Mat comp(labels.size(), CV_32S, cv::Scalar(-1));
+  cv::Mat comp(labels.size(), CV_32S);
   struct Stats {
     double L = 0, A = 0, B = 0, z = 0;
     int n = 0, nz = 0;
   };
-  std::vector<Stats> stats;
-  // Flat indexing: every plane here is a freshly allocated, continuous matrix.
-  const int* old_labels = labels.ptr<int>();
-  int* comp_of = comp.ptr<int>();
-  const float *L = p.L.ptr<float>(), *A = p.A.ptr<float>(), *B = p.B.ptr<float>();
-  const float *Z = p.Z.ptr<float>(), *V = p.valid.ptr<float>();
-  // Pixel indices with their column (a division per pixel would cost more than the rest of the walk).
-  std::vector<std::pair<int, int>> queue;
-  queue.reserve(static_cast<std::size_t>(w) * h);
-  for (int start = 0; start < w * h; ++start) {
-    if (comp_of[start] >= 0) continue;
-    const int old = old_labels[start], id = static_cast<int>(stats.size());
-    Stats st;
-    queue.clear();
-    queue.emplace_back(start, start % w);
-    comp_of[start] = id;
-    for (std::size_t q = 0; q < queue.size(); ++q) {
-      const auto [i, qx] = queue[q];
-      st.L += L[i], st.A += A[i], st.B += B[i];
-      if (V[i] > 0.f) st.z += Z[i], ++st.nz;
-      auto visit = [&](int j, int jx) {
-        if (comp_of[j] < 0 && old_labels[j] == old) comp_of[j] = id, queue.emplace_back(j, jx);
-      };
-      if (qx > 0) visit(i - 1, qx - 1);
-      if (qx + 1 < w) visit(i + 1, qx + 1);
-      if (i >= w) visit(i - w, qx);
-      if (i + w < w * h) visit(i + w, qx);
+  // 4-connected components as runs of one label along the rows, joined by union-find to the runs of the row above
+  // that overlap them with the same label; then numbered in the raster order of their first pixel.
+  struct Run {
+    int x0, x1, label, node;
+  };
+  std::vector<Run> runs;
+  runs.reserve(static_cast<std::size_t>(h) * 32);
+  std::vector<int> row_start(h + 1, 0);
+  std::vector<int> run_parent;
+  auto run_root = [&](int i) {
+    while (run_parent[i] != i) i = run_parent[i] = run_parent[run_parent[i]];
+    return i;
+  };
+  for (int y = 0; y < h; ++y) {
+    row_start[y] = static_cast<int>(runs.size());
+    const int* row = labels.ptr<int>(y);
+    for (int x0 = 0; x0 < w;) {
+      int x1 = x0 + 1;
+      while (x1 < w && row[x1] == row[x0]) ++x1;
+      const int node = static_cast<int>(run_parent.size());
+      run_parent.push_back(node);
+      runs.push_back({x0, x1, row[x0], node});
+      x0 = x1;
     }
-    st.n = static_cast<int>(queue.size());
-    stats.push_back(st);
+  }
+  row_start[h] = static_cast<int>(runs.size());
+  for (int y = 1; y < h; ++y) {
+    int above = row_start[y - 1];
+    for (int r = row_start[y]; r < row_start[y + 1]; ++r) {
+      const Run& run = runs[r];
+      while (above < row_start[y] && runs[above].x1 <= run.x0) ++above;  // runs of the row above ending before
+      for (int a = above; a < row_start[y] && runs[a].x0 < run.x1; ++a) {
+        if (runs[a].label != run.label) continue;
+        const int ra = run_root(runs[a].node), rb = run_root(run.node);
+        if (ra != rb) run_parent[std::max(ra, rb)] = std::min(ra, rb);  // the earlier run stays the root
+      }
+    }
+  }
+  std::vector<int> id_of_root(run_parent.size(), -1);
+  std::vector<Stats> stats;
+  const float *Lp = nullptr, *Ap = nullptr, *Bp = nullptr, *Zp = nullptr, *Vp = nullptr;
+  for (int y = 0; y < h; ++y) {
+    int* out = comp.ptr<int>(y);
+    Lp = p.L.ptr<float>(y), Ap = p.A.ptr<float>(y), Bp = p.B.ptr<float>(y), Zp = p.Z.ptr<float>(y);
+    Vp = p.valid.ptr<float>(y);
+    for (int r = row_start[y]; r < row_start[y + 1]; ++r) {
+      const Run& run = runs[r];
+      int& id = id_of_root[run_root(run.node)];
+      if (id < 0) id = static_cast<int>(stats.size()), stats.emplace_back();
+      Stats& st = stats[id];
+      for (int x = run.x0; x < run.x1; ++x) {
+        out[x] = id;
+        st.L += Lp[x], st.A += Ap[x], st.B += Bp[x];
+        if (Vp[x] > 0.f) st.z += Zp[x], ++st.nz;
+      }
+      st.n += run.x1 - run.x0;
+    }
   }
   const int count = static_cast<int>(stats.size());
   // Neighbours of the small components.
@@ -464,6 +513,17 @@ SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth
   result.working_labels = labels;
   if (labels.size() == bgr.size()) {
     result.labels = labels;
+  } else if (const int f = integerFactor(bgr.size(), labels.size()); f > 0) {
+    // Every working label as an f x f block (cv::resize's nearest neighbour gives the same, through its general
+    // per-pixel index tables at several times the cost).
+    result.labels.create(bgr.size(), CV_32S);
+    for (int y = 0; y < labels.rows; ++y) {
+      const int* in = labels.ptr<int>(y);
+      int* out = result.labels.ptr<int>(f * y);
+      for (int x = 0; x < labels.cols; ++x)
+        for (int k = 0; k < f; ++k) out[f * x + k] = in[x];
+      for (int r = 1; r < f; ++r) std::copy(out, out + bgr.cols, result.labels.ptr<int>(f * y + r));
+    }
   } else {
     cv::resize(labels, result.labels, bgr.size(), 0, 0, cv::INTER_NEAREST);
   }
