@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 
 #include <algorithm>
 #include <array>
@@ -31,6 +30,9 @@ namespace {
 // EPnP is well conditioned from 5 points on (OpenCV's own RANSAC uses 5 for EPnP too); 4 would be the minimum.
 constexpr int kEpnpSampleSize = 5;
 constexpr int kP3pSampleSize = 3;
+// Support a pose needs at the least, whichever solver drew it: more than the 5 points EPnP fits exactly (a 3-point
+// AP3P sample is held to the same bar, so that both solvers accept the same poses).
+constexpr int kMinSupport = kEpnpSampleSize + 1;
 constexpr int kMaxSampleSize = kEpnpSampleSize;
 // Gauss-Newton rounds of the final refinement and re-evaluations of the inlier set after it.
 constexpr int kRefineIterations = 10;
@@ -131,40 +133,48 @@ core::SE3 refinePose(core::SE3 T_cw, const std::vector<Eigen::Vector3d>& points_
   return T_cw;
 }
 
+// What ap3pPoses needs between samples: OpenCV returns the poses in matrices, kept here across the samples of one
+// RANSAC so that a sample allocates nothing once they have their size.
+struct P3pBuffers {
+  std::vector<cv::Mat> rvecs, tvecs;
+};
+
 // AP3P's up to four poses from three correspondences (normalised coordinates, so the camera matrix is the
 // identity). Degenerate samples (collinear points) give none.
 void ap3pPoses(const std::vector<Eigen::Vector3d>& sample_w, const std::vector<Eigen::Vector2d>& sample_xy,
-               std::vector<core::SE3>& poses) {
-  cv::Mat object(kP3pSampleSize, 1, CV_64FC3), image(kP3pSampleSize, 1, CV_64FC2);
+               P3pBuffers& buffers, std::vector<core::SE3>& poses) {
+  // One point per row (3x3 and 3x2 single-channel, as solveP3P accepts them), on the stack.
+  cv::Matx33d object;
+  cv::Matx32d image;
   for (int k = 0; k < kP3pSampleSize; ++k) {
-    object.at<cv::Vec3d>(k) = {sample_w[k].x(), sample_w[k].y(), sample_w[k].z()};
-    image.at<cv::Vec2d>(k) = {sample_xy[k].x(), sample_xy[k].y()};
+    for (int c = 0; c < 3; ++c) object(k, c) = sample_w[k][c];
+    for (int c = 0; c < 2; ++c) image(k, c) = sample_xy[k][c];
   }
-  std::vector<cv::Mat> rvecs, tvecs;
   int found = 0;
   try {
-    found = cv::solveP3P(object, image, cv::Matx33d::eye(), cv::noArray(), rvecs, tvecs, cv::SOLVEPNP_AP3P);
+    found = cv::solveP3P(object, image, cv::Matx33d::eye(), cv::noArray(), buffers.rvecs, buffers.tvecs,
+                         cv::SOLVEPNP_AP3P);
   } catch (const cv::Exception&) {
     return;  // a degenerate sample: no hypothesis
   }
   for (int s = 0; s < found; ++s) {
     cv::Matx33d R;
-    cv::Rodrigues(rvecs[s], R);
-    const cv::Vec3d t(tvecs[s]);
-    Eigen::Matrix3d R_e;
-    cv::cv2eigen(R, R_e);
+    cv::Rodrigues(buffers.rvecs[s], R);
+    const cv::Vec3d t(buffers.tvecs[s]);
     core::SE3 T = core::SE3::Identity();
-    T.linear() = R_e;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) T.linear()(r, c) = R(r, c);
     T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
     if (T.matrix().allFinite()) poses.push_back(T);
   }
 }
 
 void hypothesesFromSample(PnpMinimalSolver solver, const std::vector<Eigen::Vector3d>& sample_w,
-                          const std::vector<Eigen::Vector2d>& sample_xy, std::vector<core::SE3>& poses) {
+                          const std::vector<Eigen::Vector2d>& sample_xy, P3pBuffers& buffers,
+                          std::vector<core::SE3>& poses) {
   poses.clear();
   if (solver == PnpMinimalSolver::kAp3p) {
-    ap3pPoses(sample_w, sample_xy, poses);
+    ap3pPoses(sample_w, sample_xy, buffers, poses);
   } else if (const std::optional<core::SE3> T = solveEpnp(sample_w, sample_xy)) {
     poses.push_back(*T);
   }
@@ -191,6 +201,7 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
   std::vector<Eigen::Vector3d> sample_w(sample_size);
   std::vector<Eigen::Vector2d> sample_xy(sample_size);
   std::vector<core::SE3> hypotheses;
+  P3pBuffers p3p_buffers;
   std::vector<int> support;
 
   // LO-RANSAC over the minimal solver's hypotheses; the iteration budget shrinks as the best inlier ratio grows
@@ -204,7 +215,7 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
       sample_w[k] = points_w[idx[k]];
       sample_xy[k] = normalized[idx[k]];
     }
-    hypothesesFromSample(options.minimal_solver, sample_w, sample_xy, hypotheses);
+    hypothesesFromSample(options.minimal_solver, sample_w, sample_xy, p3p_buffers, hypotheses);
     for (const core::SE3& T : hypotheses) {
       int count = countInliers(T, points_w, pixels, camera, threshold2);
       if (count <= best_count) continue;
@@ -234,7 +245,7 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
       }
     }
   }
-  if (best_count < std::max(kEpnpSampleSize + 1, options.min_inliers)) return result;
+  if (best_count < std::max(kMinSupport, options.min_inliers)) return result;
 
   // Refine on the inliers, then re-evaluate them with the refined pose, until the set is stable.
   std::vector<int> inliers;
