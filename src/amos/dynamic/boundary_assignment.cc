@@ -157,16 +157,19 @@ class OcclusionCounter {
     const int xb2 = std::min(w - 1, xb + dx * (kReach - 1)), yb2 = std::min(h - 1, yb + dy * (kReach - 1));
     const float za = depth_.ptr<float>(ya2)[xa2], zb = depth_.ptr<float>(yb2)[xb2];
     if (!(za > 0.f) || !(zb > 0.f)) return;  // unknown (or NaN) depth: no say
-    if (a != last_a_ || b != last_b_) {
+    // The scan alternates between the pair across a column border and the pair across a row border: one
+    // remembered pair (and its neighbour slots) for each direction.
+    Slots& c = cached_[dy != 0 ? 1 : 0];
+    if (a != c.a || b != c.b) {
       const int count = static_cast<int>(neighbours_.size());
       if (a < 0 || b < 0 || a >= count || b >= count) throw core::Error("occlusionEdges: label out of range");
-      slot_a_ = findIn(neighbours_[a], b), slot_b_ = findIn(neighbours_[b], a);
-      if (slot_a_ < 0 || slot_b_ < 0) throw core::Error("occlusionEdges: neighbours do not match the labels");
-      last_a_ = a, last_b_ = b;
+      c.slot_a = findIn(neighbours_[a], b), c.slot_b = findIn(neighbours_[b], a);
+      if (c.slot_a < 0 || c.slot_b < 0) throw core::Error("occlusionEdges: neighbours do not match the labels");
+      c.a = a, c.b = b;
     }
     const bool step = std::fabs(za - zb) > ratio_ * std::min(za, zb);
-    ++pairs_[a][slot_a_], ++pairs_[b][slot_b_];
-    if (step) ++steps_[a][slot_a_], ++steps_[b][slot_b_];
+    ++pairs_[a][c.slot_a], ++pairs_[b][c.slot_b];
+    if (step) ++steps_[a][c.slot_a], ++steps_[b][c.slot_b];
   }
 
   std::vector<std::vector<bool>> occluding() const {
@@ -183,7 +186,10 @@ class OcclusionCounter {
   const cv::Mat& depth_;
   float ratio_;
   std::vector<std::vector<int>> pairs_, steps_;
-  int last_a_ = -1, last_b_ = -1, slot_a_ = -1, slot_b_ = -1;
+  struct Slots {
+    int a = -1, b = -1, slot_a = -1, slot_b = -1;
+  };
+  Slots cached_[2];
 };
 
 }  // namespace

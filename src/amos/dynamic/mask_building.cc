@@ -39,11 +39,13 @@ bool depthEdgeInWindow(const cv::Mat& depth, cv::Point2f p, int r, double ratio)
 }  // namespace
 
 void markLabelledPixels(const cv::Mat& label_map, const std::vector<bool>& marked, cv::Mat& mask) {
+  // Bytes instead of vector<bool>'s bits: looked up for every pixel of the frame.
+  const std::vector<uchar> value(marked.begin(), marked.end());
   for (int y = 0; y < mask.rows; ++y) {
     const int* label = label_map.ptr<int>(y);
     uchar* m = mask.ptr<uchar>(y);
     for (int x = 0; x < mask.cols; ++x)
-      if (marked[label[x]]) m[x] = 255;
+      if (value[label[x]]) m[x] = 255;
   }
 }
 
