@@ -119,6 +119,9 @@ KeySection loopKeys(loop::LoopClosingOptions& o, const mapping::LocalMappingOpti
         "since a false loop bends the whole map");
   s.add("Loop.consistency", &o.detector.consistency,
         "consecutive keyframes whose loop candidates must point at the same place before one is verified; 0 = off");
+  s.add("Loop.singleKeyFrameInliers", &o.detector.single_keyframe_inliers,
+        "a candidate not yet consistent is verified too and accepted on one keyframe with this many inliers "
+        "(0 = only consistent candidates, ORB-SLAM2's rule; else at least `minInliers`)");
   s.add("Loop.reprojectionThreshold", &o.detector.pnp.reprojection_threshold_px,
         "PnP RANSAC inlier threshold (undistorted px)");
   return s;

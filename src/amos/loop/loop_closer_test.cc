@@ -5,6 +5,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include <random>
+
+#include "amos/core/error.h"
 #include "amos/testing/test_camera.h"
 
 namespace amos::loop {
@@ -155,6 +157,46 @@ TEST(LoopCloser, OneKeyFramePointingAtAPlaceIsNotEnough) {
   options.detector.consistency = 0;  // the test off: the same keyframe closes the loop at once
   LoopCloser closer(options, s.map);
   EXPECT_TRUE(closer.process(s.kfs.back()).has_value());
+}
+
+TEST(LoopCloser, AStrongVerificationClosesOnOneKeyFrame) {
+  // The revisit may hold a single keyframe (sparse keyframes, a lap that ends where it started): a candidate the
+  // temporal test has not confirmed is accepted when its verification reaches single_keyframe_inliers.
+  LoopClosingOptions options;
+  options.detector.min_inliers = 60;
+  int inliers = 0;
+  {
+    LoopScene s;
+    buildScene(s);
+    options.detector.consistency = 0;
+    LoopCloser closer(options, s.map);
+    const auto report = closer.process(s.kfs.back());
+    ASSERT_TRUE(report.has_value());
+    inliers = report->inliers;
+  }
+  options.detector.consistency = 3;
+  ASSERT_GT(inliers, options.detector.min_inliers);
+  {
+    LoopScene s;
+    buildScene(s);
+    options.detector.single_keyframe_inliers = inliers + 1;  // one short: the loop waits for consistency
+    LoopCloser closer(options, s.map);
+    EXPECT_FALSE(closer.process(s.kfs.back()).has_value());
+  }
+  LoopScene s;
+  buildScene(s);
+  options.detector.single_keyframe_inliers = inliers;
+  LoopCloser closer(options, s.map);
+  const auto report = closer.process(s.kfs.back());
+  ASSERT_TRUE(report.has_value());
+  EXPECT_LE(report->loop, s.kfs[1]->id());
+  EXPECT_EQ(report->inliers, inliers);
+}
+
+TEST(LoopCloser, SingleKeyFrameInliersBelowMinInliersIsRefused) {
+  LoopClosingOptions options;
+  options.detector.single_keyframe_inliers = options.detector.min_inliers - 1;
+  EXPECT_THROW(options.check(), core::Error);
 }
 
 TEST(LoopCloser, NoLoopWithoutRevisit) {

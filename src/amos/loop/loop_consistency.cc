@@ -1,5 +1,7 @@
 #include "amos/loop/loop_consistency.h"
 
+#include <spdlog/spdlog.h>
+
 namespace amos::loop {
 
 namespace {
@@ -40,6 +42,11 @@ std::vector<map::KeyFramePtr> LoopConsistency::filter(const map::Map& map,
         enough = true;
       }
     }
+    int reached = 0;
+    for (std::size_t g = 0; g < groups_.size(); ++g)
+      if (shareKeyFrame(group.keyframes, groups_[g].keyframes)) reached = std::max(reached, groups_[g].consistency + 1);
+    spdlog::debug("loop consistency of candidate {}: {} (group of {} keyframes, {} previous groups)", candidate->id(),
+                  reached, group.keyframes.size(), groups_.size());
     if (!continues_some) {
       next.push_back({group.keyframes, 0});
       if (required_ == 0) consistent.push_back(candidate);

@@ -26,6 +26,11 @@ void LoopDetectorOptions::check() const {
                       fmt::format("must be >= min_matches = {}, got {}", min_matches, min_inliers),
                       {core::option(min_matches, "min_matches")});
   core::requireAtLeast(consistency, "consistency", 0);
+  core::requireOption(single_keyframe_inliers == 0 || single_keyframe_inliers >= min_inliers,
+                      core::option(single_keyframe_inliers, "single_keyframe_inliers"),
+                      fmt::format("must be 0 (off) or >= min_inliers = {}, got {}", min_inliers,
+                                  single_keyframe_inliers),
+                      {core::option(min_inliers, "min_inliers")});
   pnp.check();
   pose.check();
   matching.check();
@@ -80,15 +85,31 @@ std::vector<map::KeyFramePtr> rankCandidates(const map::Map& map, const map::Key
       const place::BowVector n = places->vector(id);
       if (!n.empty()) min_score = std::min(min_score, place::similarity(v, n));
     }
+    if (spdlog::should_log(spdlog::level::debug)) {  // where the place's keyframes rank, connected or not
+      std::string top;
+      int shown = 0;
+      for (const place::PlaceMatch& m : places->query(v, 0.0)) {
+        if (m.id == current->id() || m.id > current->id()) continue;
+        const map::KeyFramePtr kf = map.keyFrame(m.id);
+        top += fmt::format(" {}@{}{}:{:.3f}/{}", m.id, kf ? static_cast<long>(kf->frameId()) : -1L,
+                           connected.count(m.id) ? "c" : "", m.score, m.common_words);
+        if (++shown == 12) break;
+      }
+      spdlog::debug("loop bow at keyframe {}@{}: min covisible score {:.3f} over {} neighbours; best:{}", current->id(),
+                    current->frameId(), min_score, current->orderedConnections().size(), top);
+    }
     map::PlaceQueryOptions query;
     query.min_score = min_score;
     query.max_candidates = static_cast<std::size_t>(options.candidates);
     std::vector<map::KeyFramePtr> out;
+    std::string listed;
     for (const auto& [score, kf] : map::placeCandidates(map, *places, v, query, [&](map::KeyFrameId id) {
            return connected.count(id) > 0 || id > current->id();
          })) {
       out.push_back(kf);
+      listed += fmt::format(" {}:{:.3f}", kf->id(), score);
     }
+    spdlog::debug("loop bow candidates of keyframe {}:{}", current->id(), listed);
     return out;
   }
   for (const auto& kf : map.keyFrames()) {
@@ -115,21 +136,39 @@ std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFrame
 
   std::unordered_set<map::KeyFrameId> connected;
   std::vector<map::KeyFramePtr> candidates = rankCandidates(map, current, options, connected, places);
+  // Candidates held to min_inliers; the others (not temporally consistent yet) to single_keyframe_inliers.
+  std::unordered_set<map::KeyFrameId> confirmed;
   if (consistency != nullptr) {
-    const std::size_t ranked = candidates.size();
-    candidates = consistency->filter(map, candidates);
-    spdlog::debug("loop search at keyframe {}: {} candidates, {} consistent", current->id(), ranked, candidates.size());
+    const std::vector<map::KeyFramePtr> consistent = consistency->filter(map, candidates);
+    spdlog::debug("loop search at keyframe {}: {} candidates, {} consistent", current->id(), candidates.size(),
+                  consistent.size());
+    for (const auto& kf : consistent) confirmed.insert(kf->id());
+    if (options.single_keyframe_inliers == 0) candidates = consistent;
+  } else {
+    for (const auto& kf : candidates) confirmed.insert(kf->id());
   }
 
   for (const map::KeyFramePtr& candidate : candidates) {
+    const int needed = confirmed.count(candidate->id()) ? options.min_inliers : options.single_keyframe_inliers;
     map::Frame frame = frameOf(*current);
     int n = 0;
     std::vector<map::MapPointPtr> matches =
         match::matchFrameToKeyFrame(frame, *candidate, options.match_ratio, options.matching, &n);
-    if (n < options.min_matches) continue;
+    if (n < options.min_matches) {
+      spdlog::debug("loop candidate {} for keyframe {}: {} matches, too few", candidate->id(), current->id(), n);
+      continue;
+    }
     const int pnp_inliers = match::poseFromMatchesByPnp(frame, matches, options.pnp);
-    if (pnp_inliers == 0) continue;
-    if (match::optimizeFramePoseDroppingOutliers(frame, options.pose) < options.min_matches) continue;
+    if (pnp_inliers == 0) {
+      spdlog::debug("loop candidate {} for keyframe {}: {} matches, PnP failed", candidate->id(), current->id(), n);
+      continue;
+    }
+    const int optimized = match::optimizeFramePoseDroppingOutliers(frame, options.pose);
+    if (optimized < options.min_matches) {
+      spdlog::debug("loop candidate {} for keyframe {}: {} matches, {} PnP inliers, {} after optimisation",
+                    candidate->id(), current->id(), n, pnp_inliers, optimized);
+      continue;
+    }
 
     // The loop neighbourhood: the candidate and its covisible keyframes, projected with the verified pose.
     std::vector<map::KeyFramePtr> neighbourhood{candidate};
@@ -138,9 +177,10 @@ std::optional<LoopCandidate> detectLoop(const map::Map& map, const map::KeyFrame
       if (kf && !kf->isBad() && !connected.count(id)) neighbourhood.push_back(kf);
     }
     const int inliers = localizeAgainst(frame, neighbourhood, options);
-    spdlog::debug("loop candidate {} for keyframe {}: {} matches, {} PnP inliers, {} inliers after projection",
-                  candidate->id(), current->id(), n, pnp_inliers, inliers);
-    if (inliers < options.min_inliers) continue;
+    spdlog::debug("loop candidate {} for keyframe {}: {} matches, {} PnP inliers, {} inliers after projection "
+                  "({} needed)",
+                  candidate->id(), current->id(), n, pnp_inliers, inliers, needed);
+    if (inliers < needed) continue;
 
     LoopCandidate loop;
     loop.current = current;

@@ -5,7 +5,8 @@
 //      similarity is that of the bag-of-words vectors when there is a database (grouped by covisibility,
 //      map/place_candidates.h), else that of the thumbnails;
 //   2. temporal consistency (loop_consistency.h): only candidates that candidates of the previous keyframes also
-//      pointed at go on;
+//      pointed at go on (with min_inliers); with single_keyframe_inliers the others go on too, held to that
+//      stricter count;
 //   3. geometric verification: brute-force descriptor matches to the candidate's map points, PnP RANSAC,
 //      pose optimisation, then the points of the candidate's whole neighbourhood projected with that pose;
 //      the loop is accepted with at least `min_inliers` inliers after the final optimisation.
@@ -34,6 +35,13 @@ struct LoopDetectorOptions {
   // (loop_consistency.h; ORB-SLAM2: 3). Our candidates come from thumbnails, a weaker place signature than
   // ORB-SLAM2's bag of words, so the test matters at least as much here. 0 = off.
   int consistency = 3;
+  // Loop.singleKeyFrameInliers: a candidate the temporal test has not (yet) confirmed is still verified, and accepted
+  // on this keyframe alone when its verification finds at least this many inliers (0 = never: only consistent
+  // candidates are verified, ORB-SLAM2's rule). The temporal test counts keyframes, so it can only confirm a place
+  // the camera stays at for consistency + 1 keyframes; when keyframes are sparse (one per 30-60 frames on a room
+  // lap) the revisit may hold a single keyframe. Geometry then has to carry the decision, with a margin over
+  // min_inliers for the evidence the skipped keyframes would have added.
+  int single_keyframe_inliers = 0;
   geometry::PnpRansacOptions pnp;       // reprojection threshold, iterations, seed
   geometry::PoseOptimizerOptions pose;  // robust pose refinement
   match::MatchingOptions matching;
