@@ -360,9 +360,7 @@ SuperpixelGraph superpixelGraph(const SuperpixelSegmentation& segmentation, cons
   // The full-resolution labels are the working ones upsampled by nearest neighbour: for an integer factor the
   // block scan gives the same edges at a quarter (factor 2) of the pixels.
   const cv::Mat& working = segmentation.working_labels;
-  const int factor = working.empty() ? 0 : segmentation.labels.cols / working.cols;
-  if (factor >= 1 && segmentation.labels.cols == factor * working.cols &&
-      segmentation.labels.rows == factor * working.rows)
+  if (const int factor = integerFactor(segmentation.labels.size(), working.size()); factor > 0)
     graph.occlusion_edges = occlusionEdgesOfBlocks(working, factor, graph.neighbours, depth, depth_edge_ratio);
   else
     graph.occlusion_edges = occlusionEdges(segmentation.labels, graph.neighbours, depth, depth_edge_ratio);

@@ -50,13 +50,6 @@ struct Centre {
   float z_weight = 0;  // 1 when the centre has a valid mean depth, else 0
 };
 
-// The integer factor by which `small` divides `big` in both directions, or 0 when there is none.
-int integerFactor(cv::Size big, cv::Size small) {
-  if (small.width <= 0 || small.height <= 0 || big.width % small.width != 0) return 0;
-  const int f = big.width / small.width;
-  return f >= 1 && big.height == f * small.height ? f : 0;
-}
-
 Planes makePlanes(const cv::Mat& bgr, const cv::Mat& depth, double scale) {
   Planes p;
   p.width = std::max(1, static_cast<int>(std::lround(bgr.cols * scale)));
@@ -355,11 +348,10 @@ int enforceConnectivity(const Planes& p, cv::Mat& labels, int min_size, float in
   }
   std::vector<int> id_of_root(run_parent.size(), -1);
   std::vector<Stats> stats;
-  const float *Lp = nullptr, *Ap = nullptr, *Bp = nullptr, *Zp = nullptr, *Vp = nullptr;
   for (int y = 0; y < h; ++y) {
     int* out = comp.ptr<int>(y);
-    Lp = p.L.ptr<float>(y), Ap = p.A.ptr<float>(y), Bp = p.B.ptr<float>(y), Zp = p.Z.ptr<float>(y);
-    Vp = p.valid.ptr<float>(y);
+    const float *Lp = p.L.ptr<float>(y), *Ap = p.A.ptr<float>(y), *Bp = p.B.ptr<float>(y);
+    const float *Zp = p.Z.ptr<float>(y), *Vp = p.valid.ptr<float>(y);
     for (int r = row_start[y]; r < row_start[y + 1]; ++r) {
       const Run& run = runs[r];
       int& id = id_of_root[run_root(run.node)];
@@ -445,6 +437,12 @@ bool cpuHasAvx2() {
 }
 
 }  // namespace
+
+int integerFactor(cv::Size big, cv::Size small) {
+  if (small.width <= 0 || small.height <= 0 || big.width % small.width != 0) return 0;
+  const int f = big.width / small.width;
+  return f >= 1 && big.height == f * small.height ? f : 0;
+}
 
 SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth, const DepthSlicOptions& options) {
   static const bool avx2 = cpuHasAvx2();

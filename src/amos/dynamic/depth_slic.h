@@ -53,6 +53,10 @@ struct SuperpixelSegmentation {
 // bgr: CV_8UC3; depth: CV_32F metres, same size, 0 (or non-finite) = invalid. Deterministic.
 SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth, const DepthSlicOptions& options);
 
+// The integer factor f with big = f x small in both directions, or 0 when there is none: for a segmentation,
+// integerFactor(labels.size(), working_labels.size()) > 0 says that `labels` is `working_labels` in f x f blocks.
+int integerFactor(cv::Size big, cv::Size small);
+
 namespace detail {
 // computeDepthSlic with the 8-lane AVX2 assignment loop on or off (on is used when the CPU has AVX2; both give the
 // same result). For tests and benchmarks.

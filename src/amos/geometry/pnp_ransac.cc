@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
 
 #include <algorithm>
 #include <array>
@@ -161,9 +162,10 @@ void ap3pPoses(const std::vector<Eigen::Vector3d>& sample_w, const std::vector<E
     cv::Matx33d R;
     cv::Rodrigues(buffers.rvecs[s], R);
     const cv::Vec3d t(buffers.tvecs[s]);
+    Eigen::Matrix3d R_e;
+    cv::cv2eigen(R, R_e);
     core::SE3 T = core::SE3::Identity();
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) T.linear()(r, c) = R(r, c);
+    T.linear() = R_e;
     T.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
     if (T.matrix().allFinite()) poses.push_back(T);
   }

@@ -180,7 +180,7 @@
   function fitView() {
     if (!renderer) return;
     // The box of the map points and the trajectory, from the page's own arrays (finite values only): three.js's
-    // Box3.setFromObject also takes in helper and placeholder geometries, and one early state gave it an
+    // Box3.setFromObject also takes in the axes helper and still-empty line geometries, and one early state gave it an
     // unbounded box, which put the camera at NaN and drew nothing.
     const box = new THREE.Box3();
     const p = new THREE.Vector3();
