@@ -3,8 +3,9 @@
 # included), whole-process CPU per frame (all threads, from /usr/bin/time), the CPU of each pipeline thread per
 # frame (the "cpu.*" stages of stats.json), ATE and lost frames; medians of RUNS runs, the variants interleaved so
 # that a drifting machine affects them alike. Optional variant "paper": --mode full with the schedule and settings
-# of before issue 12 (every-frame segmentation, LK window 15 run to 30 iterations / 0.01 px, local BA over every
-# covisible keyframe).
+# of before issue 12 (every-frame segmentation with the detector, LK window 15 run to 30 iterations / 0.01 px,
+# local BA over every covisible keyframe); "detect6": full with the detector on every other segmentation
+# (Dynamic.Prior.detectEvery 2: every 6th frame), the mask network alone on the others.
 #   bash bench/bonn_speed.sh [RUNS=3] [VARIANTS="none full paper realtime"]
 # Needs build/bin/amos-slam, ../shared/data/bonn_crowd_dev and python3. Run on an otherwise idle machine.
 set -euo pipefail
@@ -14,7 +15,8 @@ NAME=bonn_speed
 source "$(dirname "$0")/common.sh"
 PAPER_CONFIG="$OUT/bonn_paper.yaml"
 # configs/bonn.yaml with these keys set (replaced where the file sets them: a key set twice is an error).
-paper_keys=("Dynamic.Prior.interval: 1" "Dynamic.Prior.lag: 0" "Dynamic.LK.window: 15" "Dynamic.LK.maxIterations: 30"
+paper_keys=("Dynamic.Prior.interval: 1" "Dynamic.Prior.lag: 0" "Dynamic.Prior.detectEvery: 1"
+            "Dynamic.LK.window: 15" "Dynamic.LK.maxIterations: 30"
             "Dynamic.LK.epsilon: 0.01" "LocalBA.maxKeyFrames: 0")
 cp configs/bonn.yaml "$PAPER_CONFIG"
 for kv in "${paper_keys[@]}"; do
@@ -24,6 +26,10 @@ for kv in "${paper_keys[@]}"; do
   mv "$PAPER_CONFIG.tmp" "$PAPER_CONFIG"
 done
 
+DETECT6_CONFIG="$OUT/bonn_detect6.yaml"
+cp configs/bonn.yaml "$DETECT6_CONFIG"
+echo "Dynamic.Prior.detectEvery: 2" >> "$DETECT6_CONFIG"
+
 for run in $(seq 1 "$RUNS"); do
   for v in $VARIANTS; do
     case "$v" in
@@ -31,6 +37,7 @@ for run in $(seq 1 "$RUNS"); do
       full) args=(--mode full --config configs/bonn.yaml) ;;
       paper) args=(--mode full --config "$PAPER_CONFIG") ;;
       realtime) args=(--mode full --config configs/bonn.yaml --realtime) ;;
+      detect6) args=(--mode full --config "$DETECT6_CONFIG") ;;
       *) echo "bonn_speed: unknown variant $v" >&2; exit 2 ;;
     esac
     dir="$OUT/$v.$run"

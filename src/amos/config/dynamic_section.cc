@@ -31,6 +31,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "the network segments every interval-th frame (1 = every frame, the paper)");
   s.add("Dynamic.Prior.lag", &o.prior.lag,
         "a segmentation is used this many frames later, carried there by the tracks (0 = wait for it)");
+  s.add("Dynamic.Prior.detectEvery", &o.prior.detect_every,
+        "the person detector runs on every detectEvery-th segmentation, the others mask the last one's people "
+        "again (1 = every segmentation detects)");
   s.add("Dynamic.Prior.minTracks", &o.prior.min_tracks, "tracks inside a person needed to measure its motion");
   s.add("Dynamic.Prior.holdMissed", &o.prior.hold_missed,
         "segmentations a person is carried on for after the network no longer finds it");
@@ -141,6 +144,9 @@ KeySection segmentationKeys(segmentation::SegmenterOptions& o) {
   s.add("Segmentation.boxWidenX", &o.box_widen_x, "widening of a person crop, share of the box's width")
       .formerly("Segmentation.box_widen_x");
   s.add("Segmentation.boxWidenY", &o.box_widen_y, "... and of its height").formerly("Segmentation.box_widen_y");
+  s.add("Segmentation.carriedBoxWidenX", &o.carried_box_widen_x,
+        "growth of an earlier frame's person box masked again without the detector, share of its width");
+  s.add("Segmentation.carriedBoxWidenY", &o.carried_box_widen_y, "... and of its height");
   s.add("Segmentation.maskThreshold", &o.mask_threshold, "person probability above which a pixel is masked")
       .formerly("Segmentation.mask_threshold");
   s.add("Segmentation.borderCropAspect", &o.border_crop_aspect,

@@ -21,6 +21,7 @@ void PriorScheduleOptions::check() const {
                   "of the frame it replaces is used",
                   lag, interval),
       {core::option(interval, "interval")});
+  core::requireAtLeast(detect_every, "detect_every", 1);
   core::requireAtLeast(hold_missed, "hold_missed", 0);
   core::requireAtLeast(min_tracks, "min_tracks", 1);
 }

@@ -48,6 +48,17 @@ TEST(PriorSchedule, BaseIsTheNewestScheduledFrameAtLeastLagOld) {
   for (std::size_t k = 0; k < 10; ++k) EXPECT_EQ(o.baseFor(k), k);
 }
 
+TEST(PriorSchedule, TheDetectorRunsOnEveryDetectEverythScheduledFrame) {
+  PriorScheduleOptions o;
+  o.interval = 3;
+  o.detect_every = 2;
+  for (std::size_t k = 0; k < 19; ++k) EXPECT_EQ(o.detects(k), k % 6 == 0) << k;
+  o.detect_every = 1;
+  for (std::size_t k = 0; k < 19; ++k) EXPECT_EQ(o.detects(k), o.isScheduled(k)) << k;
+  o.detect_every = 0;
+  EXPECT_THROW(o.check(), core::Error);
+}
+
 TEST(PriorSchedule, RejectsLagBeyondInterval) {
   PriorScheduleOptions o;
   o.interval = 2;

@@ -8,18 +8,35 @@
 
 namespace amos::segmentation {
 
-SegmentationResult segmentFrame(Segmenter& segmenter, const MaskDilationOptions& dilation, std::uint64_t frame_id,
-                                const cv::Mat& bgr, const cv::Mat& depth) {
+namespace {
+
+SegmentationResult segmentOrResegment(Segmenter& segmenter, const MaskDilationOptions& dilation,
+                                      std::uint64_t frame_id, const cv::Mat& bgr, const cv::Mat& depth,
+                                      const std::vector<SegmentedInstance>* earlier) {
   core::Stopwatch watch;
   const double cpu_start = core::threadCpuMs();
   SegmentationResult result;
   result.frame_id = frame_id;
-  result.instances = segmenter.segment(bgr, depth);
+  result.detected = earlier == nullptr;
+  result.instances = earlier ? segmenter.resegment(bgr, depth, *earlier) : segmenter.segment(bgr, depth);
   result.mask = paintInstances(result.instances, bgr.size());
   result.dilated_mask = dilateMask(result.mask, dilation);
   result.segment_ms = watch.elapsedMs();
   result.segment_cpu_ms = core::threadCpuMs() - cpu_start;
   return result;
+}
+
+}  // namespace
+
+SegmentationResult segmentFrame(Segmenter& segmenter, const MaskDilationOptions& dilation, std::uint64_t frame_id,
+                                const cv::Mat& bgr, const cv::Mat& depth) {
+  return segmentOrResegment(segmenter, dilation, frame_id, bgr, depth, nullptr);
+}
+
+SegmentationResult resegmentFrame(Segmenter& segmenter, const MaskDilationOptions& dilation, std::uint64_t frame_id,
+                                  const cv::Mat& bgr, const cv::Mat& depth,
+                                  const std::vector<SegmentedInstance>& earlier) {
+  return segmentOrResegment(segmenter, dilation, frame_id, bgr, depth, &earlier);
 }
 
 SegmentationWorker::SegmentationWorker(std::unique_ptr<Segmenter> segmenter, MaskDilationOptions dilation,
@@ -47,6 +64,24 @@ std::future<SegmentationResult> SegmentationWorker::submit(std::uint64_t frame_i
     });
   } catch (const core::Error&) {
     throw core::Error("SegmentationWorker::submit after close()");
+  }
+}
+
+std::future<SegmentationResult> SegmentationWorker::resubmit(std::uint64_t frame_id, const cv::Mat& bgr,
+                                                             const cv::Mat& depth,
+                                                             std::shared_future<SegmentationResult> earlier) {
+  core::require(!bgr.empty() && bgr.type() == CV_8UC3, "SegmentationWorker::resubmit: image must be CV_8UC3");
+  core::require(earlier.valid(), "SegmentationWorker::resubmit needs an earlier result");
+  core::Stopwatch since_submit;
+  try {
+    return executor_.submit([this, frame_id, bgr, depth, earlier = std::move(earlier), since_submit] {
+      SegmentationResult result =
+          resegmentFrame(*segmenter_, dilation_, frame_id, bgr, depth, earlier.get().instances);
+      result.latency_ms = since_submit.elapsedMs();
+      return result;
+    });
+  } catch (const core::Error&) {
+    throw core::Error("SegmentationWorker::resubmit after close()");
   }
 }
 

@@ -5,6 +5,7 @@
 //   auto pending = worker.submit(frame_id, bgr, depth);  // returns at once
 //   extractOrb(gray, ...);                               // runs while the frame is segmented
 //   SegmentationResult masks = pending.get();            // blocks until this frame's masks are ready
+//   auto later = worker.resubmit(frame_id + 3, bgr3, depth3, pending_shared);  // the same objects, no detector
 //
 // Frames are segmented one after the other, in submission order, by a core::SerialExecutor; each result comes
 // back through a std::future. A segmenter exception is rethrown by the future's get() in the caller's thread.
@@ -34,6 +35,7 @@ struct SegmentationResult {
   double segment_ms = 0;  // time spent in the segmenter and mask operations
   double segment_cpu_ms = 0;  // CPU time of the segmenting thread in them (OpenCV single-threaded: all of it)
   double latency_ms = 0;  // from submit() to the result being ready, queueing included
+  bool detected = true;   // false: the objects of an earlier result masked again (Segmenter::resegment)
 };
 
 class SegmentationWorker {
@@ -48,6 +50,11 @@ class SegmentationWorker {
 
   // bgr: CV_8UC3; depth: CV_32F metres or empty. Throws core::Error after close().
   std::future<SegmentationResult> submit(std::uint64_t frame_id, const cv::Mat& bgr, const cv::Mat& depth = cv::Mat());
+  // The same without the detector: the objects of `earlier`, an earlier submission's result, masked again on this
+  // frame (Segmenter::resegment). Frames run in submission order, so `earlier` is ready when this one starts; its
+  // error, if it failed, becomes this one's.
+  std::future<SegmentationResult> resubmit(std::uint64_t frame_id, const cv::Mat& bgr, const cv::Mat& depth,
+                                           std::shared_future<SegmentationResult> earlier);
 
   // Stops accepting frames; queued frames are still segmented. Idempotent.
   void close();
@@ -65,5 +72,9 @@ class SegmentationWorker {
 // tests that do not need the thread.
 SegmentationResult segmentFrame(Segmenter& segmenter, const MaskDilationOptions& dilation, std::uint64_t frame_id,
                                 const cv::Mat& bgr, const cv::Mat& depth = cv::Mat());
+// The same with Segmenter::resegment on the objects of `earlier`.
+SegmentationResult resegmentFrame(Segmenter& segmenter, const MaskDilationOptions& dilation, std::uint64_t frame_id,
+                                  const cv::Mat& bgr, const cv::Mat& depth,
+                                  const std::vector<SegmentedInstance>& earlier);
 
 }  // namespace amos::segmentation

@@ -22,6 +22,13 @@ class FakeSegmenter : public Segmenter {
     if (x == 99) throw core::Error("fake failure");
     return {{0, 1.f, cv::Rect(x, 10, 4, 4), cv::Mat(4, 4, CV_8UC1, cv::Scalar(255))}};
   }
+  // The earlier instances moved 2 px right, so a test sees which ones it was given; no "detection".
+  std::vector<SegmentedInstance> resegment(const cv::Mat&, const cv::Mat&,
+                                           const std::vector<SegmentedInstance>& earlier) override {
+    std::vector<SegmentedInstance> moved = earlier;
+    for (auto& m : moved) m.box.x += 2;
+    return moved;
+  }
   std::string name() const override { return "fake"; }
 
  private:
@@ -82,6 +89,29 @@ TEST(SegmentationWorker, ClosingFinishesQueuedFramesAndRefusesNewOnes) {
   }  // destructor joins after the queued frames
   for (auto& p : pending) EXPECT_EQ(p.wait_for(std::chrono::milliseconds(0)), std::future_status::ready);
   EXPECT_EQ(pending[2].get().frame_id, 2u);
+}
+
+TEST(SegmentationWorker, ResubmitMasksTheEarlierResultsObjectsWithoutDetecting) {
+  SegmentationWorker worker(std::make_unique<FakeSegmenter>(), {0, "ellipse"});
+  auto detected = worker.submit(3, frameWithCode(20)).share();
+  // This frame's own "detection" would be at x = 40; the resegmentation follows frame 3's object instead.
+  auto carried = worker.resubmit(6, frameWithCode(40), cv::Mat(), detected);
+  const SegmentationResult first = detected.get(), second = carried.get();
+  EXPECT_TRUE(first.detected);
+  EXPECT_FALSE(second.detected);
+  EXPECT_EQ(second.frame_id, 6u);
+  ASSERT_EQ(second.instances.size(), 1u);
+  EXPECT_EQ(second.instances[0].box.x, 22);
+  EXPECT_EQ(second.mask.at<uchar>(10, 22), 255);
+  EXPECT_EQ(second.mask.at<uchar>(10, 40), 0);
+}
+
+TEST(SegmentationWorker, AFailedEarlierSegmentationFailsTheResubmission) {
+  SegmentationWorker worker(std::make_unique<FakeSegmenter>(), {});
+  auto bad = worker.submit(1, frameWithCode(99)).share();
+  auto carried = worker.resubmit(4, frameWithCode(3), cv::Mat(), bad);
+  EXPECT_THROW(carried.get(), core::Error);
+  EXPECT_THROW(worker.resubmit(5, frameWithCode(3), cv::Mat(), {}), core::Error);
 }
 
 TEST(SegmentationWorker, RejectsBadInput) {

@@ -29,6 +29,16 @@ class Segmenter {
   // Throws core::Error for an input it cannot handle.
   virtual std::vector<SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat& depth) = 0;
 
+  // The objects of `earlier` (what this segmenter found on a frame a few frames before) on this frame, without
+  // looking for new ones: backends with a separate detector skip it and mask each earlier box again, widened by
+  // the motion a few frames allow, dropping an object whose mask comes out empty (Dynamic.Prior.detectEvery). The
+  // default, for backends without that split, segments the frame anew.
+  virtual std::vector<SegmentedInstance> resegment(const cv::Mat& bgr, const cv::Mat& depth,
+                                                   const std::vector<SegmentedInstance>& earlier) {
+    (void)earlier;
+    return segment(bgr, depth);
+  }
+
   // Backend name as used in Segmentation.backend, for logs and reports.
   virtual std::string name() const = 0;
 };

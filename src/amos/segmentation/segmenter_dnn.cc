@@ -82,6 +82,37 @@ class NanoDetSelfieSegmenter : public Segmenter {
     return instances;
   }
 
+  // The detector's boxes of a few frames before, grown by the motion those frames allow, masked again; a person
+  // whose mask fills less than min_mask_fill of the earlier box has left it (or is hidden) and is dropped, instead
+  // of getting the box + depth fallback that a fresh detection gets. The kept box is the mask's bounding box, so
+  // boxes carried on over several segmentations do not keep growing.
+  std::vector<SegmentedInstance> resegment(const cv::Mat& bgr, const cv::Mat& depth,
+                                           const std::vector<SegmentedInstance>& earlier) override {
+    core::require(!bgr.empty() && bgr.type() == CV_8UC3, "segmenter: image must be a non-empty CV_8UC3 BGR image");
+    core::require(depth.empty() || (depth.type() == CV_32F && depth.size() == bgr.size()),
+                  "segmenter: depth must be empty or CV_32F of the image size");
+    std::vector<SegmentedInstance> instances;
+    for (const SegmentedInstance& before : earlier) {
+      SegmentedInstance inst = before;
+      if (before.class_id != kPersonClass) {
+        inst.box = before.box & cv::Rect(cv::Point(0, 0), bgr.size());
+        if (inst.box.width < 2 || inst.box.height < 2) continue;
+        inst.mask = boxDepthMask(depth, inst.box, options_.depth_tolerance);
+        instances.push_back(std::move(inst));
+        continue;
+      }
+      const cv::Rect grown = widenBox(before.box, options_.carried_box_widen_x, options_.carried_box_widen_y, bgr.size());
+      if (grown.width < 2 || grown.height < 2) continue;
+      const cv::Mat mask = learnedPersonMask(bgr, grown);
+      if (cv::countNonZero(mask) < std::max(1.0, static_cast<double>(options_.min_mask_fill) * before.box.area())) continue;
+      const cv::Rect tight = cv::boundingRect(mask);
+      inst.box = tight + grown.tl();
+      inst.mask = mask(tight).clone();
+      instances.push_back(std::move(inst));
+    }
+    return instances;
+  }
+
  private:
   // The detector for frames of `image_size` (its input shape depends on the frame's when input_shape is "frame"):
   // imported on the first frame of a new size, kept for the following ones.
@@ -139,13 +170,17 @@ class NanoDetSelfieSegmenter : public Segmenter {
   // pasted back inside the detector's box. Crops of people cut by a side border are first extended beyond it
   // (mirrored) so they are not squashed into a sliver; a mask that stays nearly empty falls back to box + depth.
   cv::Mat personMask(const cv::Mat& bgr, const cv::Mat& depth, const cv::Rect& box) {
-    const cv::Rect crop = extendBorderCrop(box, widenBox(box, options_.box_widen_x, options_.box_widen_y, bgr.size()),
-                                           bgr.size(), options_.border_crop_aspect);
-    const cv::Mat probability = runSelfie(imagePatch(bgr, crop));
-    cv::Mat mask = pasteProbabilityMask(probability, crop, box, options_.mask_threshold);
+    cv::Mat mask = learnedPersonMask(bgr, box);
     if (cv::countNonZero(mask) < options_.min_mask_fill * box.area())
       mask = boxDepthMask(depth, box, options_.depth_tolerance);
     return mask;
+  }
+
+  // The mask network's person pixels inside `box` (box-sized CV_8UC1 0/255).
+  cv::Mat learnedPersonMask(const cv::Mat& bgr, const cv::Rect& box) {
+    const cv::Rect crop = extendBorderCrop(box, widenBox(box, options_.box_widen_x, options_.box_widen_y, bgr.size()),
+                                           bgr.size(), options_.border_crop_aspect);
+    return pasteProbabilityMask(runSelfie(imagePatch(bgr, crop)), crop, box, options_.mask_threshold);
   }
 
   cv::Mat runSelfie(const cv::Mat& crop) {

@@ -42,6 +42,12 @@ void SegmenterOptions::check() const {
                       fmt::format("must be in [0, 1], got {}", box_widen_x));
   core::requireOption(box_widen_y >= 0.f && box_widen_y <= 1.f, core::option(box_widen_y, "box_widen_y"),
                       fmt::format("must be in [0, 1], got {}", box_widen_y));
+  core::requireOption(carried_box_widen_x >= 0.f && carried_box_widen_x <= 2.f,
+                      core::option(carried_box_widen_x, "carried_box_widen_x"),
+                      fmt::format("must be in [0, 2], got {}", carried_box_widen_x));
+  core::requireOption(carried_box_widen_y >= 0.f && carried_box_widen_y <= 2.f,
+                      core::option(carried_box_widen_y, "carried_box_widen_y"),
+                      fmt::format("must be in [0, 2], got {}", carried_box_widen_y));
   core::requireOption(mask_threshold > 0.f && mask_threshold < 1.f, core::option(mask_threshold, "mask_threshold"),
                       fmt::format("must be in (0, 1), got {}", mask_threshold));
   core::requireOption(border_crop_aspect >= 0.f && border_crop_aspect <= 2.f,

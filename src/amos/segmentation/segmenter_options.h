@@ -42,6 +42,14 @@ struct SegmenterOptions {
   std::vector<std::string> classes = {"person"};
   float box_widen_x = 0.10f;        // Segmentation.boxWidenX: crop widening for the mask net, total fraction of box width
   float box_widen_y = 0.05f;        // Segmentation.boxWidenY: same, of box height
+  // Segmentation.carriedBoxWidenX / carriedBoxWidenY: when a person box of an earlier frame is masked again
+  // without the detector (Segmenter::resegment, Dynamic.Prior.detectEvery), the box is first grown by these total
+  // fractions of its width and height, half on each side, to hold where the person went meanwhile. The box of a
+  // person walking across at 1.5 m/s moves ~0.15 m in the 3 frames (100 ms) between two segmentations, a quarter
+  // of a walking person's ~0.6 m box width whatever the distance (both scale with 1/depth); a camera turning at
+  // 30 deg/s adds ~28 px. 0.5 (a quarter on each side) covers the walk; people barely move vertically: 0.1.
+  float carried_box_widen_x = 0.5f;
+  float carried_box_widen_y = 0.1f;
   float mask_threshold = 0.5f;      // Segmentation.maskThreshold: person probability above which a pixel is masked
   // Segmentation.borderCropAspect: a person box at the left/right image border whose crop is narrower than this
   // times its height is extended beyond the border (mirrored image) to that width before the mask network sees

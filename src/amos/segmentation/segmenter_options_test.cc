@@ -45,6 +45,8 @@ TEST(SegmenterOptions, ErrorsNameTheMember) {
       {"classes", [](SegmenterOptions& o) { o.classes.clear(); }},
       {"box_widen_x", [](SegmenterOptions& o) { o.box_widen_x = -0.1f; }},
       {"box_widen_y", [](SegmenterOptions& o) { o.box_widen_y = 2.f; }},
+      {"carried_box_widen_x", [](SegmenterOptions& o) { o.carried_box_widen_x = -0.5f; }},
+      {"carried_box_widen_y", [](SegmenterOptions& o) { o.carried_box_widen_y = 3.f; }},
       {"mask_threshold", [](SegmenterOptions& o) { o.mask_threshold = 1.f; }},
       {"border_crop_aspect", [](SegmenterOptions& o) { o.border_crop_aspect = -1.f; }},
       {"min_mask_fill", [](SegmenterOptions& o) { o.min_mask_fill = 1.f; }},

@@ -142,8 +142,14 @@ PersonMaskCarrier::Masks DynamicPipeline::personMasks(FrameSlot& slot,
     times_.add("cpu.segmentation", segmented.segment_cpu_ms);
   }
   PersonMaskCarrier::Masks masks = state_.person_masks->masksFor(slot.number, pending.get(), dynamic::FrameFlow{tracks});
-  if (options_.prior.audit_predictions && base != slot.number)
-    prior_audit_.push_back(auditPrediction(masks, slot.segmentation.get()));
+  // Audited: every frame not served by a detection of its own (carried masks, and masks of carried boxes).
+  if (options_.prior.audit_predictions && (base != slot.number || !pending.get().detected))
+  {
+    prior_audit_.push_back(auditPrediction(masks, slot.audit_segmentation.get()));
+    spdlog::debug("frame {}: person mask from frame {} ({}) against the networks' own: IoU {:.3f}, covered {:.3f}",
+                  slot.number, base, pending.get().detected ? "detected" : "boxes carried", prior_audit_.back().iou,
+                  prior_audit_.back().covered);
+  }
   return masks;
 }
 

@@ -27,8 +27,9 @@
 // Determinism: stage A reads nothing of stage B but the declared hand-offs, each named by its frame number and
 // waited for through a future, and stage B runs in frame order in one thread; so in deterministic mode the
 // trajectory is the same whatever the look-ahead. The person-segmentation schedule (Dynamic.Prior.*: every
-// interval-th frame segmented, used lag frames later, carried in between by PersonMaskCarrier) is a function of
-// the frame numbers alone. interval 1, lag 0 is the paper's every-frame segmentation.
+// interval-th frame segmented, by the detector on every detectEvery-th of those and else by the mask network on the
+// last detection's people, used lag frames later, carried in between by PersonMaskCarrier) is a function of the
+// frame numbers alone. interval 1, lag 0, detectEvery 1 is the paper's every-frame segmentation.
 //
 // Threading: processNext() and the other members are called from one thread; push() may be called from that thread
 // or from one other (a feeder that hands over frames as a paced source delivers them). Besides them run the two
@@ -103,8 +104,9 @@ class DynamicPipeline {
   const core::StageTimes& times() const { return times_; }
   // Fraction of the extracted keypoints that the dynamic mask removed, one value per processed frame.
   const std::vector<double>& removedFractions() const { return removed_fractions_; }
-  // With Dynamic.Prior.auditPredictions: per frame whose person mask was carried over from an earlier
-  // segmentation, how it compares with the network's own mask of the frame (empty otherwise).
+  // With Dynamic.Prior.auditPredictions: per frame whose person mask was not a detection of its own (carried over
+  // from an earlier segmentation, or masked on an earlier detection's boxes), how it compares with the detector +
+  // mask network's result on the frame (empty otherwise).
   const std::vector<PriorAudit>& priorAudit() const { return prior_audit_; }
 
  private:

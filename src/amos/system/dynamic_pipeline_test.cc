@@ -56,11 +56,12 @@ std::unique_ptr<segmentation::SegmentationWorker> realSegmentation() {
 }
 
 // Mode prior with the given person-segmentation schedule.
-dynamic::DynamicOptions priorOptions(int interval, int lag) {
+dynamic::DynamicOptions priorOptions(int interval, int lag, int detect_every = 1) {
   dynamic::DynamicOptions options;
   options.mode = dynamic::DynamicMode::kPrior;
   options.prior.interval = interval;
   options.prior.lag = lag;
+  options.prior.detect_every = detect_every;
   return options;
 }
 
@@ -131,6 +132,7 @@ class RecordingSegmenter : public segmentation::Segmenter {
     std::mutex mutex;
     std::condition_variable changed;
     std::set<int> started;
+    std::set<int> resegmented;  // of which without the detector
   };
   explicit RecordingSegmenter(std::shared_ptr<Log> log) : log_(std::move(log)) {}
   std::vector<segmentation::SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat&) override {
@@ -140,6 +142,14 @@ class RecordingSegmenter : public segmentation::Segmenter {
     }
     log_->changed.notify_all();
     return {};
+  }
+  std::vector<segmentation::SegmentedInstance> resegment(const cv::Mat& bgr, const cv::Mat& depth,
+                                                         const std::vector<segmentation::SegmentedInstance>&) override {
+    {
+      std::lock_guard<std::mutex> lock(log_->mutex);
+      log_->resegmented.insert(bgr.at<cv::Vec3b>(0, 0)[0]);
+    }
+    return segment(bgr, depth);
   }
   std::string name() const override { return "recording"; }
 
@@ -202,6 +212,22 @@ TEST(DynamicPipeline, SegmentsEveryIntervalthFrame) {
   std::unique_lock<std::mutex> lock(log->mutex);
   log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.size() >= 3; });
   EXPECT_EQ(log->started, (std::set<int>{10, 13, 16}));
+}
+
+// Dynamic.Prior.detectEvery 2: of the segmented frames 0, 3, 6, 9, 12 the detector runs on 0, 6 and 12; 3 and 9
+// mask the people of the detection before them again.
+TEST(DynamicPipeline, DetectsOnEveryDetectEverythSegmentation) {
+  auto log = std::make_shared<RecordingSegmenter::Log>();
+  SlamSystem slam(bonnOptions());
+  DynamicPipeline pipeline(slam, priorOptions(3, 2, 2), workerOf(std::make_unique<RecordingSegmenter>(log)));
+  std::vector<io::RgbdFrame> frames;
+  for (std::size_t code = 10; code < 25; ++code) frames.push_back(codedFrame(code));
+  feedPipeline(pipeline, frames, 1, [](const DynamicFrameOutput&) {});
+  pipeline.finish();
+  std::unique_lock<std::mutex> lock(log->mutex);
+  log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.size() >= 5; });
+  EXPECT_EQ(log->started, (std::set<int>{10, 13, 16, 19, 22}));
+  EXPECT_EQ(log->resegmented, (std::set<int>{13, 19}));
 }
 
 // A segmenter that reports one "person" covering the left `fraction` of every image.

@@ -89,6 +89,7 @@ FrameScheduler::FrameScheduler(const SlamSystem& slam, const dynamic::DynamicOpt
 FrameScheduler::~FrameScheduler() {
   slots_.clear();  // breaks the hand-off promises, so a task that waits for one returns
   recent_handoffs_.clear();
+  last_segmentation_ = {};
   partition_lane_.reset();
   frame_lane_.reset();
   closeSegmentation();
@@ -110,8 +111,7 @@ FrameNumber FrameScheduler::push(io::RgbdFrame frame, FrameNumber processed) {
   slot->handoff.dilated_prior_mask = slot->dilated_prior_mask.get_future().share();
   slot->handoff.map_ready = slot->map_ready.get_future().share();
   const io::RgbdFrame& f = slot->frame;
-  if (tasks_.segmentation && (options_.prior.audit_predictions || options_.prior.isScheduled(slot->number)))
-    slot->segmentation = segmentation_->submit(f.index, f.bgr, f.depth).share();
+  if (tasks_.segmentation) scheduleSegmentation(*slot);
   PreparationInputs inputs;
   if (!recent_handoffs_.empty()) inputs.previous_dilated_mask = recent_handoffs_.back().dilated_prior_mask;
   if (recent_handoffs_.size() == 2) inputs.map_ready_two_back = recent_handoffs_.front().map_ready;
@@ -127,6 +127,19 @@ FrameNumber FrameScheduler::push(io::RgbdFrame frame, FrameNumber processed) {
   std::lock_guard<std::mutex> lock(mutex_);
   published_ = next_number_;
   return slot->number;
+}
+
+void FrameScheduler::scheduleSegmentation(FrameSlot& slot) {
+  const io::RgbdFrame& f = slot.frame;
+  const bool scheduled = options_.prior.isScheduled(slot.number);
+  const bool detects = options_.prior.detects(slot.number) || !last_segmentation_.valid();
+  if (scheduled) {
+    slot.segmentation = detects ? segmentation_->submit(f.index, f.bgr, f.depth).share()
+                                : segmentation_->resubmit(f.index, f.bgr, f.depth, last_segmentation_).share();
+    last_segmentation_ = slot.segmentation;
+  }
+  if (options_.prior.audit_predictions)
+    slot.audit_segmentation = scheduled && detects ? slot.segmentation : segmentation_->submit(f.index, f.bgr, f.depth).share();
 }
 
 FrameNumber FrameScheduler::pushed() const {

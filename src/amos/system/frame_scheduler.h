@@ -2,7 +2,9 @@
 // Stage A of the pipeline (dynamic_pipeline.h): the per-frame work that needs nothing but the frame, scheduled
 // ahead into frame slots as soon as a frame is pushed. The tasks a mode schedules (StageATasks::forMode):
 //   none      motion (grey image only), features (ORB)
-//   prior     + segmentation (the person network) on the frames Dynamic.Prior.* names
+//   prior     + segmentation (the person networks) on the frames Dynamic.Prior.* names: the detector and the mask
+//               network on every detectEvery-th of them, the mask network alone on the boxes of the last one on
+//               the others (a dependency on that earlier segmentation, met by the lane's order)
 //   geometry  motion with the LK pyramid and corners, features, partition (superpixels + clusters, Sec. III-B)
 //   full      all of them
 // Lanes, each a core::SerialExecutor running its tasks in push order:
@@ -89,6 +91,9 @@ class FrameScheduler {
   const segmentation::SegmentationWorker* segmentation() const { return segmentation_.get(); }
 
  private:
+  // The frame's segmentation task(s), when the schedule (or the audit) names it.
+  void scheduleSegmentation(FrameSlot& slot);
+
   const SlamSystem& slam_;
   dynamic::DynamicOptions options_;
   StageATasks tasks_;
@@ -100,6 +105,9 @@ class FrameScheduler {
   // The hand-offs of the last two frames pushed (oldest first): what preparation of the next frame declares.
   // Touched by push() only.
   std::deque<StageBHandoff> recent_handoffs_;
+  // The last scheduled segmentation, whose people the next one masks again when it does not detect. Touched by
+  // push() only.
+  std::shared_future<segmentation::SegmentationResult> last_segmentation_;
   // Last members: stopped and joined first, before anything their tasks use goes away.
   std::unique_ptr<core::SerialExecutor> frame_lane_;
   std::unique_ptr<core::SerialExecutor> partition_lane_;  // geometric stage only

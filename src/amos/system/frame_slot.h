@@ -55,9 +55,11 @@ struct StageBHandoff {
 struct FrameSlot {
   FrameNumber number = 0;
   io::RgbdFrame frame;
-  // Stage A (valid when the mode schedules the task): the network's segmentation of this frame, the motion
+  // Stage A (valid when the mode schedules the task): the networks' segmentation of this frame, the motion
   // input (always), the ORB features (always) and the superpixel partition.
   std::shared_future<segmentation::SegmentationResult> segmentation;
+  // With Dynamic.Prior.auditPredictions, every frame's detector + mask network result, to score what served it.
+  std::shared_future<segmentation::SegmentationResult> audit_segmentation;
   std::shared_future<FrameMotionInput> motion;
   std::future<FrameFeatures> features;
   std::future<FramePartition> partition;
