@@ -29,6 +29,14 @@ KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps) {
   s.add("Tracking.minFrames", &o.min_frames_between_keyframes, "frames between keyframes at least");
   s.add("Tracking.keyFrameRefRatio", &o.keyframe_ref_ratio,
         "new keyframe when the frame tracks fewer points than this share of the reference keyframe's");
+  s.add("Tracking.keyFrameMinRotation", &o.keyframe_min_rotation_deg,
+        "no keyframe while tracking is sound and the camera has turned less than this from its reference keyframe "
+        "(degrees) ...");
+  s.add("Tracking.keyFrameMinBaseline", &o.keyframe_min_baseline,
+        "... and moved less than this share of the median keypoint depth ...");
+  s.add("Tracking.keyFrameMoverShare", &o.keyframe_mover_share,
+        "... while movers (the dynamic mask) cover at least this share of the image (any of the three 0 = off, "
+        "ORB-SLAM2's rule)");
   s.add("Tracking.closeTrackedMax", &o.close_tracked_max, "... or when fewer close points than this are tracked");
   s.add("Tracking.closeUntrackedMin", &o.close_untracked_min, "... and at least this many close points are not");
   s.add("Tracking.newPointsMin", &o.new_points_min, "depth points a new keyframe creates at least, closest first");

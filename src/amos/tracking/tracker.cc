@@ -8,6 +8,7 @@
 #include <shared_mutex>
 #include <string>
 #include <unordered_set>
+#include <opencv2/core.hpp>
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
@@ -52,6 +53,15 @@ void TrackerOptions::check() const {
   core::requireOption(keyframe_ref_ratio > 0 && keyframe_ref_ratio <= 1,
                       core::option(keyframe_ref_ratio, "keyframe_ref_ratio"),
                       fmt::format("must be in (0, 1], got {}", keyframe_ref_ratio));
+  core::requireOption(keyframe_min_rotation_deg >= 0 && keyframe_min_rotation_deg <= 90,
+                      core::option(keyframe_min_rotation_deg, "keyframe_min_rotation_deg"),
+                      fmt::format("must be in [0, 90] degrees, got {}", keyframe_min_rotation_deg));
+  core::requireOption(keyframe_min_baseline >= 0 && keyframe_min_baseline <= 1,
+                      core::option(keyframe_min_baseline, "keyframe_min_baseline"),
+                      fmt::format("must be in [0, 1], got {}", keyframe_min_baseline));
+  core::requireOption(keyframe_mover_share >= 0 && keyframe_mover_share <= 1,
+                      core::option(keyframe_mover_share, "keyframe_mover_share"),
+                      fmt::format("must be in [0, 1], got {}", keyframe_mover_share));
   core::requireAtLeast(close_tracked_max, "close_tracked_max", 0);
   core::requireAtLeast(close_untracked_min, "close_untracked_min", 0);
   core::requireAtLeast(new_points_min, "new_points_min", 0);
@@ -542,12 +552,46 @@ bool Tracker::needNewKeyFrame(const map::Frame& frame, int inliers) const {
   spdlog::debug("frame {}: keyframe test: inliers {} reference tracked {} (ratio {}) close tracked {} untracked {}{}",
                 frame.id, inliers, ref_matches, ref_ratio, tracked_close, untracked_close, idle ? "" : " mapping busy");
   if (!((c1a || c1b || c1c) && c2)) return false;
+  const bool sound = inliers >= ref_matches * 0.25 && inliers >= 2 * options_.local_min_inliers;
+  if (sound && stillBehindMovers(frame)) {
+    spdlog::debug("frame {}: no keyframe: movers hide part of the view, the camera is still at the reference "
+                  "keyframe's viewpoint",
+                  frame.id);
+    return false;
+  }
   if (idle) return true;
   if (sink_) {
     sink_->interruptBundleAdjustment();
     return sink_->queuedKeyFrames() < 3;
   }
   return true;
+}
+
+bool Tracker::stillBehindMovers(const map::Frame& frame) const {
+  if (!reference_kf_ || options_.keyframe_min_rotation_deg <= 0 || options_.keyframe_min_baseline <= 0 ||
+      options_.keyframe_mover_share <= 0 || frame.dynamic_mask.empty())
+    return false;
+  if (cv::countNonZero(frame.dynamic_mask) < options_.keyframe_mover_share * static_cast<double>(frame.dynamic_mask.total()))
+    return false;
+  std::vector<float> depths;
+  const map::FrameFeatures& f = *frame.features;
+  depths.reserve(f.size());
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.depth[i] > 0) depths.push_back(f.depth[i]);
+  if (depths.empty()) return false;
+  const auto mid = depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2);
+  std::nth_element(depths.begin(), mid, depths.end());
+  core::SE3 T_rw;
+  {
+    std::shared_lock lock(map_->mutex());
+    T_rw = map_->keyFramePose(reference_kf_->id());
+  }
+  // T_cr = T_cw * T_wr: its rotation is the turn between the two views, its translation (in the camera frame) the
+  // baseline between the two camera centres.
+  const core::SE3 T_cr = frame.T_cw * T_rw.inverse();
+  const double kDegree = 3.14159265358979323846 / 180.0;
+  return core::rotationAngle(T_cr) < options_.keyframe_min_rotation_deg * kDegree &&
+         core::translationNorm(T_cr) < options_.keyframe_min_baseline * static_cast<double>(*mid);
 }
 
 void Tracker::createNewKeyFrame(map::Frame& frame) {
