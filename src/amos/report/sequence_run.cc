@@ -288,7 +288,12 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
         if (!out.dynamic_mask.empty()) instance_accuracy.add(*k, out.dynamic_mask, ids, moving);
       }
     }
-    if (!truth.empty() && !out.dynamic_mask.empty()) mask_accuracy.add(out.dynamic_mask, truth);
+    if (!truth.empty() && !out.dynamic_mask.empty()) {
+      mask_accuracy.add(out.dynamic_mask, truth);
+      const eval::MaskCounts& c = mask_accuracy.perFrame().back();
+      spdlog::debug("frame {}: dynamic mask against the truth: {} true, {} found, {} wrongly marked", out.frame.index,
+                    c.true_positive + c.false_negative, c.true_positive, c.false_positive);
+    }
     if (mask_writer) mask_writer->add(frame.index, frame.rgb_file, frame.bgr, out.dynamic_mask, out.prior_mask, truth);
     outputs_ms += outputs.elapsedMs();
     if (!options.observers.empty()) {
