@@ -64,10 +64,14 @@ class NanoDetSelfieSegmenter : public Segmenter {
 
   std::string name() const override { return "nanodet_selfie"; }
 
-  std::vector<SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat& depth) override {
+  static void requireInputs(const cv::Mat& bgr, const cv::Mat& depth) {
     core::require(!bgr.empty() && bgr.type() == CV_8UC3, "segmenter: image must be a non-empty CV_8UC3 BGR image");
     core::require(depth.empty() || (depth.type() == CV_32F && depth.size() == bgr.size()),
                   "segmenter: depth must be empty or CV_32F of the image size");
+  }
+
+  std::vector<SegmentedInstance> segment(const cv::Mat& bgr, const cv::Mat& depth) override {
+    requireInputs(bgr, depth);
     std::vector<SegmentedInstance> instances;
     for (const Detection& det : detect(bgr)) {
       const cv::Rect box = toPixelRect(det.box, bgr.size());
@@ -88,9 +92,7 @@ class NanoDetSelfieSegmenter : public Segmenter {
   // boxes carried on over several segmentations do not keep growing.
   std::vector<SegmentedInstance> resegment(const cv::Mat& bgr, const cv::Mat& depth,
                                            const std::vector<SegmentedInstance>& earlier) override {
-    core::require(!bgr.empty() && bgr.type() == CV_8UC3, "segmenter: image must be a non-empty CV_8UC3 BGR image");
-    core::require(depth.empty() || (depth.type() == CV_32F && depth.size() == bgr.size()),
-                  "segmenter: depth must be empty or CV_32F of the image size");
+    requireInputs(bgr, depth);
     std::vector<SegmentedInstance> instances;
     for (const SegmentedInstance& before : earlier) {
       SegmentedInstance inst = before;
