@@ -581,11 +581,8 @@ bool Tracker::stillBehindMovers(const map::Frame& frame) const {
   if (depths.empty()) return false;
   const auto mid = depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2);
   std::nth_element(depths.begin(), mid, depths.end());
-  core::SE3 T_rw;
-  {
-    std::shared_lock lock(map_->mutex());
-    T_rw = map_->keyFramePose(reference_kf_->id());
-  }
+  // The caller (track, through needNewKeyFrame) holds the map's shared lock that keyFramePose needs.
+  const core::SE3 T_rw = map_->keyFramePose(reference_kf_->id());
   // T_cr = T_cw * T_wr: its rotation is the turn between the two views, its translation (in the camera frame) the
   // baseline between the two camera centres.
   const core::SE3 T_cr = frame.T_cw * T_rw.inverse();

@@ -144,7 +144,8 @@ class Tracker {
   int discardOutliers(map::Frame& frame) const;
   bool needNewKeyFrame(const map::Frame& frame, int inliers) const;
   // Whether movers (the frame's dynamic mask) cover Tracking.keyFrameMoverShare of the image and the camera is
-  // within Tracking.keyFrameMinRotation / keyFrameMinBaseline of the reference keyframe's.
+  // within Tracking.keyFrameMinRotation / keyFrameMinBaseline of the reference keyframe's. Called with the map's
+  // shared lock held (map.h's [shared]).
   bool stillBehindMovers(const map::Frame& frame) const;
   void createNewKeyFrame(map::Frame& frame);
 
