@@ -1,6 +1,7 @@
 #include "amos/segmentation/segmentation_worker.h"
 
 #include <exception>
+#include <string>
 
 #include "amos/core/error.h"
 #include "amos/core/thread_priority.h"
@@ -54,34 +55,32 @@ void SegmentationWorker::close() { executor_.close(); }
 
 std::future<SegmentationResult> SegmentationWorker::submit(std::uint64_t frame_id, const cv::Mat& bgr,
                                                            const cv::Mat& depth) {
-  core::require(!bgr.empty() && bgr.type() == CV_8UC3, "SegmentationWorker::submit: image must be CV_8UC3");
-  core::Stopwatch since_submit;
-  try {
-    return executor_.submit([this, frame_id, bgr, depth, since_submit] {
-      SegmentationResult result = segmentFrame(*segmenter_, dilation_, frame_id, bgr, depth);
-      result.latency_ms = since_submit.elapsedMs();
-      return result;
-    });
-  } catch (const core::Error&) {
-    throw core::Error("SegmentationWorker::submit after close()");
-  }
+  return enqueue("submit", frame_id, bgr, depth, {});
 }
 
 std::future<SegmentationResult> SegmentationWorker::resubmit(std::uint64_t frame_id, const cv::Mat& bgr,
                                                              const cv::Mat& depth,
                                                              std::shared_future<SegmentationResult> earlier) {
-  core::require(!bgr.empty() && bgr.type() == CV_8UC3, "SegmentationWorker::resubmit: image must be CV_8UC3");
   core::require(earlier.valid(), "SegmentationWorker::resubmit needs an earlier result");
+  return enqueue("resubmit", frame_id, bgr, depth, std::move(earlier));
+}
+
+std::future<SegmentationResult> SegmentationWorker::enqueue(const char* caller, std::uint64_t frame_id,
+                                                            const cv::Mat& bgr, const cv::Mat& depth,
+                                                            std::shared_future<SegmentationResult> earlier) {
+  core::require(!bgr.empty() && bgr.type() == CV_8UC3,
+                std::string("SegmentationWorker::") + caller + ": image must be CV_8UC3");
   core::Stopwatch since_submit;
   try {
     return executor_.submit([this, frame_id, bgr, depth, earlier = std::move(earlier), since_submit] {
       SegmentationResult result =
-          resegmentFrame(*segmenter_, dilation_, frame_id, bgr, depth, earlier.get().instances);
+          earlier.valid() ? resegmentFrame(*segmenter_, dilation_, frame_id, bgr, depth, earlier.get().instances)
+                          : segmentFrame(*segmenter_, dilation_, frame_id, bgr, depth);
       result.latency_ms = since_submit.elapsedMs();
       return result;
     });
   } catch (const core::Error&) {
-    throw core::Error("SegmentationWorker::resubmit after close()");
+    throw core::Error(std::string("SegmentationWorker::") + caller + " after close()");
   }
 }
 

@@ -63,6 +63,10 @@ class SegmentationWorker {
   const MaskDilationOptions& dilation() const { return dilation_; }
 
  private:
+  // submit() (`earlier` invalid) and resubmit(): queues the frame; `caller` names the public call in errors.
+  std::future<SegmentationResult> enqueue(const char* caller, std::uint64_t frame_id, const cv::Mat& bgr,
+                                          const cv::Mat& depth, std::shared_future<SegmentationResult> earlier);
+
   std::unique_ptr<Segmenter> segmenter_;
   MaskDilationOptions dilation_;
   core::SerialExecutor executor_;  // last: its thread stops before the segmenter goes away
