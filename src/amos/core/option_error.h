@@ -50,10 +50,17 @@ inline void requireOption(bool condition, OptionField field, const std::string& 
   if (!condition) throw InvalidOption(field, rule, std::move(related));
 }
 
-// The common rules: "<name> must be >= minimum, got <value>", "<name> must be > 0, got <value>" (finite, too).
+// The common rules: "<name> must be >= minimum, got <value>", "<name> must be > 0, got <value>" (finite, too),
+// "<name> must be in [low, high], got <value>".
 template <typename T>
 void requireAtLeast(const T& member, const char* name, const std::common_type_t<T>& minimum) {
   requireOption(member >= minimum, option(member, name), fmt::format("must be >= {}, got {}", minimum, member));
+}
+template <typename T>
+void requireInRange(const T& member, const char* name, const std::common_type_t<T>& low,
+                    const std::common_type_t<T>& high) {
+  requireOption(member >= low && member <= high, option(member, name),
+                fmt::format("must be in [{}, {}], got {}", low, high, member));
 }
 template <typename T>
 void requirePositive(const T& member, const char* name) {

@@ -38,21 +38,13 @@ void SegmenterOptions::check() const {
         std::find(coco.begin(), coco.end(), name) != coco.end(), core::option(classes, "classes"),
         fmt::format("names an unknown class '{}' (COCO names as in coco.names, e.g. person, chair, dog, car)", name));
   }
-  core::requireOption(box_widen_x >= 0.f && box_widen_x <= 1.f, core::option(box_widen_x, "box_widen_x"),
-                      fmt::format("must be in [0, 1], got {}", box_widen_x));
-  core::requireOption(box_widen_y >= 0.f && box_widen_y <= 1.f, core::option(box_widen_y, "box_widen_y"),
-                      fmt::format("must be in [0, 1], got {}", box_widen_y));
-  core::requireOption(carried_box_widen_x >= 0.f && carried_box_widen_x <= 2.f,
-                      core::option(carried_box_widen_x, "carried_box_widen_x"),
-                      fmt::format("must be in [0, 2], got {}", carried_box_widen_x));
-  core::requireOption(carried_box_widen_y >= 0.f && carried_box_widen_y <= 2.f,
-                      core::option(carried_box_widen_y, "carried_box_widen_y"),
-                      fmt::format("must be in [0, 2], got {}", carried_box_widen_y));
+  core::requireInRange(box_widen_x, "box_widen_x", 0.f, 1.f);
+  core::requireInRange(box_widen_y, "box_widen_y", 0.f, 1.f);
+  core::requireInRange(carried_box_widen_x, "carried_box_widen_x", 0.f, 2.f);
+  core::requireInRange(carried_box_widen_y, "carried_box_widen_y", 0.f, 2.f);
   core::requireOption(mask_threshold > 0.f && mask_threshold < 1.f, core::option(mask_threshold, "mask_threshold"),
                       fmt::format("must be in (0, 1), got {}", mask_threshold));
-  core::requireOption(border_crop_aspect >= 0.f && border_crop_aspect <= 2.f,
-                      core::option(border_crop_aspect, "border_crop_aspect"),
-                      fmt::format("must be in [0, 2], got {}", border_crop_aspect));
+  core::requireInRange(border_crop_aspect, "border_crop_aspect", 0.f, 2.f);
   core::requireOption(min_mask_fill >= 0.f && min_mask_fill < 1.f, core::option(min_mask_fill, "min_mask_fill"),
                       fmt::format("must be in [0, 1), got {}", min_mask_fill));
   core::requireOption(depth_tolerance > 0.f, core::option(depth_tolerance, "depth_tolerance"),

@@ -53,15 +53,9 @@ void TrackerOptions::check() const {
   core::requireOption(keyframe_ref_ratio > 0 && keyframe_ref_ratio <= 1,
                       core::option(keyframe_ref_ratio, "keyframe_ref_ratio"),
                       fmt::format("must be in (0, 1], got {}", keyframe_ref_ratio));
-  core::requireOption(keyframe_min_rotation_deg >= 0 && keyframe_min_rotation_deg <= 90,
-                      core::option(keyframe_min_rotation_deg, "keyframe_min_rotation_deg"),
-                      fmt::format("must be in [0, 90] degrees, got {}", keyframe_min_rotation_deg));
-  core::requireOption(keyframe_min_baseline >= 0 && keyframe_min_baseline <= 1,
-                      core::option(keyframe_min_baseline, "keyframe_min_baseline"),
-                      fmt::format("must be in [0, 1], got {}", keyframe_min_baseline));
-  core::requireOption(keyframe_mover_share >= 0 && keyframe_mover_share <= 1,
-                      core::option(keyframe_mover_share, "keyframe_mover_share"),
-                      fmt::format("must be in [0, 1], got {}", keyframe_mover_share));
+  core::requireInRange(keyframe_min_rotation_deg, "keyframe_min_rotation_deg", 0.0, 90.0);
+  core::requireInRange(keyframe_min_baseline, "keyframe_min_baseline", 0.0, 1.0);
+  core::requireInRange(keyframe_mover_share, "keyframe_mover_share", 0.0, 1.0);
   core::requireAtLeast(close_tracked_max, "close_tracked_max", 0);
   core::requireAtLeast(close_untracked_min, "close_untracked_min", 0);
   core::requireAtLeast(new_points_min, "new_points_min", 0);
