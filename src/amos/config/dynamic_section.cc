@@ -103,6 +103,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "search radius for the cluster on the other side of a border (px)");
   s.add("Dynamic.Boundary.borderMargin", &o.boundary.border_margin_px,
         "a superpixel this close to the image edge is a border block (px)");
+  s.add("Dynamic.Boundary.borderBlocks", &o.boundary.border_blocks,
+        "1 = superpixels at the image edge take no part in the decisions (paper), 0 = only tracks within half an LK "
+        "window of the edge");
   s.add("Dynamic.Boundary.superpixelMask", &o.boundary.superpixel_mask,
         "1 = the mask is decided per superpixel, 0 = it is the union of the dynamic clusters");
   s.add("Dynamic.Boundary.seedOutsideClusters", &o.boundary.seed_outside_clusters,

@@ -107,46 +107,90 @@ std::vector<PointTrack> trackCorners(const cv::Mat& last_gray, const FramePairPy
 
 namespace {
 
-// goodFeaturesToTrack with CornerTrackingOptions::grid_cells > 1: each cell's share first, then the image's strongest.
+// Shi-Tomasi corners with CornerTrackingOptions::grid_cells > 1, selected from one eigenvalue image: each cell's
+// share first (ranked against that cell's best), then the image's strongest. The same rules as goodFeaturesToTrack
+// (3x3 block, local maxima of the minimum eigenvalue, quality relative to the best, greedy minimum distance,
+// strongest first), so the cost is one goodFeaturesToTrack call, not one per cell.
 std::vector<cv::Point2f> gridCorners(const cv::Mat& image, const cv::Mat& mask, const CornerTrackingOptions& options,
                                      double min_distance) {
   constexpr double kCellFloor = 1e-3;  // a cell's best corner against the image's best (see grid_cells)
   const int g = options.grid_cells;
-  cv::Mat eig;
+  cv::Mat eig, dilated;
   cv::cornerMinEigenVal(image, eig, 3, 3);
-  double image_best = 0;
-  cv::minMaxLoc(eig, nullptr, &image_best, nullptr, nullptr, mask);
-  std::vector<cv::Point2f> corners;
-  const int per_cell = std::max(1, options.max_corners / (2 * g * g));
-  for (int cy = 0; cy < g; ++cy)
-    for (int cx = 0; cx < g; ++cx) {
-      const cv::Rect cell(cx * image.cols / g, cy * image.rows / g, (cx + 1) * image.cols / g - cx * image.cols / g,
-                          (cy + 1) * image.rows / g - cy * image.rows / g);
-      const cv::Mat cell_mask = mask.empty() ? cv::Mat() : mask(cell);
-      double cell_best = 0;
-      cv::minMaxLoc(eig(cell), nullptr, &cell_best, nullptr, nullptr, cell_mask);
-      if (!(cell_best > kCellFloor * image_best)) continue;
-      std::vector<cv::Point2f> found;
-      cv::goodFeaturesToTrack(image(cell), found, per_cell, options.quality_level, min_distance, cell_mask);
-      for (const cv::Point2f& p : found) corners.emplace_back(p.x + cell.x, p.y + cell.y);
+  cv::dilate(eig, dilated, cv::Mat());
+  // Local maxima (as goodFeaturesToTrack: 3x3, one pixel in from the image edge), with their cell.
+  struct Candidate {
+    float response;
+    int x, y, cell;
+  };
+  std::vector<Candidate> candidates;
+  std::vector<float> cell_best(static_cast<std::size_t>(g * g), 0.f);
+  float image_best = 0.f;
+  for (int y = 1; y < image.rows - 1; ++y) {
+    const float* e = eig.ptr<float>(y);
+    const float* d = dilated.ptr<float>(y);
+    const uchar* m = mask.empty() ? nullptr : mask.ptr<uchar>(y);
+    const int cy = y * g / image.rows;
+    for (int x = 1; x < image.cols - 1; ++x) {
+      if (!(e[x] > 0.f) || e[x] != d[x] || (m && !m[x])) continue;
+      const int cell = cy * g + x * g / image.cols;
+      candidates.push_back({e[x], x, y, cell});
+      cell_best[static_cast<std::size_t>(cell)] = std::max(cell_best[static_cast<std::size_t>(cell)], e[x]);
+      image_best = std::max(image_best, e[x]);
     }
+  }
+  // Strongest first; ties in raster order, so the selection is deterministic.
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.response > b.response; });
+  // Minimum distance: accepted corners bucketed in cells of min_distance, so each test looks at 3 x 3 buckets.
+  const double r = std::max(1.0, min_distance);
+  const int bw = static_cast<int>(std::ceil(image.cols / r)) + 1, bh = static_cast<int>(std::ceil(image.rows / r)) + 1;
+  std::vector<std::vector<cv::Point2f>> buckets(static_cast<std::size_t>(bw * bh));
+  std::vector<cv::Point2f> corners;
+  std::vector<float> responses;
+  auto tryAccept = [&](const Candidate& c) {
+    const int bx = static_cast<int>(c.x / r), by = static_cast<int>(c.y / r);
+    if (min_distance > 0)
+      for (int y = std::max(0, by - 1); y <= std::min(bh - 1, by + 1); ++y)
+        for (int x = std::max(0, bx - 1); x <= std::min(bw - 1, bx + 1); ++x)
+          for (const cv::Point2f& p : buckets[static_cast<std::size_t>(y * bw + x)]) {
+            const double dx = p.x - c.x, dy = p.y - c.y;
+            if (dx * dx + dy * dy < min_distance * min_distance) return false;
+          }
+    const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
+    buckets[static_cast<std::size_t>(by * bw + bx)].push_back(p);
+    corners.push_back(p);
+    responses.push_back(c.response);
+    return true;
+  };
+  // Each cell's share, against the cell's own best; a cell whose best is below the floor (flat) gets none.
+  const int per_cell = std::max(1, options.max_corners / (2 * g * g));
+  std::vector<int> taken(static_cast<std::size_t>(g * g), 0);
+  std::vector<bool> used(candidates.size(), false);
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const Candidate& c = candidates[i];
+    const auto cell = static_cast<std::size_t>(c.cell);
+    if (taken[cell] >= per_cell || !(cell_best[cell] > kCellFloor * image_best) ||
+        c.response < options.quality_level * cell_best[cell])
+      continue;
+    if (tryAccept(c)) {
+      ++taken[cell];
+      used[i] = true;
+    }
+  }
   // The rest of the budget: the image's strongest corners, away from those already taken.
-  cv::Mat rest_mask = mask.empty() ? cv::Mat(image.size(), CV_8U, cv::Scalar(255)) : mask.clone();
-  for (const cv::Point2f& p : corners) cv::circle(rest_mask, p, static_cast<int>(std::ceil(min_distance)), 0, -1);
-  const int rest = options.max_corners - static_cast<int>(corners.size());
-  if (rest > 0) {
-    std::vector<cv::Point2f> strongest;
-    cv::goodFeaturesToTrack(image, strongest, rest, options.quality_level, min_distance, rest_mask);
-    corners.insert(corners.end(), strongest.begin(), strongest.end());
+  for (std::size_t i = 0; i < candidates.size() && static_cast<int>(corners.size()) < options.max_corners; ++i) {
+    if (used[i] || candidates[i].response < options.quality_level * image_best) continue;
+    tryAccept(candidates[i]);
   }
   // Strongest first, as goodFeaturesToTrack returns them.
-  auto response = [&](const cv::Point2f& p) {
-    return eig.at<float>(std::clamp(static_cast<int>(std::lround(p.y)), 0, eig.rows - 1),
-                         std::clamp(static_cast<int>(std::lround(p.x)), 0, eig.cols - 1));
-  };
-  std::stable_sort(corners.begin(), corners.end(),
-                   [&](const cv::Point2f& a, const cv::Point2f& b) { return response(a) > response(b); });
-  return corners;
+  std::vector<std::size_t> order(corners.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return responses[a] > responses[b]; });
+  std::vector<cv::Point2f> sorted;
+  sorted.reserve(order.size());
+  for (std::size_t i : order) sorted.push_back(corners[i]);
+  return sorted;
 }
 
 void goodCorners(const cv::Mat& image, std::vector<cv::Point2f>& corners, const CornerTrackingOptions& options,

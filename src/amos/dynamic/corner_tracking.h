@@ -29,12 +29,13 @@ struct CornerTrackingOptions {
   // with the square of the contrast: ~8 grey levels, about 4x the noise of an 8-bit sensor), so flat cells (a
   // blank wall) get no corners made of noise. The number tracked, and so LK's cost, stays maxCorners.
   // objects_xyz, geometric front end with the true poses (amos-slam diagnose-movers), chair recall with 4:
-  // 0.25 -> 0.51, 0.12 -> 0.30, 0.05 -> 0.51 on seeds 4, 5, 6 (box and door unchanged). Off by default: on the Bonn
-  // crowd slice (full, --deterministic) one run gave 1.75 cm against 1.58 without it (the corners also feed the
-  // initial pose's model 2; more of them now lie on people), within the 1.6-2.0 cm spread of runs after small
-  // front-end changes but not yet shown to be harmless there. Nor is it cheap yet: one goodFeaturesToTrack per
-  // cell cost ~9x the single call on a Bonn frame (10 -> 98 ms wall, loaded machine); one eigenvalue pass with the
-  // selection per cell would be needed before it can run live.
+  // 0.25 -> 0.51, 0.12 -> 0.30, 0.05 -> 0.51 on seeds 4, 5, 6 (box and door unchanged); with the per-track border
+  // rule (Dynamic.Boundary.borderBlocks 0): rolling chair 0.36 -> 0.55 (seed 4) and 0.04 -> 0.65 (seed 2), the
+  // chair of chair_push 0.35 -> 0.46 (seed 4). The selection is one eigenvalue pass with the per-cell choice made
+  // on it, so it costs about one goodFeaturesToTrack call (bench_dynamic BM_DetectCorners on a Bonn frame, median
+  // of 5: 0.89 against 0.75 ms CPU). Off by default: on the Bonn crowd slice (full, --deterministic) it loses 7
+  // frames (15 with the per-track border rule) against none without, although ATE is as good (1.63 / 1.51 cm
+  // against 1.78 / 1.71); why is not diagnosed yet, so it is not shown to be harmless on real data.
   int grid_cells = 1;
   // Dynamic.LK.window: 15x15 px: with 3 pyramid levels it follows flows up to 7 * 2^3 = 56 px per frame, above
   // a person walking 1.5 m/s at 1.5 m (~18 px at 30 Hz, f ~ 540 px) or a camera turning 1 rad/s (~18 px), at

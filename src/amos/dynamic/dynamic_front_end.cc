@@ -82,7 +82,10 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   diag.superpixels = static_cast<int>(partition.segmentation.superpixels.size());
   diag.clusters = clusterCount(partition.segmentation);
   const DecisionRegions regions =
-      findDecisionRegions(partition.segmentation, partition.cluster_map, options_.boundary.border_margin_px);
+      options_.boundary.border_blocks
+          ? findDecisionRegions(partition.segmentation, partition.cluster_map, options_.boundary.border_margin_px)
+          : findEdgeDecisionRegions(partition.segmentation, partition.cluster_map,
+                                    options_.tracking.lk_window / 2 + 1);
   out.timings_ms.emplace_back("clusters", partition.cluster_ms + stage.elapsedMs());
   stage.restart();
 

@@ -94,6 +94,29 @@ TEST(DynamicFrontEnd, GeometryModeMasksTheMovingBoxAndNotTheWall) {
   EXPECT_EQ(out.timings_ms.back().first, "total");
 }
 
+// Dynamic.Boundary.borderBlocks (issue 16): the box lowered until only a strip of it, along the image's bottom edge,
+// is in view (rows 446-479), rising 5 cm as above. Under the paper's rule that strip lies in the border blocks and
+// takes no part in the decisions; under the per-track rule only the tracks within half an LK window of the edge
+// abstain, and the strip is found.
+TEST(DynamicFrontEnd, PerTrackBorderRuleFindsAMoverAlongTheImageEdge) {
+  SyntheticPair pair = syntheticPair();
+  pair.last = render(pair.T_cw_last, Eigen::Vector3d(0.0, 0.80, 0.0));
+  pair.current = render(pair.T_cw_current, Eigen::Vector3d(0.0, 0.75, 0.0));
+  const cv::Rect rows = cv::boundingRect(pair.current.box_mask);
+  ASSERT_EQ(rows.y + rows.height, 480);
+  ASSERT_LT(rows.height, 40) << "most of the strip must lie in blocks touching the edge";
+  cv::Mat wall;
+  cv::bitwise_not(pair.current.box_mask, wall);
+  DynamicOptions options;
+  options.mode = DynamicMode::kGeometry;
+  const cv::Mat blocks = DynamicFrontEnd(testCamera(), options).process(inputFor(pair)).mask;
+  options.boundary.border_blocks = false;
+  const cv::Mat per_track = DynamicFrontEnd(testCamera(), options).process(inputFor(pair)).mask;
+  EXPECT_GT(coverage(per_track, pair.current.box_mask), 0.7);
+  EXPECT_LT(coverage(blocks, pair.current.box_mask), 0.3);
+  EXPECT_LT(coverage(per_track, wall), 0.02);
+}
+
 TEST(DynamicFrontEnd, PrecomputedPartitionGivesTheSameMask) {
   const SyntheticPair& pair = syntheticPair();
   DynamicOptions options;

@@ -1,5 +1,6 @@
 #include "amos/dynamic/frame_regions.h"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -19,6 +20,22 @@ DecisionRegions findDecisionRegions(const SuperpixelSegmentation& segmentation, 
   regions.border = borderSuperpixels(segmentation.labels, static_cast<int>(segmentation.superpixels.size()),
                                      border_margin_px);
   regions.decision_map = decisionClusterMap(cluster_map, segmentation.labels, regions.border);
+  return regions;
+}
+
+DecisionRegions findEdgeDecisionRegions(const SuperpixelSegmentation& segmentation, const cv::Mat& cluster_map,
+                                        int edge_margin_px) {
+  DecisionRegions regions;
+  regions.border.assign(segmentation.superpixels.size(), false);
+  regions.decision_map = cluster_map.clone();
+  const int w = cluster_map.cols, h = cluster_map.rows;
+  const int m = std::min(std::max(0, edge_margin_px), std::min(w, h) / 2);
+  if (m > 0) {
+    regions.decision_map.rowRange(0, m).setTo(-1);
+    regions.decision_map.rowRange(h - m, h).setTo(-1);
+    regions.decision_map.colRange(0, m).setTo(-1);
+    regions.decision_map.colRange(w - m, w).setTo(-1);
+  }
   return regions;
 }
 

@@ -23,6 +23,11 @@ struct DecisionRegions {
 };
 DecisionRegions findDecisionRegions(const SuperpixelSegmentation& segmentation, const cv::Mat& cluster_map,
                                     int border_margin_px);
+// The same with the border rule applied per track instead of per block (Dynamic.Boundary.borderBlocks off): no
+// superpixel is a border block, and only the pixels within edge_margin_px of the image edge are -1 in the decision
+// map, so a track whose current pixel lies there takes no part in the decisions (nor seeds the mask).
+DecisionRegions findEdgeDecisionRegions(const SuperpixelSegmentation& segmentation, const cv::Mat& cluster_map,
+                                        int edge_margin_px);
 
 // The value of a CV_32S label map at the pixel nearest p; -1 outside the image (or for an empty map).
 int labelAt(const cv::Mat& map, cv::Point2f p);

@@ -36,6 +36,29 @@ TEST(FrameRegions, DecisionRegionsLeaveOutTheBorderBlocks) {
   EXPECT_EQ(cv::countNonZero(regions.decision_map == 1), 100);
 }
 
+TEST(FrameRegions, PerTrackBorderRuleLeavesOutOnlyTheEdgeBand) {
+  // The same blocks as above; with the per-track rule no block is a border block and only the 3 px band along the
+  // image edge is outside the decision map.
+  SuperpixelSegmentation segmentation;
+  segmentation.labels.create(30, 30, CV_32S);
+  cv::Mat clusters(30, 30, CV_32S);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 30; ++x) {
+      segmentation.labels.at<int>(y, x) = (y / 10) * 3 + x / 10;
+      clusters.at<int>(y, x) = x < 10 ? 0 : 1;
+    }
+  segmentation.superpixels.resize(9);
+  const DecisionRegions regions = findEdgeDecisionRegions(segmentation, clusters, 3);
+  for (int s = 0; s < 9; ++s) EXPECT_FALSE(regions.border[s]) << s;
+  EXPECT_EQ(labelAt(regions.decision_map, {5, 15}), 0);   // a border block, 5 px from the edge: judged
+  EXPECT_EQ(labelAt(regions.decision_map, {3, 15}), 0);   // the first pixel past the band
+  EXPECT_EQ(labelAt(regions.decision_map, {2, 15}), -1);  // in the band
+  EXPECT_EQ(labelAt(regions.decision_map, {15, 27}), -1);
+  EXPECT_EQ(cv::countNonZero(regions.decision_map >= 0), 24 * 24);
+  EXPECT_EQ(labelAt(clusters, {2, 15}), 0) << "the cluster map itself is left as it was";
+  EXPECT_EQ(cv::countNonZero(findEdgeDecisionRegions(segmentation, clusters, 0).decision_map >= 0), 900);
+}
+
 TEST(FrameRegions, LookupsRoundToTheNearestPixelAndAreEmptyOutside) {
   cv::Mat labels(10, 10, CV_32S, cv::Scalar(0));
   labels.at<int>(3, 4) = 7;

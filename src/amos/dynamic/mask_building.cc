@@ -128,9 +128,13 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
   const bool seed_outside = options.boundary.seed_outside_clusters && confirmation.refit.ok;
   if (options.boundary.superpixel_mask && (any_dynamic_cluster || seed_outside)) {
     // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
-    const std::vector<TrackEvidence> evidence =
+    std::vector<TrackEvidence> evidence =
         seedingEvidence(tracks, candidates.lifted, confirmation.residuals, epipolar.distance_px, in.last_depth,
                         in.depth, segmentation, confirmation.static_bar_px, options);
+    // Tracks outside the decision map (the border blocks, or the edge band of the per-track border rule) abstain.
+    evidence.erase(std::remove_if(evidence.begin(), evidence.end(),
+                                  [&](const TrackEvidence& t) { return labelAt(regions.decision_map, t.pixel) < 0; }),
+                   evidence.end());
     out.dynamic_superpixel =
         dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
                            seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr);
