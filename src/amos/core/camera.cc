@@ -48,6 +48,18 @@ std::vector<cv::Point2f> PinholeCamera::undistort(const std::vector<cv::Point2f>
   return out;
 }
 
+std::vector<cv::Point2f> PinholeCamera::distort(const std::vector<cv::Point2f>& undistorted) const {
+  if (!intr_.hasDistortion() || undistorted.empty()) return undistorted;
+  // Back to normalised rays at z = 1, then projectPoints applies the distortion model and K.
+  std::vector<cv::Point3f> rays;
+  rays.reserve(undistorted.size());
+  for (const auto& p : undistorted)
+    rays.emplace_back(static_cast<float>((p.x - cx()) / fx()), static_cast<float>((p.y - cy()) / fy()), 1.0f);
+  std::vector<cv::Point2f> raw;
+  cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K_, dist_, raw);
+  return raw;
+}
+
 cv::Rect2d PinholeCamera::undistortedBounds() const {
   const float w = static_cast<float>(intr_.width), h = static_cast<float>(intr_.height);
   if (!intr_.hasDistortion()) return {0, 0, w, h};

@@ -47,6 +47,8 @@ class PinholeCamera {
 
   // Undistorts pixel coordinates (returns them unchanged when there is no distortion).
   std::vector<cv::Point2f> undistort(const std::vector<cv::Point2f>& pixels) const;
+  // The inverse: raw (distorted) pixels of undistorted ones (unchanged when there is no distortion).
+  std::vector<cv::Point2f> distort(const std::vector<cv::Point2f>& undistorted) const;
   // Bounds of the undistorted image (min_u, max_u, min_v, max_v): where undistorted keypoints can fall.
   cv::Rect2d undistortedBounds() const;
 

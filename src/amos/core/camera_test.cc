@@ -48,5 +48,19 @@ TEST(Camera, UndistortMovesCornerPixelsWithFr1Distortion) {
   EXPECT_NEAR(out[1].x, c.cx, 1e-3);                   // the principal point does not
 }
 
+TEST(Camera, DistortInvertsUndistort) {
+  PinholeCamera fr1(testing::tumFr1Intrinsics());
+  const std::vector<cv::Point2f> raw{{5.f, 7.f}, {320.f, 240.f}, {600.f, 30.f}, {100.f, 470.f}};
+  const std::vector<cv::Point2f> back = fr1.distort(fr1.undistort(raw));
+  ASSERT_EQ(back.size(), raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    EXPECT_NEAR(back[i].x, raw[i].x, 0.05) << i;
+    EXPECT_NEAR(back[i].y, raw[i].y, 0.05) << i;
+  }
+  CameraIntrinsics none = testing::tumFr1Intrinsics();
+  none.k1 = none.k2 = none.p1 = none.p2 = none.k3 = 0;
+  EXPECT_EQ(PinholeCamera(none).distort(raw), raw);
+}
+
 }  // namespace
 }  // namespace amos::core

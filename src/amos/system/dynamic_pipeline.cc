@@ -20,20 +20,6 @@ namespace {
 // recent ones (it is the keyframe sharing most points with the current frame).
 constexpr std::size_t kKeyFrameImages = 16;
 
-// Undistorted keyframe keypoints back to raw pixels, where LK on the raw keyframe image needs them.
-std::vector<cv::Point2f> distortPixels(const std::vector<cv::Point2f>& undistorted, const core::PinholeCamera& camera) {
-  if (!camera.intrinsics().hasDistortion() || undistorted.empty()) return undistorted;
-  std::vector<cv::Point3f> rays;
-  rays.reserve(undistorted.size());
-  for (const auto& p : undistorted) {
-    rays.emplace_back(static_cast<float>((p.x - camera.cx()) / camera.fx()),
-                      static_cast<float>((p.y - camera.cy()) / camera.fy()), 1.0f);
-  }
-  std::vector<cv::Point2f> raw;
-  cv::projectPoints(rays, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), camera.K(), camera.distortion(), raw);
-  return raw;
-}
-
 // The per-stage CPU costs ("cpu.*" stages) use core::threadCpuMs: OpenCV runs single-threaded here
 // (Segmentation.threads), so a stage's OpenCV work is in its thread's time.
 using core::threadCpuMs;
@@ -111,7 +97,8 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
     }
     dynamic::CornerTrackingOptions tracking = options_.tracking;
     tracking.forward_backward_check = options_.initial_pose.keyframe_forward_backward;
-    from_keyframe = dynamic::keyframeCorrespondences({keyframe, current}, distortPixels(pixels, camera), points_w,
+    // The keyframe keypoints are undistorted; LK on the raw keyframe image needs them raw.
+    from_keyframe = dynamic::keyframeCorrespondences({keyframe, current}, camera.distort(pixels), points_w,
                                                      camera, tracking);
     break;
   }
