@@ -1,0 +1,67 @@
+# Shared by the synthetic evaluation scripts (quality_matrix.sh, movers_matrix.sh); sourced, not run.
+# Expects: bin (amos-slam), out (output folder), frames (frames per sequence).
+
+log() { printf '[%s] %s\n' "$(date +%H:%M:%S)" "$*" >&2; }
+
+# json_get FILE .a.b.c -> the value or "null"; instance_get FILE NAME FIELD -> a field of the mover called NAME in
+# stats.json's mask_accuracy.instances, or "null". jq, else python3.
+if command -v jq > /dev/null; then
+  json_get() { jq -r "$2 // \"null\"" "$1" 2> /dev/null || echo null; }
+  instance_get() {
+    jq -r --arg n "$2" --arg f "$3" \
+      '[.mask_accuracy.instances[]? | select(.name == $n) | .[$f]] | first // "null"' "$1" 2> /dev/null || echo null
+  }
+elif command -v python3 > /dev/null; then
+  json_get() {
+    python3 - "$1" "$2" << 'EOF' 2> /dev/null || echo null
+import json, sys
+v = json.load(open(sys.argv[1]))
+for k in sys.argv[2].lstrip(".").split("."):
+    v = v.get(k) if isinstance(v, dict) else None
+print("null" if v is None else v)
+EOF
+  }
+  instance_get() {
+    python3 - "$1" "$2" "$3" << 'EOF' 2> /dev/null || echo null
+import json, sys
+d = json.load(open(sys.argv[1]))
+v = next((i.get(sys.argv[3]) for i in d.get("mask_accuracy", {}).get("instances", []) if i.get("name") == sys.argv[2]), None)
+print("null" if v is None else json.dumps(v) if isinstance(v, (list, dict)) else v)
+EOF
+  }
+else
+  echo "error: reading stats.json needs jq or python3 (apt-get install jq)" >&2; exit 1
+fi
+
+# render PRESET SEED STATIC(0|1) -> prints the sequence folder; returns 1 on failure. Rendered sequences are cached
+# in $out/sequences/ (reused when the render finished, i.e. its .complete marker exists).
+render() {
+  local preset=$1 seed=$2 static=$3 name dir extra=()
+  name="${preset}_s${seed}_f${frames}"
+  ((static)) && { name+="_nomovers"; extra=(--no-movers); }
+  dir="$out/sequences/$name"
+  if [[ -f "$dir/.complete" ]]; then
+    log "render $name: cached"
+  else
+    rm -rf "$dir"
+    local t0=$SECONDS
+    log "render $name ..."
+    if ! "$bin" synth --preset "$preset" --seed "$seed" --frames "$frames" --output "$dir" "${extra[@]}" \
+        > "$out/sequences/$name.log" 2>&1; then
+      log "render $name FAILED (log: $out/sequences/$name.log):"; tail -3 "$out/sequences/$name.log" >&2
+      return 1
+    fi
+    touch "$dir/.complete"
+    log "render $name done in $((SECONDS - t0)) s"
+  fi
+  printf '%s\n' "$dir"
+}
+
+# Formatting: metres -> mm, fraction -> 3 decimals / percent; "fail" and "null" pass through as-is.
+num() { [[ $1 =~ ^-?[0-9.]+([eE][-+]?[0-9]+)?$ ]]; }
+mm() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.2f", 1000 * v }'; else printf '%s' "${1/null/n/a}"; fi; }
+dec() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.3f", v }'; else printf '%s' "${1/null/n/a}"; fi; }
+pct() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.3f", 100 * v }'; else printf '%s' "${1/null/n/a}"; fi; }
+ratio() { if num "$1" && num "$2"; then awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.2f", a / b; else printf "n/a" }'; else printf 'n/a'; fi; }
+mean() { printf '%s\n' "$@" | awk '/^-?[0-9.]+([eE][-+]?[0-9]+)?$/ { s += $1; n++ } END { if (n) printf "%.17g", s / n; else printf "null" }'; }
+median() { printf '%s\n' "$@" | awk '/^-?[0-9.]+([eE][-+]?[0-9]+)?$/' | sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) printf "null"; else if (NR % 2) printf "%.17g", v[(NR + 1) / 2]; else printf "%.17g", (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
