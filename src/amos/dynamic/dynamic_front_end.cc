@@ -1,5 +1,6 @@
 #include "amos/dynamic/dynamic_front_end.h"
 
+#include <algorithm>
 #include <opencv2/core.hpp>
 #include <utility>
 
@@ -84,13 +85,26 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   const DecisionRegions regions =
       options_.boundary.border_blocks
           ? findDecisionRegions(partition.segmentation, partition.cluster_map, options_.boundary.border_margin_px)
-          : findEdgeDecisionRegions(partition.segmentation, partition.cluster_map,
-                                    options_.tracking.lk_window / 2 + 1);
+          : findEdgeDecisionRegions(partition.segmentation, partition.cluster_map, edgeBand());
   out.timings_ms.emplace_back("clusters", partition.cluster_ms + stage.elapsedMs());
   stage.restart();
 
   // Correspondences last -> current.
   out.tracks = in.tracks ? *in.tracks : trackCorners(in.last_gray, in.gray, options_.tracking);
+  if (!options_.boundary.border_blocks) {
+    // The per-track border rule at the other end: the edge band of the decision map takes the tracks that end near
+    // the image edge out of the decisions; a track that started there had its LK template cut by the frame (a
+    // camera turning brings such points inwards within a frame) and goes too.
+    const int band = edgeBand();
+    const cv::Rect2f inner(static_cast<float>(band), static_cast<float>(band),
+                           static_cast<float>(in.gray.cols - 1 - 2 * band), static_cast<float>(in.gray.rows - 1 - 2 * band));
+    out.tracks.erase(std::remove_if(out.tracks.begin(), out.tracks.end(),
+                                    [&](const PointTrack& t) {
+                                      return t.last.x < inner.x || t.last.y < inner.y ||
+                                             t.last.x > inner.x + inner.width || t.last.y > inner.y + inner.height;
+                                    }),
+                     out.tracks.end());
+  }
   diag.tracks = static_cast<int>(out.tracks.size());
   lap("tracking");
 

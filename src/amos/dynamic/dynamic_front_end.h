@@ -108,6 +108,10 @@ class DynamicFrontEnd {
 
   const DynamicOptions& options() const { return options_; }
 
+  // The per-track border rule's band (Dynamic.Boundary.borderBlocks off): half an LK window and a pixel, the width
+  // within which a track's finest-level window is cut by the image frame.
+  int edgeBand() const { return options_.tracking.lk_window / 2 + 1; }
+
  private:
   core::PinholeCamera camera_;
   DynamicOptions options_;
