@@ -46,22 +46,8 @@ for s in "${seed_list[@]}"; do
   [[ "$s" =~ ^[0-9]+$ ]] || { echo "error: seed '$s' is not a non-negative integer" >&2; exit 2; }
 done
 
-# JSON reader: jq, else python3.
-if command -v jq > /dev/null; then
-  json_get() { jq -r "$2 // \"null\"" "$1" 2> /dev/null || echo null; }
-elif command -v python3 > /dev/null; then
-  json_get() {
-    python3 - "$1" "$2" << 'EOF' 2> /dev/null || echo null
-import json, sys
-v = json.load(open(sys.argv[1]))
-for k in sys.argv[2].lstrip(".").split("."):
-    v = v.get(k) if isinstance(v, dict) else None
-print("null" if v is None else v)
-EOF
-  }
-else
-  echo "error: reading stats.json needs jq or python3 (apt-get install jq)" >&2; exit 1
-fi
+# shellcheck source=scripts/synth_lib.sh
+source "$root/scripts/synth_lib.sh"  # log, json_get, render, formatting
 
 walking=(walking_xyz walking_static walking_rpy walking_halfsphere)
 mkdir -p "$out/sequences" "$out/runs"
@@ -73,31 +59,6 @@ job=0
 failures=0
 start_all=$SECONDS
 declare -A result  # result[name|field] = value, "fail" when the job failed
-
-log() { printf '[%s] %s\n' "$(date +%H:%M:%S)" "$*" >&2; }
-
-# render PRESET SEED STATIC(0|1) -> prints the sequence folder; returns 1 on failure
-render() {
-  local preset=$1 seed=$2 static=$3 name dir extra=()
-  name="${preset}_s${seed}_f${frames}"
-  ((static)) && { name+="_nomovers"; extra=(--no-movers); }
-  dir="$out/sequences/$name"
-  if [[ -f "$dir/.complete" ]]; then
-    log "render $name: cached"
-  else
-    rm -rf "$dir"
-    local t0=$SECONDS
-    log "render $name ..."
-    if ! "$bin" synth --preset "$preset" --seed "$seed" --frames "$frames" --output "$dir" "${extra[@]}" \
-        > "$out/sequences/$name.log" 2>&1; then
-      log "render $name FAILED (log: $out/sequences/$name.log):"; tail -3 "$out/sequences/$name.log" >&2
-      return 1
-    fi
-    touch "$dir/.complete"
-    log "render $name done in $((SECONDS - t0)) s"
-  fi
-  printf '%s\n' "$dir"
-}
 
 # run KEY SEQUENCE_DIR MODE -> fills result[KEY|ate], [KEY|precision], [KEY|recall], [KEY|dynamic_fraction]
 run() {
@@ -139,14 +100,6 @@ for seed in "${seed_list[@]}"; do
   key="box_push_s${seed}"
   if seq=$(render box_push "$seed" 0); then run "$key" "$seq" geometry; else fail_run "$key"; fi
 done
-
-# Formatting helpers: metres -> mm, fraction -> percent / 3 decimals; "fail" and "null" pass through as-is.
-num() { [[ $1 =~ ^-?[0-9.]+([eE][-+]?[0-9]+)?$ ]]; }
-mm() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.2f", 1000 * v }'; else printf '%s' "${1/null/n/a}"; fi; }
-dec() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.3f", v }'; else printf '%s' "${1/null/n/a}"; fi; }
-pct() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.3f", 100 * v }'; else printf '%s' "${1/null/n/a}"; fi; }
-ratio() { if num "$1" && num "$2"; then awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.2f", a / b; else printf "n/a" }'; else printf 'n/a'; fi; }
-mean() { printf '%s\n' "$@" | awk '/^-?[0-9.]+([eE][-+]?[0-9]+)?$/ { s += $1; n++ } END { if (n) printf "%.17g", s / n; else printf "null" }'; }
 
 echo "## Quality matrix: seeds ${seed_list[*]}, $frames frames, $(basename "$config"), --deterministic"
 echo
