@@ -20,33 +20,25 @@ bin="$root/build/bin/amos-slam"
 out="$root/out/movers"
 config="$root/configs/tum3.yaml"
 
+# shellcheck source=scripts/synth_lib.sh
+source "$root/scripts/synth_lib.sh"  # options, log, json_get, instance_get, render, formatting
 usage() { sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; }
-abspath() { case "$1" in /*) printf '%s\n' "$1" ;; *) printf '%s\n' "$PWD/$1" ;; esac; }
 while (($#)); do
   case "$1" in
-    --seeds) seeds=${2:?--seeds needs a value}; shift 2 ;;
     --presets) presets=${2:?--presets needs a value}; shift 2 ;;
     --modes) modes=${2:?--modes needs a value}; shift 2 ;;
-    --frames) frames=${2:?--frames needs a value}; shift 2 ;;
-    --bin) bin=$(abspath "${2:?--bin needs a value}"); shift 2 ;;
-    --out) out=$(abspath "${2:?--out needs a value}"); shift 2 ;;
-    --config) config=$(abspath "${2:?--config needs a value}"); shift 2 ;;
     -h | --help) usage; exit 0 ;;
-    *) echo "error: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+    *) common_option "$1" "${2-}" || { echo "error: unknown argument '$1' (see --help)" >&2; exit 2; }; shift 2 ;;
   esac
 done
-[[ -x "$bin" ]] || { echo "error: amos-slam binary '$bin' not found or not executable; build first or pass --bin" >&2; exit 1; }
-[[ -f "$config" ]] || { echo "error: settings file '$config' not found" >&2; exit 1; }
-[[ "$frames" =~ ^[1-9][0-9]*$ ]] || { echo "error: --frames must be a positive integer, got '$frames'" >&2; exit 2; }
-read -r -a seed_list <<< "$seeds"
+check_common_options
 read -r -a preset_list <<< "$presets"
 read -r -a mode_list <<< "$modes"
-for s in "${seed_list[@]}"; do [[ "$s" =~ ^[0-9]+$ ]] || { echo "error: seed '$s' is not a non-negative integer" >&2; exit 2; }; done
-for m in "${mode_list[@]}"; do [[ "$m" =~ ^(none|prior|geometry|full)$ ]] || { echo "error: unknown mode '$m'" >&2; exit 2; }; done
-((${#seed_list[@]} && ${#preset_list[@]} && ${#mode_list[@]})) || { echo "error: empty --seeds, --presets or --modes" >&2; exit 2; }
+((${#preset_list[@]} && ${#mode_list[@]})) || { echo "error: empty --presets or --modes" >&2; exit 2; }
+for m in "${mode_list[@]}"; do
+  [[ "$m" =~ ^(none|prior|geometry|full)$ ]] || { echo "error: unknown mode '$m'" >&2; exit 2; }
+done
 
-# shellcheck source=scripts/synth_lib.sh
-source "$root/scripts/synth_lib.sh"
 mkdir -p "$out/sequences" "$out/runs"
 cd "$root"
 failures=0

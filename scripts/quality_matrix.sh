@@ -23,31 +23,16 @@ bin="$root/build/bin/amos-slam"
 out="$root/out/quality"
 config="$root/configs/tum3.yaml"
 
+# shellcheck source=scripts/synth_lib.sh
+source "$root/scripts/synth_lib.sh"  # options, log, json_get, render, formatting
 usage() { sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; }
-abspath() { case "$1" in /*) printf '%s\n' "$1" ;; *) printf '%s\n' "$PWD/$1" ;; esac; }
 while (($#)); do
   case "$1" in
-    --seeds) seeds=${2:?--seeds needs a value}; shift 2 ;;
-    --frames) frames=${2:?--frames needs a value}; shift 2 ;;
-    --bin) bin=$(abspath "${2:?--bin needs a value}"); shift 2 ;;
-    --out) out=$(abspath "${2:?--out needs a value}"); shift 2 ;;
-    --config) config=$(abspath "${2:?--config needs a value}"); shift 2 ;;
     -h | --help) usage; exit 0 ;;
-    *) echo "error: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+    *) common_option "$1" "${2-}" || { echo "error: unknown argument '$1' (see --help)" >&2; exit 2; }; shift 2 ;;
   esac
 done
-
-[[ -x "$bin" ]] || { echo "error: amos-slam binary '$bin' not found or not executable; build first (scripts/build.sh) or pass --bin" >&2; exit 1; }
-[[ -f "$config" ]] || { echo "error: settings file '$config' not found" >&2; exit 1; }
-[[ "$frames" =~ ^[1-9][0-9]*$ ]] || { echo "error: --frames must be a positive integer, got '$frames'" >&2; exit 2; }
-read -r -a seed_list <<< "$seeds"
-((${#seed_list[@]})) || { echo "error: --seeds is empty" >&2; exit 2; }
-for s in "${seed_list[@]}"; do
-  [[ "$s" =~ ^[0-9]+$ ]] || { echo "error: seed '$s' is not a non-negative integer" >&2; exit 2; }
-done
-
-# shellcheck source=scripts/synth_lib.sh
-source "$root/scripts/synth_lib.sh"  # log, json_get, render, formatting
+check_common_options
 
 walking=(walking_xyz walking_static walking_rpy walking_halfsphere)
 mkdir -p "$out/sequences" "$out/runs"

@@ -1,5 +1,33 @@
 # Shared by the synthetic evaluation scripts (quality_matrix.sh, movers_matrix.sh); sourced, not run.
-# Expects: bin (amos-slam), out (output folder), frames (frames per sequence).
+# The functions read and set the caller's seeds, seed_list, frames, bin, out and config.
+
+abspath() { case "$1" in /*) printf '%s\n' "$1" ;; *) printf '%s\n' "$PWD/$1" ;; esac; }
+
+# common_option NAME VALUE: sets the option both matrices take (--seeds, --frames, --bin, --out, --config) and
+# returns 0, or returns 1 for any other NAME. Paths are made absolute against the current folder.
+common_option() {
+  case "$1" in
+    --seeds) seeds=${2:?--seeds needs a value} ;;
+    --frames) frames=${2:?--frames needs a value} ;;
+    --bin) bin=$(abspath "${2:?--bin needs a value}") ;;
+    --out) out=$(abspath "${2:?--out needs a value}") ;;
+    --config) config=$(abspath "${2:?--config needs a value}") ;;
+    *) return 1 ;;
+  esac
+}
+
+# check_common_options: exits with a message naming the bad value; fills seed_list from seeds.
+check_common_options() {
+  [[ -x "$bin" ]] || { echo "error: amos-slam binary '$bin' not found or not executable; build first (scripts/build.sh) or pass --bin" >&2; exit 1; }
+  [[ -f "$config" ]] || { echo "error: settings file '$config' not found" >&2; exit 1; }
+  [[ "$frames" =~ ^[1-9][0-9]*$ ]] || { echo "error: --frames must be a positive integer, got '$frames'" >&2; exit 2; }
+  read -r -a seed_list <<< "$seeds"
+  ((${#seed_list[@]})) || { echo "error: --seeds is empty" >&2; exit 2; }
+  local s
+  for s in "${seed_list[@]}"; do
+    [[ "$s" =~ ^[0-9]+$ ]] || { echo "error: seed '$s' is not a non-negative integer" >&2; exit 2; }
+  done
+}
 
 log() { printf '[%s] %s\n' "$(date +%H:%M:%S)" "$*" >&2; }
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+
 namespace amos::dynamic {
 namespace {
 
@@ -18,8 +20,8 @@ TEST(FrameRegions, PriorRegionsAreTheMasksConnectedComponents) {
   EXPECT_EQ(findPriorRegions(cv::Mat(30, 40, CV_8U, cv::Scalar(0))).count, 0);
 }
 
-TEST(FrameRegions, DecisionRegionsLeaveOutTheBorderBlocks) {
-  // 3 x 3 superpixel blocks of 10 x 10 px; clusters: the left column 0, the rest 1.
+// 3 x 3 superpixel blocks of 10 x 10 px; clusters: the left column 0, the rest 1.
+std::pair<SuperpixelSegmentation, cv::Mat> nineBlocks() {
   SuperpixelSegmentation segmentation;
   segmentation.labels.create(30, 30, CV_32S);
   cv::Mat clusters(30, 30, CV_32S);
@@ -29,6 +31,11 @@ TEST(FrameRegions, DecisionRegionsLeaveOutTheBorderBlocks) {
       clusters.at<int>(y, x) = x < 10 ? 0 : 1;
     }
   segmentation.superpixels.resize(9);
+  return {segmentation, clusters};
+}
+
+TEST(FrameRegions, DecisionRegionsLeaveOutTheBorderBlocks) {
+  const auto [segmentation, clusters] = nineBlocks();
   const DecisionRegions regions = findDecisionRegions(segmentation, clusters, 0);
   for (int s = 0; s < 9; ++s) EXPECT_EQ(regions.border[s], s != 4) << s;
   EXPECT_EQ(labelAt(regions.decision_map, {15, 15}), 1);
@@ -37,17 +44,9 @@ TEST(FrameRegions, DecisionRegionsLeaveOutTheBorderBlocks) {
 }
 
 TEST(FrameRegions, PerTrackBorderRuleLeavesOutOnlyTheEdgeBand) {
-  // The same blocks as above; with the per-track rule no block is a border block and only the 3 px band along the
-  // image edge is outside the decision map.
-  SuperpixelSegmentation segmentation;
-  segmentation.labels.create(30, 30, CV_32S);
-  cv::Mat clusters(30, 30, CV_32S);
-  for (int y = 0; y < 30; ++y)
-    for (int x = 0; x < 30; ++x) {
-      segmentation.labels.at<int>(y, x) = (y / 10) * 3 + x / 10;
-      clusters.at<int>(y, x) = x < 10 ? 0 : 1;
-    }
-  segmentation.superpixels.resize(9);
+  // With the per-track rule no block is a border block and only the 3 px band along the image edge is outside the
+  // decision map.
+  const auto [segmentation, clusters] = nineBlocks();
   const DecisionRegions regions = findEdgeDecisionRegions(segmentation, clusters, 3);
   for (int s = 0; s < 9; ++s) EXPECT_FALSE(regions.border[s]) << s;
   EXPECT_EQ(labelAt(regions.decision_map, {5, 15}), 0);   // a border block, 5 px from the edge: judged
