@@ -113,6 +113,8 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.Temporal.excludeFromFits", &o.temporal.exclude_last_mask_from_fits,
         "tracks starting in the last frame's mask take no part in the pose refit and the F fit");
 
+  s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
+        "1 = initial-pose hypotheses and models are ranked by the image cells their inliers cover, 0 = by their number");
   s.add("Dynamic.InitialPose.inlierThreshold", &o.initial_pose.inlier_threshold_px,
         "reprojection error of an inlier of the initial-pose models (px)");
   s.add("Dynamic.InitialPose.keyframeForwardBackward", &o.initial_pose.keyframe_forward_backward,

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "amos/core/error.h"
@@ -96,13 +97,36 @@ int countInliers(const core::SE3& T_cw, const PoseCorrespondences& correspondenc
   return count;
 }
 
+namespace {
+constexpr int kCoverageCols = 8, kCoverageRows = 6;  // cells of ~80 x 80 px at 640 x 480
+}  // namespace
+
+int countInlierCells(const core::SE3& T_cw, const PoseCorrespondences& correspondences,
+                     const core::PinholeCamera& camera, double threshold_px, int cols, int rows) {
+  const double t2 = threshold_px * threshold_px;
+  const double w = camera.intrinsics().width, h = camera.intrinsics().height;
+  std::vector<bool> hit(static_cast<std::size_t>(cols * rows), false);
+  for (std::size_t i = 0; i < correspondences.size(); ++i) {
+    const Eigen::Vector3d p_c = T_cw * correspondences.points_w[i];
+    if (p_c.z() <= 1e-6) continue;
+    const Eigen::Vector2d& u = correspondences.pixels[i];
+    if ((camera.project(p_c) - u).squaredNorm() >= t2) continue;
+    const int cx = std::clamp(static_cast<int>(u.x() * cols / w), 0, cols - 1);
+    const int cy = std::clamp(static_cast<int>(u.y() * rows / h), 0, rows - 1);
+    hit[static_cast<std::size_t>(cy * cols + cx)] = true;
+  }
+  return static_cast<int>(std::count(hit.begin(), hit.end(), true));
+}
+
 PoseCandidate poseFromCorrespondences(PoseModel model, const PoseCorrespondences& correspondences,
                                       const core::PinholeCamera& camera, const InitialPoseOptions& options) {
   PoseCandidate candidate;
   candidate.model = model;
   if (static_cast<int>(correspondences.size()) < options.pnp.min_inliers) return candidate;
+  geometry::PnpRansacOptions ransac = options.pnp;
+  if (options.select_by_coverage) ransac.coverage_cols = kCoverageCols, ransac.coverage_rows = kCoverageRows;
   const geometry::PnpResult pnp =
-      geometry::solvePnpRansac(correspondences.points_w, correspondences.pixels, camera, options.pnp);
+      geometry::solvePnpRansac(correspondences.points_w, correspondences.pixels, camera, ransac);
   candidate.valid = pnp.success;
   candidate.T_cw = pnp.T_cw;
   candidate.own_inliers = static_cast<int>(pnp.inliers.size());
@@ -119,7 +143,16 @@ InitialPoseResult selectInitialPose(std::vector<PoseCandidate> candidates, const
     PoseCandidate& c = candidates[i];
     if (!c.valid) continue;
     c.common_inliers = countInliers(c.T_cw, common, camera, options.inlier_threshold_px);
-    if (best < 0 || c.common_inliers > candidates[best].common_inliers) best = static_cast<int>(i);
+    if (options.select_by_coverage) {
+      c.common_cells =
+          countInlierCells(c.T_cw, common, camera, options.inlier_threshold_px, kCoverageCols, kCoverageRows);
+      const PoseCandidate* b = best < 0 ? nullptr : &candidates[best];
+      if (!b || c.common_cells > b->common_cells ||
+          (c.common_cells == b->common_cells && c.common_inliers > b->common_inliers))
+        best = static_cast<int>(i);
+    } else if (best < 0 || c.common_inliers > candidates[best].common_inliers) {
+      best = static_cast<int>(i);
+    }
   }
   if (best >= 0) {
     result.ok = true;

@@ -84,6 +84,33 @@ TEST(InitialPoseModels, SelectionPicksTheUncorruptedModel) {
   EXPECT_EQ(selectInitialPose(candidates, common, cam, InitialPoseOptions{}).T_cw.matrix(), corrupted[0].matrix());
 }
 
+// Dynamic.InitialPose.selectByCoverage: of two candidates, one explains 150 correspondences packed in one corner of
+// the image (a mover), the other 80 spread over it (the static world). By number the first wins, by coverage the
+// second.
+TEST(InitialPoseModels, SelectionByCoveragePrefersTheSpreadInliers) {
+  const core::PinholeCamera cam = testCamera();
+  const core::SE3 T_static = pose(0.01, 0, 0, 0, 0.01, 0), T_mover = pose(-0.05, 0.02, 0, 0, -0.03, 0);
+  PoseCorrespondences common = observe(T_static, cam, 80, 3);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(20, 140), v(20, 120);
+  for (int i = 0; i < 150; ++i) {
+    const Eigen::Vector3d p_c = cam.backProject(u(rng), v(rng), 1.5);
+    common.points_w.push_back(T_mover.inverse() * p_c);
+    common.pixels.push_back(cam.project(p_c));
+  }
+  std::vector<PoseCandidate> candidates(2);
+  candidates[0] = {PoseModel::kReferenceKeyframe, true, T_mover};
+  candidates[1] = {PoseModel::kLastFrame, true, T_static};
+  InitialPoseOptions options;
+  const InitialPoseResult by_number = selectInitialPose(candidates, common, cam, options);
+  EXPECT_EQ(by_number.model, PoseModel::kReferenceKeyframe);
+  options.select_by_coverage = true;
+  const InitialPoseResult by_coverage = selectInitialPose(candidates, common, cam, options);
+  EXPECT_EQ(by_coverage.model, PoseModel::kLastFrame);
+  EXPECT_GT(by_coverage.candidates[1].common_cells, 30);
+  EXPECT_LE(by_coverage.candidates[0].common_cells, 4);
+}
+
 TEST(InitialPoseModels, EstimateRunsPnpPerModelAndKeepsTheBest) {
   const core::PinholeCamera cam = testCamera();
   const core::SE3 T_cw_last = pose(0.0, 0.0, 0.0, 0.0, 0.0, 0.0);

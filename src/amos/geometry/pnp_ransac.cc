@@ -24,6 +24,8 @@ void PnpRansacOptions::check() const {
                       fmt::format("must be in (0, 1), got {}", confidence));
   core::requirePositive(max_iterations, "max_iterations");
   core::requireAtLeast(min_inliers, "min_inliers", 4);
+  core::requireAtLeast(coverage_cols, "coverage_cols", 0);
+  core::requireAtLeast(coverage_rows, "coverage_rows", 0);
 }
 
 namespace {
@@ -209,7 +211,19 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
   // LO-RANSAC over the minimal solver's hypotheses; the iteration budget shrinks as the best inlier ratio grows
   // (confidence).
   core::SE3 best_T = core::SE3::Identity();
-  int best_count = 0;
+  int best_count = 0, best_cells = 0;
+  const bool by_coverage = options.coverage_cols > 0 && options.coverage_rows > 0;
+  std::vector<char> cell_hit;
+  auto coveredCells = [&](const std::vector<int>& inliers) {
+    cell_hit.assign(static_cast<std::size_t>(options.coverage_cols * options.coverage_rows), 0);
+    const double w = camera.intrinsics().width, h = camera.intrinsics().height;
+    for (const int i : inliers) {
+      const int cx = std::clamp(static_cast<int>(pixels[i].x() * options.coverage_cols / w), 0, options.coverage_cols - 1);
+      const int cy = std::clamp(static_cast<int>(pixels[i].y() * options.coverage_rows / h), 0, options.coverage_rows - 1);
+      cell_hit[static_cast<std::size_t>(cy * options.coverage_cols + cx)] = 1;
+    }
+    return static_cast<int>(std::count(cell_hit.begin(), cell_hit.end(), 1));
+  };
   int budget = options.max_iterations;
   for (int it = 0; it < budget; ++it) {
     const auto idx = sampleIndices(rng, n, sample_size);
@@ -220,7 +234,15 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
     hypothesesFromSample(options.minimal_solver, sample_w, sample_xy, p3p_buffers, hypotheses);
     for (const core::SE3& T : hypotheses) {
       int count = countInliers(T, points_w, pixels, camera, threshold2);
-      if (count <= best_count) continue;
+      int cells = 0;
+      if (by_coverage) {
+        if (count < sample_size + 1) continue;
+        collectInliers(T, points_w, pixels, camera, threshold2, support);
+        cells = coveredCells(support);
+        if (cells < best_cells || (cells == best_cells && count <= best_count)) continue;
+      } else if (count <= best_count) {
+        continue;
+      }
       core::SE3 T_best = T;
       // Local optimisation (LO-RANSAC, Chum et al. 2003): a hypothesis from a few noisy points underestimates its
       // support; refitting it to its inliers recovers the true inlier ratio, so the budget below shrinks as it
@@ -228,13 +250,25 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
       if (count >= sample_size + 1) {
         collectInliers(T_best, points_w, pixels, camera, threshold2, support);
         const core::SE3 T_lo = refinePose(T_best, points_w, pixels, camera, support, kLocalRefineIterations);
-        const int count_lo = countInliers(T_lo, points_w, pixels, camera, threshold2);
-        if (count_lo > count) {
-          count = count_lo;
-          T_best = T_lo;
+        if (by_coverage) {
+          std::vector<int> support_lo;
+          collectInliers(T_lo, points_w, pixels, camera, threshold2, support_lo);
+          const int cells_lo = coveredCells(support_lo);
+          if (cells_lo > cells || (cells_lo == cells && static_cast<int>(support_lo.size()) > count)) {
+            count = static_cast<int>(support_lo.size());
+            cells = cells_lo;
+            T_best = T_lo;
+          }
+        } else {
+          const int count_lo = countInliers(T_lo, points_w, pixels, camera, threshold2);
+          if (count_lo > count) {
+            count = count_lo;
+            T_best = T_lo;
+          }
         }
       }
       best_count = count;
+      best_cells = cells;
       best_T = T_best;
       const double w = static_cast<double>(count) / n;
       const double p_all_inliers = std::pow(w, sample_size);

@@ -29,6 +29,10 @@ struct PnpRansacOptions {
   int min_inliers = 15;  // below this the result is a failure
   unsigned seed = 42;
   PnpMinimalSolver minimal_solver = PnpMinimalSolver::kAp3p;
+  // coverage_cols x coverage_rows > 0: hypotheses are ranked by how many cells of that grid over the image their
+  // inliers reach (ties: more inliers), not by the number of inliers alone; see
+  // dynamic::InitialPoseOptions::select_by_coverage. 0 = by number (the usual RANSAC).
+  int coverage_cols = 0, coverage_rows = 0;
   void check() const;
 };
 

@@ -159,4 +159,39 @@ TEST(PnpRansac, Ap3pFindsThePoseAtLowInlierRatiosWithinTheBudget) {
   }
 }
 
+// PnpRansacOptions::coverage_cols / rows: 60 % of the points lie on a compact mover (a 120 x 120 px patch) that moved
+// with the camera between the frames, so its points fit another pose; the static 40 % are spread over the image.
+// By number of inliers RANSAC returns the mover's pose; by the cells the inliers cover, the static one.
+TEST(PnpRansac, CoverageRankingPrefersTheSpreadStaticMotionToACompactMover) {
+  const auto camera = testing::testCamera();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  core::Vector6d xi_static, xi_mover;
+  xi_static << 0.02, 0.0, 0.0, 0.0, 0.01, 0.0;
+  xi_mover << -0.05, 0.02, 0.0, 0.0, -0.03, 0.0;
+  const core::SE3 T_cw_static = core::expSE3(xi_static);
+  const core::SE3 T_cw_mover = core::expSE3(xi_mover);  // the pose under which the mover's points project right
+  std::vector<Eigen::Vector3d> points_w;
+  std::vector<Eigen::Vector2d> pixels;
+  for (int i = 0; i < 300; ++i) {
+    const bool mover = i < 180;
+    const double u = mover ? 260 + 120 * u01(rng) : 640 * u01(rng);
+    const double v = mover ? 180 + 120 * u01(rng) : 480 * u01(rng);
+    const Eigen::Vector3d p_c = camera.backProject(u, v, mover ? 1.5 + 0.3 * u01(rng) : 2.0 + 3.0 * u01(rng));
+    const core::SE3& T_cw = mover ? T_cw_mover : T_cw_static;
+    points_w.push_back(T_cw.inverse() * p_c);
+    pixels.push_back(camera.project(p_c));
+  }
+  PnpRansacOptions options;
+  const PnpResult by_number = solvePnpRansac(points_w, pixels, camera, options);
+  ASSERT_TRUE(by_number.success);
+  EXPECT_LT(core::translationNorm(by_number.T_cw * T_cw_mover.inverse()), 1e-3);
+  options.coverage_cols = 8;
+  options.coverage_rows = 6;
+  const PnpResult by_coverage = solvePnpRansac(points_w, pixels, camera, options);
+  ASSERT_TRUE(by_coverage.success);
+  EXPECT_LT(core::translationNorm(by_coverage.T_cw * T_cw_static.inverse()), 1e-3);
+  EXPECT_EQ(by_coverage.inliers.size(), 120u);
+}
+
 }  // namespace amos::geometry
