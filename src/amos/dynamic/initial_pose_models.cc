@@ -104,18 +104,14 @@ constexpr int kCoverageCols = 8, kCoverageRows = 6;  // cells of ~80 x 80 px at 
 int countInlierCells(const core::SE3& T_cw, const PoseCorrespondences& correspondences,
                      const core::PinholeCamera& camera, double threshold_px, int cols, int rows) {
   const double t2 = threshold_px * threshold_px;
-  const double w = camera.intrinsics().width, h = camera.intrinsics().height;
-  std::vector<bool> hit(static_cast<std::size_t>(cols * rows), false);
+  std::vector<int> inliers;
   for (std::size_t i = 0; i < correspondences.size(); ++i) {
     const Eigen::Vector3d p_c = T_cw * correspondences.points_w[i];
-    if (p_c.z() <= 1e-6) continue;
-    const Eigen::Vector2d& u = correspondences.pixels[i];
-    if ((camera.project(p_c) - u).squaredNorm() >= t2) continue;
-    const int cx = std::clamp(static_cast<int>(u.x() * cols / w), 0, cols - 1);
-    const int cy = std::clamp(static_cast<int>(u.y() * rows / h), 0, rows - 1);
-    hit[static_cast<std::size_t>(cy * cols + cx)] = true;
+    if (p_c.z() > 1e-6 && (camera.project(p_c) - correspondences.pixels[i]).squaredNorm() < t2)
+      inliers.push_back(static_cast<int>(i));
   }
-  return static_cast<int>(std::count(hit.begin(), hit.end(), true));
+  return geometry::countCoveredCells(correspondences.pixels, inliers, camera.intrinsics().width,
+                                     camera.intrinsics().height, cols, rows);
 }
 
 PoseCandidate poseFromCorrespondences(PoseModel model, const PoseCorrespondences& correspondences,

@@ -186,6 +186,17 @@ void hypothesesFromSample(PnpMinimalSolver solver, const std::vector<Eigen::Vect
 
 }  // namespace
 
+int countCoveredCells(const std::vector<Eigen::Vector2d>& pixels, const std::vector<int>& indices, double width,
+                      double height, int cols, int rows) {
+  std::vector<char> hit(static_cast<std::size_t>(std::max(0, cols * rows)), 0);
+  for (const int i : indices) {
+    const int cx = std::clamp(static_cast<int>(pixels[i].x() * cols / width), 0, cols - 1);
+    const int cy = std::clamp(static_cast<int>(pixels[i].y() * rows / height), 0, rows - 1);
+    hit[static_cast<std::size_t>(cy * cols + cx)] = 1;
+  }
+  return static_cast<int>(std::count(hit.begin(), hit.end(), 1));
+}
+
 PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std::vector<Eigen::Vector2d>& pixels,
                          const core::PinholeCamera& camera, const PnpRansacOptions& options) {
   options.check();
@@ -213,16 +224,9 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
   core::SE3 best_T = core::SE3::Identity();
   int best_count = 0, best_cells = 0;
   const bool by_coverage = options.coverage_cols > 0 && options.coverage_rows > 0;
-  std::vector<char> cell_hit;
   auto coveredCells = [&](const std::vector<int>& inliers) {
-    cell_hit.assign(static_cast<std::size_t>(options.coverage_cols * options.coverage_rows), 0);
-    const double w = camera.intrinsics().width, h = camera.intrinsics().height;
-    for (const int i : inliers) {
-      const int cx = std::clamp(static_cast<int>(pixels[i].x() * options.coverage_cols / w), 0, options.coverage_cols - 1);
-      const int cy = std::clamp(static_cast<int>(pixels[i].y() * options.coverage_rows / h), 0, options.coverage_rows - 1);
-      cell_hit[static_cast<std::size_t>(cy * options.coverage_cols + cx)] = 1;
-    }
-    return static_cast<int>(std::count(cell_hit.begin(), cell_hit.end(), 1));
+    return countCoveredCells(pixels, inliers, camera.intrinsics().width, camera.intrinsics().height,
+                             options.coverage_cols, options.coverage_rows);
   };
   int budget = options.max_iterations;
   for (int it = 0; it < budget; ++it) {

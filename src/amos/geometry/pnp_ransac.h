@@ -42,6 +42,11 @@ struct PnpResult {
   std::vector<int> inliers;  // indices into the input arrays
 };
 
+// How many cells of a cols x rows grid over a width x height image hold at least one of pixels[indices] (the
+// coverage ranking above; also used to compare whole candidate poses).
+int countCoveredCells(const std::vector<Eigen::Vector2d>& pixels, const std::vector<int>& indices, double width,
+                      double height, int cols, int rows);
+
 PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std::vector<Eigen::Vector2d>& pixels,
                          const core::PinholeCamera& camera, const PnpRansacOptions& options);
 
