@@ -29,9 +29,10 @@ struct BoundaryOptions {
   // corners track worst (LK windows leave the image, content enters and leaves the view).
   int border_margin_px = 0;
   // Dynamic.Boundary.borderBlocks: true = the paper's rule, whole superpixel blocks touching the image edge (within
-  // borderMargin) take no part in the decisions. false = the rule is applied per track: only a track whose current
-  // pixel lies within half an LK window (+1 px) of the edge abstains, i.e. one whose finest-level window was cut by
-  // the frame, which is the reason the paper gives for the rule; border blocks are judged like any other. Issue 16:
+  // borderMargin) take no part in the decisions. false = the rule is applied per track: only a track whose last or
+  // current pixel lies within half an LK window (+1 px) of the edge abstains (DynamicFrontEnd::edgeBand), i.e. one
+  // whose finest-level window was cut by the frame, which is the reason the paper gives for the rule; border blocks
+  // are judged like any other. Issue 16:
   // a mover near the camera on the floor (a pushed box, a chair) or entering the view touches the image edge for
   // most of its time in view, and a superpixel is ~32 px wide, so the block rule discards the tracks up to ~40 px
   // in: box_starts seed 4, frames 150-170, every track on the box (4-6 px of motion, 10-30 px from the edge) lay in

@@ -95,13 +95,11 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     // The per-track border rule at the other end: the edge band of the decision map takes the tracks that end near
     // the image edge out of the decisions; a track that started there had its LK template cut by the frame (a
     // camera turning brings such points inwards within a frame) and goes too.
-    const int band = edgeBand();
-    const cv::Rect2f inner(static_cast<float>(band), static_cast<float>(band),
-                           static_cast<float>(in.gray.cols - 1 - 2 * band), static_cast<float>(in.gray.rows - 1 - 2 * band));
+    const float band = static_cast<float>(edgeBand());
+    const float max_x = static_cast<float>(in.gray.cols - 1) - band, max_y = static_cast<float>(in.gray.rows - 1) - band;
     out.tracks.erase(std::remove_if(out.tracks.begin(), out.tracks.end(),
                                     [&](const PointTrack& t) {
-                                      return t.last.x < inner.x || t.last.y < inner.y ||
-                                             t.last.x > inner.x + inner.width || t.last.y > inner.y + inner.height;
+                                      return t.last.x < band || t.last.y < band || t.last.x > max_x || t.last.y > max_y;
                                     }),
                      out.tracks.end());
   }

@@ -85,24 +85,14 @@ core::SE3 velocityFrom(const core::SE3& T_cw_last, const core::SE3& T_cw_before_
 
 core::SE3 constantVelocityPose(const core::SE3& T_cw_last, const core::SE3& velocity) { return velocity * T_cw_last; }
 
-int countInliers(const core::SE3& T_cw, const PoseCorrespondences& correspondences, const core::PinholeCamera& camera,
-                 double threshold_px) {
-  const double t2 = threshold_px * threshold_px;
-  int count = 0;
-  for (std::size_t i = 0; i < correspondences.size(); ++i) {
-    const Eigen::Vector3d p_c = T_cw * correspondences.points_w[i];
-    if (p_c.z() <= 1e-6) continue;
-    if ((camera.project(p_c) - correspondences.pixels[i]).squaredNorm() < t2) ++count;
-  }
-  return count;
-}
-
 namespace {
-constexpr int kCoverageCols = 8, kCoverageRows = 6;  // cells of ~80 x 80 px at 640 x 480
-}  // namespace
 
-int countInlierCells(const core::SE3& T_cw, const PoseCorrespondences& correspondences,
-                     const core::PinholeCamera& camera, double threshold_px, int cols, int rows) {
+constexpr int kCoverageCols = 8, kCoverageRows = 6;  // cells of ~80 x 80 px at 640 x 480
+
+// Indices of the correspondences whose reprojection error under T_cw is below threshold_px (never those behind the
+// camera): what countInliers counts and countInlierCells spreads over the grid.
+std::vector<int> inlierIndices(const core::SE3& T_cw, const PoseCorrespondences& correspondences,
+                               const core::PinholeCamera& camera, double threshold_px) {
   const double t2 = threshold_px * threshold_px;
   std::vector<int> inliers;
   for (std::size_t i = 0; i < correspondences.size(); ++i) {
@@ -110,8 +100,20 @@ int countInlierCells(const core::SE3& T_cw, const PoseCorrespondences& correspon
     if (p_c.z() > 1e-6 && (camera.project(p_c) - correspondences.pixels[i]).squaredNorm() < t2)
       inliers.push_back(static_cast<int>(i));
   }
-  return geometry::countCoveredCells(correspondences.pixels, inliers, camera.intrinsics().width,
-                                     camera.intrinsics().height, cols, rows);
+  return inliers;
+}
+
+}  // namespace
+
+int countInliers(const core::SE3& T_cw, const PoseCorrespondences& correspondences, const core::PinholeCamera& camera,
+                 double threshold_px) {
+  return static_cast<int>(inlierIndices(T_cw, correspondences, camera, threshold_px).size());
+}
+
+int countInlierCells(const core::SE3& T_cw, const PoseCorrespondences& correspondences,
+                     const core::PinholeCamera& camera, double threshold_px, int cols, int rows) {
+  return geometry::countCoveredCells(correspondences.pixels, inlierIndices(T_cw, correspondences, camera, threshold_px),
+                                     camera.intrinsics().width, camera.intrinsics().height, cols, rows);
 }
 
 PoseCandidate poseFromCorrespondences(PoseModel model, const PoseCorrespondences& correspondences,

@@ -252,7 +252,7 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
       // support; refitting it to its inliers recovers the true inlier ratio, so the budget below shrinks as it
       // should and the final refinement starts closer.
       if (count >= sample_size + 1) {
-        collectInliers(T_best, points_w, pixels, camera, threshold2, support);
+        if (!by_coverage) collectInliers(T_best, points_w, pixels, camera, threshold2, support);  // else it holds them
         const core::SE3 T_lo = refinePose(T_best, points_w, pixels, camera, support, kLocalRefineIterations);
         if (by_coverage) {
           std::vector<int> support_lo;
