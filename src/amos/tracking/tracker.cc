@@ -152,6 +152,15 @@ TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& ext
         // the relocalised pose itself (no velocity yet) is still a good prediction for a projection search.
         if (!ok) ok = trackWithMotionModel(frame, external_T_cw, result.used_external_pose);
       }
+      // Both failed (in crowds: the narrow window's matches mostly on temporary points, too few in the map): the
+      // recovery's wide window and PnP RANSAC over the local map, on this frame rather than after it is lost.
+      if (!ok && options_.recovery_frames > 0 && last_tracked_T_cw_ && recoverNearLastPose(frame, external_T_cw)) {
+        ok = true;
+        last_reloc_frame_ = frame.id;  // its local map tracking must then meet relocMinInliers
+        relocalized_once_ = true;
+        result.relocalized = true;
+        spdlog::debug("frame {}: recovered in the same frame near the predicted pose", frame.id);
+      }
     } else {
       const bool recently_lost = options_.recovery_frames > 0 && last_tracked_T_cw_ &&
                                  frame.id <= last_tracked_frame_ + static_cast<map::FrameId>(options_.recovery_frames);
@@ -231,6 +240,7 @@ TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& ext
   if (ok) {
     last_tracked_T_cw_ = frame.T_cw;
     last_tracked_frame_ = frame.id;
+    last_tracked_velocity_ = velocity_;
   }
   last_frame_ = std::move(frame);
   last_frame_tracked_ = ok;
@@ -472,6 +482,13 @@ bool Tracker::recoverNearLastPose(map::Frame& frame, const std::optional<core::S
   if (local_points_.empty()) return false;
   std::vector<core::SE3> predictions;
   if (external_T_cw) predictions.push_back(*external_T_cw);
+  // A camera that kept moving while the view was covered is nearer where its last velocity takes it than where
+  // it was (ORB-SLAM3 predicts the same way while recently lost, with an IMU); one that stopped is at the last pose.
+  if (last_tracked_velocity_ && frame.id > last_tracked_frame_) {
+    core::SE3 T = *last_tracked_T_cw_;
+    for (map::FrameId k = last_tracked_frame_; k < frame.id; ++k) T = *last_tracked_velocity_ * T;
+    predictions.push_back(map::orthonormalized(T));
+  }
   predictions.push_back(*last_tracked_T_cw_);
   for (const core::SE3& T : predictions) {
     frame.resetMatches();

@@ -135,7 +135,8 @@ class Tracker {
   bool trackWithMotionModel(map::Frame& frame, const std::optional<core::SE3>& external, bool& used_external);
   bool trackReferenceKeyFrame(map::Frame& frame);
   bool trackLocalMap(map::Frame& frame, int& inliers);
-  // Recently lost: matches the last local map around the external or the last tracked pose (see recovery_frames).
+  // Recently lost: matches the last local map around the external pose, the last tracked pose carried on by its
+  // velocity, and the last tracked pose (see recovery_frames).
   bool recoverNearLastPose(map::Frame& frame, const std::optional<core::SE3>& external_T_cw);
   void updateLastFrame();
   void updateLocalMap(map::Frame& frame);
@@ -165,6 +166,7 @@ class Tracker {
   map::FrameId last_reloc_frame_ = 0;
   std::optional<core::SE3> last_tracked_T_cw_;  // pose of the last frame that was tracked (kept while lost)
   map::FrameId last_tracked_frame_ = 0;
+  std::optional<core::SE3> last_tracked_velocity_;  // velocity at that frame (for the recovery's extrapolation)
   bool relocalized_once_ = false;
   std::vector<map::KeyFramePtr> local_keyframes_;
   std::vector<map::MapPointPtr> local_points_;
