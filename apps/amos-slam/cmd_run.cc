@@ -105,6 +105,8 @@ void printSource(const report::SourceReport& src) {
     std::cout << fmt::format(";  latency arrival -> pose median {:.1f} ms  p95 {:.1f} ms",
                              core::percentile(src.latency_ms, 0.5), core::percentile(src.latency_ms, 0.95));
   }
+  if (src.segmentation_late > 0)
+    std::cout << fmt::format(";  person masks carried on past a late network on {} frames", src.segmentation_late);
   if (!src.recorded_to.empty()) std::cout << ";  recorded to " << src.recorded_to;
   std::cout << "\n";
 }

@@ -37,6 +37,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.Prior.minTracks", &o.prior.min_tracks, "tracks inside a person needed to measure its motion");
   s.add("Dynamic.Prior.holdMissed", &o.prior.hold_missed,
         "segmentations a person is carried on for after the network no longer finds it");
+  s.add("Dynamic.Prior.liveWait", &o.prior.live_wait,
+        "1 = with a paced or live source stage B waits for a late segmentation as a folder run does; 0 = the "
+        "masks are carried on meanwhile (at most one interval longer)");
   s.add("Dynamic.Prior.auditPredictions", &o.prior.audit_predictions,
         "also segment every frame and score the carried masks against it (for measurement only)");
 

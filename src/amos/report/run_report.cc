@@ -25,7 +25,8 @@ nlohmann::json toJson(const SourceReport& source) {
   nlohmann::json j = {{"kind", source.kind},
                       {"delivered", source.delivered},
                       {"processed", source.processed},
-                      {"dropped", source.dropped}};
+                      {"dropped", source.dropped},
+                      {"segmentation_late", source.segmentation_late}};
   if (!source.latency_ms.empty()) {
     j["latency_ms"] = {{"median", core::percentile(source.latency_ms, 0.5)},
                        {"p95", core::percentile(source.latency_ms, 0.95)},

@@ -31,6 +31,9 @@ namespace amos::report {
 struct SourceReport {
   std::string kind;  // folder | realtime | openni2
   std::size_t delivered = 0, processed = 0, dropped = 0;
+  // Processed frames whose person masks were carried on because the network's segmentation was late (paced and
+  // live sources only; a folder run waits for it).
+  std::size_t segmentation_late = 0;
   // Per processed frame: from the moment it became available to the moment process() returned its pose, in ms.
   std::vector<double> latency_ms;
   std::string recorded_to;  // --record folder ("" = none)

@@ -237,6 +237,8 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
       break;
   }
   const bool paced = options.source != FrameSourceKind::kFolder;
+  // A paced or live source: a pose must not wait for a late person network (DynamicPipeline::setWaitForSegmentation).
+  result.pipeline->setWaitForSegmentation(!paced || settings.dynamic.prior.live_wait);
   std::optional<MaskOutputWriter> mask_writer;
   if (!options.masks_output_dir.empty())
     mask_writer.emplace(options.masks_output_dir, source->size(), options.overlay_count);
@@ -364,6 +366,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   source_report.dropped = stats.dropped;
   result.info.skipped_frames = stats.skipped;
   source_report.processed = n;
+  source_report.segmentation_late = result.pipeline->segmentationLateFrames();
   source.reset();  // a live device is closed here
   result.info.source = std::move(source_report);
   // The pipeline's own stages (ORB extraction and tracking CPU in every mode, the front end's in the others).

@@ -1,5 +1,8 @@
 #include "amos/system/dynamic_pipeline.h"
 
+#include <chrono>
+#include <future>
+
 #include <opencv2/calib3d.hpp>
 #include <spdlog/spdlog.h>
 
@@ -80,7 +83,6 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
   core::Stopwatch watch;
   const double cpu = threadCpuMs();
   const core::PinholeCamera& camera = slam_.sensor()->camera();
-  const LastFrame& last = *state_.last;
   // Model 1: the reference keyframe's keypoints that carry map points, tracked by LK into this frame.
   dynamic::PoseCorrespondences from_keyframe;
   const tracking::ReferenceKeyFrameView view = slam_.tracker().referenceKeyFrameView();
@@ -102,12 +104,21 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
                                                      camera, tracking);
     break;
   }
-  // Model 2: last-frame corners lifted with the last depth and pose (Eq. 6).
-  const auto lifted = dynamic::backProjectTracks(tracks, last.depth, last.T_cw, camera, options_.reprojection);
-  const dynamic::PoseCorrespondences from_last = dynamic::lastFrameCorrespondences(tracks, lifted, camera);
-  // Model 3: constant velocity.
-  const dynamic::InitialPoseResult result = dynamic::estimateInitialPose(
-      from_keyframe, from_last, last.T_cw, slam_.tracker().velocity(), camera, options_.initial_pose);
+  // Model 2: last-frame corners lifted with the last depth and pose (Eq. 6). Model 3: constant velocity. Both need
+  // the last frame's pose: after a lost frame model 1 stands alone (it needs only the reference keyframe), and its
+  // pose is where the tracker's recovery searches the nearby map first.
+  dynamic::PoseCorrespondences from_last;
+  core::SE3 T_cw_last = core::SE3::Identity();
+  std::optional<core::SE3> velocity;
+  if (state_.last) {
+    const LastFrame& last = *state_.last;
+    const auto lifted = dynamic::backProjectTracks(tracks, last.depth, last.T_cw, camera, options_.reprojection);
+    from_last = dynamic::lastFrameCorrespondences(tracks, lifted, camera);
+    T_cw_last = last.T_cw;
+    velocity = slam_.tracker().velocity();
+  }
+  const dynamic::InitialPoseResult result = dynamic::estimateInitialPose(from_keyframe, from_last, T_cw_last, velocity,
+                                                                         camera, options_.initial_pose);
   times_.add("dynamic.initial_pose", watch.elapsedMs());
   times_.add("cpu.initial_pose", threadCpuMs() - cpu);
   if (!result.ok) return std::nullopt;
@@ -122,6 +133,12 @@ PersonMaskCarrier::Masks DynamicPipeline::personMasks(FrameSlot& slot,
   core::require(pending.valid(), "DynamicPipeline: the segmentation of frame " + std::to_string(base) + " that frame " +
                                      std::to_string(slot.number) + " needs was never scheduled");
   if (state_.person_masks->startsFrom(base)) {
+    // A live source does not wait for a late network while the current masks may still be carried one frame on.
+    if (!wait_for_segmentation_ && state_.person_masks->canCarry(slot.number) &&
+        pending.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+      ++segmentation_late_frames_;
+      return state_.person_masks->carryOn(slot.number, dynamic::FrameFlow{tracks});
+    }
     core::Stopwatch wait;
     const segmentation::SegmentationResult& segmented = pending.get();
     times_.add("dynamic.segmentation_wait", wait.elapsedMs());
@@ -213,6 +230,10 @@ DynamicFrameOutput DynamicPipeline::processNext() {
         if (extras.initial_T_cw) input.T_cw_initial = *extras.initial_T_cw;
         input.tracks = &tracks;
       }
+    } else if (tasks.geometry) {
+      std::optional<dynamic::PoseModel> model;
+      extras.initial_T_cw = initialPose(motion.pyramid, tracks, model);  // 3, the reference keyframe's model alone
+      out.initial_pose_model = model;
     }
     if (tasks.segmentation) {
       PersonMaskCarrier::Masks masks = personMasks(slot, tracks);  // 4
@@ -261,6 +282,9 @@ void DynamicPipeline::finish() {
                  iou.size(), core::percentile(iou, 0.5), core::percentile(iou, 0.05), core::percentile(covered, 0.5),
                  core::percentile(covered, 0.05));
   }
+  if (segmentation_late_frames_ > 0)
+    spdlog::info("person network late on {} frames: their masks were carried on from the segmentation before",
+                 segmentation_late_frames_);
   scheduler_.closeSegmentation();
   slam_.finish();
 }

@@ -12,7 +12,8 @@
 //   1. takeMotion          wait for the slot's motion input (grey image, LK pyramid, corners)
 //   2. trackCorners        LK tracks of the last frame's corners into this one            (geometry)
 //   3. initialPose         three models (Sec. III-D): reference-keyframe LK + EPnP,       (geometry)
-//                          last-frame corners + EPnP, constant velocity; most inliers wins
+//                          last-frame corners + EPnP, constant velocity; most inliers wins; after a lost
+//                          frame the keyframe model alone (the tracker's recovery searches around its pose)
 //   4. personMasks         this frame's segmentation, or an earlier one carried here       (prior)
 //                          -> hand-off: the dilated mask, for stage A of the next frame
 //   5. judge               the dynamic mask (DynamicFrontEnd, Sec. III-B/C), once the     (not in none)
@@ -99,6 +100,13 @@ class DynamicPipeline {
   // Closes the segmentation lane and finishes the SLAM system. Frames still waiting are not processed.
   void finish();
 
+  // Whether stage B waits for a person segmentation that is late (default, and what --deterministic needs). A live
+  // source (a camera, --realtime) sets false: a frame's pose must not wait for the network while the masks can
+  // be carried on by the tracks (PersonMaskCarrier::carryOn); the masks are then at most one period older.
+  void setWaitForSegmentation(bool wait) { wait_for_segmentation_ = wait; }
+  // Frames whose masks were carried on because the segmentation they were scheduled to start from was late.
+  std::size_t segmentationLateFrames() const { return segmentation_late_frames_; }
+
   dynamic::DynamicMode mode() const { return options_.mode; }
   // Per-stage times of the front end (segmentation wait, initial pose, superpixels, ...), in milliseconds.
   const core::StageTimes& times() const { return times_; }
@@ -148,6 +156,8 @@ class DynamicPipeline {
   core::StageTimes times_;
   std::vector<double> removed_fractions_;
   std::vector<PriorAudit> prior_audit_;
+  bool wait_for_segmentation_ = true;
+  std::size_t segmentation_late_frames_ = 0;
   std::atomic<FrameNumber> processed_{0};  // state_.processed, for push() and waiting() from another thread
   // Last member: its lanes are stopped first, before anything their tasks use goes away.
   FrameScheduler scheduler_;

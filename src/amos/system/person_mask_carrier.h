@@ -10,6 +10,10 @@
 //     const FrameNumber base = schedule.baseFor(k);
 //     if (carrier.startsFrom(base)) ... wait for the segmentation of `base` ...
 //     auto [mask, dilated] = carrier.masksFor(k, segmentation_of_base, dynamic::FrameFlow{tracks_of_k});
+//
+// A live source must not stall on the network: when the segmentation of `base` is not ready yet, carryOn() carries
+// the current masks one frame further instead (at most one interval beyond the schedule's oldest, canCarry()), and
+// the late segmentation is taken, carried over the frames since, by the first frame that finds it ready.
 #include <opencv2/core.hpp>
 
 #include <cstddef>
@@ -39,7 +43,16 @@ class PersonMaskCarrier {
   // the previous frame into this one (empty when there are none). Frames come in order.
   Masks masksFor(FrameNumber number, const segmentation::SegmentationResult& base_result, dynamic::FrameFlow flow);
 
+  // Whether frame `number` may still be served by the segmentation the masks were last started from: the masks
+  // would be at most interval + lag - 1 + interval frames old (one period later than the schedule ever carries).
+  bool canCarry(FrameNumber number) const { return propagator_ && number <= base_ + maxAge(); }
+  // Frame `number`'s masks carried on from the last segmentation taken, while a newer one is late (canCarry()).
+  Masks carryOn(FrameNumber number, dynamic::FrameFlow flow);
+
  private:
+  FrameNumber maxAge() const { return static_cast<FrameNumber>(2 * schedule_.interval + schedule_.lag - 1); }
+  void remember(FrameNumber number, dynamic::FrameFlow flow);
+
   segmentation::MaskDilationOptions dilation_;
   dynamic::PriorScheduleOptions schedule_;
   std::optional<dynamic::PriorMaskPropagator> propagator_;  // created on the first segmentation (its image size)

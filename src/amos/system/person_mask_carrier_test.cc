@@ -59,5 +59,37 @@ TEST(PersonMaskCarrier, OwnSegmentationAsGivenLateOnesCarriedOverTheFramesSince)
   EXPECT_EQ(leftmostColumn(m.mask), 125);
 }
 
+// A live source: frame 3's segmentation is late at frames 5 and 6, whose masks are carried on from frame 0's; frame
+// 7 finds it ready and carries it over frames 4-7. Beyond one period more the carrier refuses (canCarry).
+TEST(PersonMaskCarrier, CarriesOnWhileALateSegmentationIsAwaitedThenTakesItOverTheFramesSince) {
+  dynamic::PriorScheduleOptions schedule;
+  schedule.interval = 3;
+  schedule.lag = 2;
+  segmentation::MaskDilationOptions no_dilation;
+  no_dilation.size = 0;
+  PersonMaskCarrier carrier(no_dilation, schedule);
+  const auto seg0 = personAt(100);
+  auto seg3 = personAt(115);
+  seg3.instances[0].box.width = 30;  // the network sees the person 30 px wide now: tells the two segmentations apart
+  seg3.instances[0].mask = cv::Mat(seg3.instances[0].box.size(), CV_8UC1, cv::Scalar(255));
+  carrier.masksFor(0, seg0, {});
+  for (int k = 1; k <= 4; ++k) carrier.masksFor(static_cast<FrameNumber>(k), seg0, flowOf(95 + 5 * k, 5));
+  ASSERT_TRUE(carrier.startsFrom(3));
+  ASSERT_TRUE(carrier.canCarry(5));
+  auto m = carrier.carryOn(5, flowOf(120, 5));
+  EXPECT_EQ(leftmostColumn(m.mask), 125);
+  EXPECT_EQ(cv::countNonZero(m.mask.col(125)), 100);
+  m = carrier.carryOn(6, flowOf(125, 5));
+  EXPECT_EQ(leftmostColumn(m.mask), 130);
+  ASSERT_TRUE(carrier.startsFrom(3));  // still waiting for it
+  m = carrier.masksFor(7, seg3, flowOf(130, 5));
+  EXPECT_EQ(leftmostColumn(m.mask), 135);                      // frame 3's person, carried over frames 4-7
+  EXPECT_EQ(cv::countNonZero(m.mask.row(150)), 30);            // ... with the width frame 3's segmentation gave
+  EXPECT_FALSE(carrier.startsFrom(3));
+  // Frame 3 + 2 * 3 + 2 - 1 = 10 is the last frame that segmentation may serve.
+  EXPECT_TRUE(carrier.canCarry(10));
+  EXPECT_FALSE(carrier.canCarry(11));
+}
+
 }  // namespace
 }  // namespace amos::system
