@@ -500,6 +500,7 @@ bool Tracker::recoverNearLastPose(map::Frame& frame, const std::optional<core::S
       if (p && !p->isBad() && projectIntoFrame(frame, p, 0.5, pp)) candidates.push_back(std::move(pp));
     }
     const int found = tracking::searchLocalPoints(frame, candidates, options_.recovery_search_radius, options_.matching);
+    spdlog::debug("frame {}: recovery search: {} of {} local points in view matched", frame.id, found, candidates.size());
     if (found < options_.reloc_min_inliers) continue;
     // The wide window lets wrong matches in, and the prediction may be degrees off: PnP RANSAC on the matches
     // (as the relocaliser does) rather than a pose optimisation started at the prediction.
