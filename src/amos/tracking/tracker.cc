@@ -564,7 +564,7 @@ bool Tracker::needNewKeyFrame(const map::Frame& frame, int inliers) const {
   spdlog::debug("frame {}: keyframe test: inliers {} reference tracked {} (ratio {}) close tracked {} untracked {}{}",
                 frame.id, inliers, ref_matches, ref_ratio, tracked_close, untracked_close, idle ? "" : " mapping busy");
   if (!((c1a || c1b || c1c) && c2)) return false;
-  const bool sound = inliers >= ref_matches * 0.25 && inliers >= 2 * options_.local_min_inliers;
+  const bool sound = inliers >= ref_matches * 0.25 && inliers >= options_.close_tracked_max;
   if (sound && stillBehindMovers(frame)) {
     spdlog::debug("frame {}: no keyframe: movers hide part of the view, the camera is still at the reference "
                   "keyframe's viewpoint",
