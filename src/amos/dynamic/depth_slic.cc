@@ -259,15 +259,20 @@ void assignPixels(const Planes& p, const std::vector<Centre>& centres, float ste
   }
 }
 
-void updateCentres(const Planes& p, const cv::Mat& labels, std::vector<Centre>& centres) {
-  // Positions and a, b (integers in the 8-bit Lab conversion) sum exactly in integers; L and depth in double.
-  struct Sum {
-    double L = 0, z = 0;
-    std::int64_t x = 0, y = 0;
-    int A = 0, B = 0;
-    int n = 0, nz = 0;
-  };
-  std::vector<Sum> sums(centres.size());
+// Per-label sums of the working planes over the pixels labelled >= 0. Positions and a, b (integers in the 8-bit
+// Lab conversion) sum exactly in integers; L and depth in double, where sums of these floats are exact too (their
+// magnitudes and the ulps of the values span far fewer than 53 bits), so the order of the additions does not
+// matter. Each run of one label along a row is summed locally and added to the label's sums once. The centre
+// updates and the final superpixel means share this one pass.
+struct LabelSum {
+  double L = 0, z = 0;
+  std::int64_t x = 0, y = 0;
+  int A = 0, B = 0;
+  int n = 0, nz = 0;
+};
+
+std::vector<LabelSum> sumLabels(const Planes& p, const cv::Mat& labels, std::size_t count) {
+  std::vector<LabelSum> sums(count);
   for (int y = 0; y < p.height; ++y) {
     const int* lab = labels.ptr<int>(y);
     const float* L = p.L.ptr<float>(y);
@@ -275,16 +280,32 @@ void updateCentres(const Planes& p, const cv::Mat& labels, std::vector<Centre>& 
     const float* B = p.B.ptr<float>(y);
     const float* Z = p.Z.ptr<float>(y);
     const float* V = p.valid.ptr<float>(y);
-    for (int x = 0; x < p.width; ++x) {
-      if (lab[x] < 0) continue;
-      Sum& s = sums[lab[x]];
-      s.x += x, s.y += y, s.L += L[x], s.A += static_cast<int>(A[x]), s.B += static_cast<int>(B[x]);
-      ++s.n;
-      if (V[x] > 0.f) s.z += Z[x], ++s.nz;
+    for (int x = 0; x < p.width;) {
+      const int k = lab[x];
+      const int start = x;
+      double run_l = 0, run_z = 0;
+      int run_a = 0, run_b = 0, run_nz = 0;
+      for (; x < p.width && lab[x] == k; ++x) {
+        run_l += L[x], run_a += static_cast<int>(A[x]), run_b += static_cast<int>(B[x]);
+        if (V[x] > 0.f) run_z += Z[x], ++run_nz;
+      }
+      if (k < 0) continue;
+      const int n = x - start;
+      LabelSum& s = sums[k];
+      // x's sum over [start, x) = n * (start + x - 1) / 2.
+      s.x += static_cast<std::int64_t>(n) * (start + x - 1) / 2;
+      s.y += static_cast<std::int64_t>(n) * y;
+      s.L += run_l, s.A += run_a, s.B += run_b, s.n += n;
+      s.z += run_z, s.nz += run_nz;
     }
   }
+  return sums;
+}
+
+void updateCentres(const Planes& p, const cv::Mat& labels, std::vector<Centre>& centres) {
+  const std::vector<LabelSum> sums = sumLabels(p, labels, centres.size());
   for (std::size_t k = 0; k < centres.size(); ++k) {
-    const Sum& s = sums[k];
+    const LabelSum& s = sums[k];
     if (s.n == 0) continue;  // an empty centre keeps its place; it may win pixels back next round
     Centre& c = centres[k];
     c.x = static_cast<float>(static_cast<double>(s.x) / s.n);
@@ -481,31 +502,21 @@ SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth
   SuperpixelSegmentation result;
   result.superpixels.resize(count);
   {
-    std::vector<double> sx(count), sy(count), sl(count), sa(count), sb(count), sz(count);
-    std::vector<int> n(count), nz(count);
-    for (int y = 0; y < p.height; ++y) {
-      const int* lab = labels.ptr<int>(y);
-      const float *L = p.L.ptr<float>(y), *A = p.A.ptr<float>(y), *B = p.B.ptr<float>(y);
-      const float *Z = p.Z.ptr<float>(y), *V = p.valid.ptr<float>(y);
-      for (int x = 0; x < p.width; ++x) {
-        const int k = lab[x];
-        sx[k] += x, sy[k] += y, sl[k] += L[x], sa[k] += A[x], sb[k] += B[x];
-        ++n[k];
-        if (V[x] > 0.f) sz[k] += Z[x], ++nz[k];
-      }
-    }
+    const std::vector<LabelSum> sums = sumLabels(p, labels, static_cast<std::size_t>(count));
     // Working pixel centre x maps to full-resolution coordinate (x + 0.5) / s - 0.5.
     const double fx = static_cast<double>(bgr.cols) / p.width, fy = static_cast<double>(bgr.rows) / p.height;
     for (int k = 0; k < count; ++k) {
+      const LabelSum& sum = sums[k];
+      const int n = sum.n;
       Superpixel& s = result.superpixels[k];
-      s.pixel_count = n[k];
-      s.x = static_cast<float>((sx[k] / n[k] + 0.5) * fx - 0.5);
-      s.y = static_cast<float>((sy[k] / n[k] + 0.5) * fy - 0.5);
-      s.L = static_cast<float>(sl[k] / n[k]);
-      s.A = static_cast<float>(sa[k] / n[k]);
-      s.B = static_cast<float>(sb[k] / n[k]);
-      s.depth = nz[k] > 0 ? static_cast<float>(sz[k] / nz[k]) : 0.f;
-      s.valid_depth_fraction = static_cast<float>(nz[k]) / n[k];
+      s.pixel_count = n;
+      s.x = static_cast<float>((static_cast<double>(sum.x) / n + 0.5) * fx - 0.5);
+      s.y = static_cast<float>((static_cast<double>(sum.y) / n + 0.5) * fy - 0.5);
+      s.L = static_cast<float>(sum.L / n);
+      s.A = static_cast<float>(static_cast<double>(sum.A) / n);
+      s.B = static_cast<float>(static_cast<double>(sum.B) / n);
+      s.depth = sum.nz > 0 ? static_cast<float>(sum.z / sum.nz) : 0.f;
+      s.valid_depth_fraction = static_cast<float>(sum.nz) / n;
     }
   }
   result.working_labels = labels;
