@@ -116,6 +116,8 @@ KeySection loopKeys(loop::LoopClosingOptions& o, const mapping::LocalMappingOpti
   s.add("Loop.poseGraphIterations", &o.pose_graph.max_iterations, "Levenberg-Marquardt iterations of the pose graph");
   s.add("Loop.bagOfWords", &o.bag_of_words,
         "loop candidates from the bag of words (Place.vocabulary) instead of the thumbnails");
+  s.add("Loop.globalBundleAdjustment", &o.global_bundle_adjustment,
+        "after a loop closure, bundle-adjust the whole map (every keyframe and point)");
   s.add("Loop.minKeyFrames", &o.detector.min_keyframes, "map size before the first search");
   s.add("Loop.minKeyFrameGap", &o.detector.min_keyframe_gap, "keyframes between two closures");
   s.add("Loop.candidates", &o.detector.candidates,

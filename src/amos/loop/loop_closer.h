@@ -25,9 +25,13 @@ struct LoopClosingOptions {
   bool enabled = true;             // Loop.enabled
   int essential_min_weight = 100;  // Loop.essentialMinWeight: covisibility links kept in the essential graph (ORB-SLAM2: 100)
   // Loop.bagOfWords: loop candidates from the bag-of-words database (when there is a vocabulary) instead of the
-  // thumbnails. Neither closes the static_loop lap at present (seeds 1-3, issue 15), so this keeps the choice
-  // open for that study.
+  // thumbnails (a viewpoint-sensitive signature, kept for maps without a vocabulary).
   bool bag_of_words = true;
+  // Loop.globalBundleAdjustment: after a closure, a bundle adjustment of the whole map (every keyframe and point,
+  // the first keyframe fixed), as ORB-SLAM2 does. Run by the system in the mapping thread (mapping/
+  // local_bundle_adjustment.h), so no keyframe is made meanwhile; tracking goes on, locked out only while the
+  // result is written.
+  bool global_bundle_adjustment = true;
   LoopDetectorOptions detector;
   PoseGraphOptions pose_graph;
   match::FusionOptions fusion;   // projection fusion of the loop points (Mapping.fuse* by default)

@@ -122,6 +122,7 @@ TEST(LoopCloser, ClosesTheLoopAndRemovesTheDrift) {
 
   LoopClosingOptions options;
   options.detector.min_inliers = 60;
+  options.detector.single_keyframe_inliers = 0;  // ORB-SLAM2's rule: only temporally consistent candidates
   LoopCloser closer(options, s.map);
   // The last keyframes of the way back, in order: their candidates point at the start, and the loop is believed
   // once the candidates of options.detector.consistency (3) keyframes before agreed (temporal consistency).
@@ -150,6 +151,7 @@ TEST(LoopCloser, OneKeyFramePointingAtAPlaceIsNotEnough) {
   buildScene(s);
   LoopClosingOptions options;
   options.detector.min_inliers = 60;
+  options.detector.single_keyframe_inliers = 0;  // ORB-SLAM2's rule: only temporally consistent candidates
   {
     LoopCloser closer(options, s.map);
     EXPECT_FALSE(closer.process(s.kfs.back()).has_value());  // no earlier keyframe agreed

@@ -6,8 +6,13 @@
 
 namespace amos::mapping {
 
-LocalBaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& keyframe,
-                                      const BundleAdjustmentOptions& options, const std::atomic<bool>* abort) {
+namespace {
+
+// Bundle adjustment of the keyframes `select` picks (called under the map's shared lock; empty = nothing to do)
+// and every point they see; the other keyframes that see those points are held fixed, as is the map's first.
+template <typename Select>
+LocalBaStats runBundleAdjustment(map::Map& map, Select select, const BundleAdjustmentOptions& options,
+                                 const std::atomic<bool>* abort) {
   LocalBaStats stats;
   BaProblem problem;
   std::vector<map::KeyFramePtr> kfs;
@@ -19,20 +24,16 @@ LocalBaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& key
   std::vector<ObsRef> obs_refs;
   {
     std::shared_lock lock(map.mutex());
-    if (keyframe->isBad()) return stats;
-    problem.projection = keyframe->sensor().projection();
+    const std::vector<map::KeyFramePtr> local = select();
+    if (local.empty()) return stats;
+    problem.projection = local.front()->sensor().projection();
     std::unordered_map<map::KeyFrameId, int> kf_index;
     auto addKf = [&](const map::KeyFramePtr& kf, bool fixed) {
       kf_index[kf->id()] = static_cast<int>(kfs.size());
       kfs.push_back(kf);
       problem.keyframes.push_back({kf->T_cw(), fixed || kf->id() == map.firstKeyFrameId()});
     };
-    addKf(keyframe, false);
-    for (const auto& [w, id] : keyframe->orderedConnections()) {  // most covisible first
-      if (options.max_keyframes > 0 && static_cast<int>(kfs.size()) > options.max_keyframes) break;
-      const map::KeyFramePtr kf = map.keyFrame(id);
-      if (kf && !kf->isBad()) addKf(kf, false);
-    }
+    for (const auto& kf : local) addKf(kf, false);
     stats.local_keyframes = static_cast<int>(kfs.size());
     // Local points, in keyframe then keypoint order (deterministic).
     std::unordered_map<const map::MapPoint*, int> pt_index;
@@ -53,7 +54,7 @@ LocalBaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& key
       }
     }
     stats.fixed_keyframes = static_cast<int>(kfs.size()) - stats.local_keyframes;
-    const auto& inv_sigma2 = keyframe->sensor().invSigma2();
+    const auto& inv_sigma2 = local.front()->sensor().invSigma2();
     for (std::size_t i = 0; i < pts.size(); ++i) {
       for (const auto& [id, idx] : pts[i]->observations()) {
         const auto it = kf_index.find(id);
@@ -95,6 +96,35 @@ LocalBaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& key
     map.updateNormalAndDepth(pts[i]);
   }
   return stats;
+}
+
+}  // namespace
+
+LocalBaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& keyframe,
+                                      const BundleAdjustmentOptions& options, const std::atomic<bool>* abort) {
+  auto select = [&] {
+    std::vector<map::KeyFramePtr> local;
+    if (keyframe->isBad()) return local;
+    local.push_back(keyframe);
+    for (const auto& [w, id] : keyframe->orderedConnections()) {  // most covisible first
+      if (options.max_keyframes > 0 && static_cast<int>(local.size()) > options.max_keyframes) break;
+      const map::KeyFramePtr kf = map.keyFrame(id);
+      if (kf && !kf->isBad()) local.push_back(kf);
+    }
+    return local;
+  };
+  return runBundleAdjustment(map, select, options, abort);
+}
+
+LocalBaStats runGlobalBundleAdjustment(map::Map& map, const BundleAdjustmentOptions& options,
+                                       const std::atomic<bool>* abort) {
+  auto select = [&] {
+    std::vector<map::KeyFramePtr> all;
+    for (const auto& kf : map.keyFrames())
+      if (!kf->isBad()) all.push_back(kf);
+    return all;
+  };
+  return runBundleAdjustment(map, select, options, abort);
 }
 
 }  // namespace amos::mapping

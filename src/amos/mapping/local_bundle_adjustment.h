@@ -20,4 +20,10 @@ struct LocalBaStats {
 LocalBaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& keyframe,
                                       const BundleAdjustmentOptions& options, const std::atomic<bool>* abort);
 
+// Global bundle adjustment (ORB-SLAM2 runs one after every loop closure): every keyframe and every point, the
+// map's first keyframe held fixed; same locking as the local one. The pose graph moves keyframes as rigid bodies
+// along the graph; this lets the points and poses on both sides of the loop agree with their observations.
+LocalBaStats runGlobalBundleAdjustment(map::Map& map, const BundleAdjustmentOptions& options,
+                                       const std::atomic<bool>* abort);
+
 }  // namespace amos::mapping

@@ -4,6 +4,7 @@
 // processed (here thrown by the after-keyframe hook, where loop closing runs) stops the mapping and reaches the
 // tracking thread, never logged and forgotten.
 #include "amos/mapping/local_mapper.h"
+#include "amos/mapping/local_bundle_adjustment.h"
 
 #include <gtest/gtest.h>
 
@@ -271,6 +272,42 @@ TEST(LocalMapper, BundleAdjustmentBringsAMisplacedKeyFrameBack) {
   const auto [kept, same_frame] = poseOf(mapSequence(slide(), options, perturbing));
   ASSERT_EQ(frame, same_frame);
   EXPECT_THAT(kept, ::testing::Not(PoseNear(slide().T_cw(frame), 0.02, 0.5 * kDeg)));
+}
+
+
+// Global bundle adjustment (run after a loop closure): every keyframe but the first moved off its pose after
+// mapping, as a pose graph leaves them; the adjustment of the whole map brings each back against the points, and
+// the first keyframe, the gauge, does not move.
+TEST(GlobalBundleAdjustment, BringsEveryKeyFrameBackAndKeepsTheFirst) {
+  LocalMappingOptions options;
+  options.local_ba = false;
+  options.cull_keyframes = false;
+  const MappedSequence m = mapSequence(slide(), options);
+  std::vector<map::KeyFramePtr> kfs;
+  core::SE3 first_before;
+  {
+    std::unique_lock lock(m.map->mutex());
+    kfs = m.map->keyFrames();
+    ASSERT_GE(kfs.size(), 4u);
+    first_before = kfs.front()->T_cw();
+    for (std::size_t k = 1; k < kfs.size(); ++k) {
+      core::Vector6d xi;
+      const double s = k % 2 ? 1.0 : -1.0;
+      xi << 0.01 * s, 0.005, -0.008 * s, 0.004, -0.006 * s, 0.003;  // ~1.4 cm and ~0.5 deg
+      kfs[k]->setPose(core::expSE3(xi) * kfs[k]->T_cw());
+      EXPECT_THAT(kfs[k]->T_cw(), ::testing::Not(PoseNear(slide().T_cw(static_cast<int>(kfs[k]->frameId())),
+                                                            0.01, 0.3 * kDeg)));
+    }
+  }
+  const LocalBaStats stats = runGlobalBundleAdjustment(*m.map, BundleAdjustmentOptions{}, nullptr);
+  EXPECT_EQ(stats.local_keyframes, static_cast<int>(kfs.size()));
+  EXPECT_EQ(stats.fixed_keyframes, 0);
+  std::shared_lock lock(m.map->mutex());
+  EXPECT_THAT(kfs.front()->T_cw(), PoseNear(first_before, 1e-12, 1e-12));
+  for (const map::KeyFramePtr& kf : kfs) {
+    EXPECT_THAT(kf->T_cw(), PoseNear(slide().T_cw(static_cast<int>(kf->frameId())), 0.005, 0.2 * kDeg))
+        << "keyframe " << kf->id();
+  }
 }
 
 }  // namespace

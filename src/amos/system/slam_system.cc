@@ -1,5 +1,7 @@
 #include "amos/system/slam_system.h"
 
+#include "amos/mapping/local_bundle_adjustment.h"
+
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
@@ -29,7 +31,8 @@ SlamSystem::SlamSystem(const SlamOptions& options)
   loop_closer_ = std::make_unique<loop::LoopCloser>(options_.loop, map_, options_.loop.bag_of_words ? places_ : nullptr);
   mapper_ = std::make_unique<mapping::LocalMapper>(
       options_.mapping, map_, options_.deterministic, &times_,
-      [closer = loop_closer_.get(), places = places_.get(), times = &times_,
+      [closer = loop_closer_.get(), places = places_.get(), times = &times_, map = map_.get(),
+       global_ba = options_.loop.global_bundle_adjustment, ba = options_.mapping.ba,
        after = options_.after_keyframe](const map::KeyFramePtr& kf) {
         // A keyframe joins the place database once mapped (its descriptors never change), before the loop search.
         if (places) {
@@ -37,7 +40,14 @@ SlamSystem::SlamSystem(const SlamOptions& options)
           places->add(kf->id(), places->transform(kf->features().descriptors));
           times->add("place.add_keyframe", watch.elapsedMs());
         }
-        closer->process(kf);
+        if (closer->process(kf) && global_ba) {
+          core::Stopwatch watch;
+          const mapping::LocalBaStats stats = mapping::runGlobalBundleAdjustment(*map, ba, nullptr);
+          times->add("loop.global_ba", watch.elapsedMs());
+          spdlog::info("global bundle adjustment after the loop: {} keyframes, {} points, {} outliers removed, "
+                       "{:.0f} ms",
+                       stats.local_keyframes, stats.points, stats.outliers_removed, watch.elapsedMs());
+        }
         if (after) after(kf);
       });
   tracker_ = std::make_unique<tracking::Tracker>(options_.tracking, map_, mapper_.get(), &times_, places_);
