@@ -25,14 +25,7 @@ config="$root/configs/tum3.yaml"
 
 # shellcheck source=scripts/synth_lib.sh
 source "$root/scripts/synth_lib.sh"  # options, log, json_get, render, formatting
-usage() { sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; }
-while (($#)); do
-  case "$1" in
-    -h | --help) usage; exit 0 ;;
-    *) common_option "$1" "${2-}" || { echo "error: unknown argument '$1' (see --help)" >&2; exit 2; }; shift 2 ;;
-  esac
-done
-check_common_options
+parse_common_options 2,16 "$@"
 
 walking=(walking_xyz walking_static walking_rpy walking_halfsphere)
 mkdir -p "$out/sequences" "$out/runs"

@@ -16,6 +16,21 @@ common_option() {
   esac
 }
 
+# parse_common_options LINES ARGS...: for a script that takes only the common options: -h/--help prints lines
+# LINES (a sed range such as 2,16) of the calling script without their comment marks and exits; any other
+# argument is an error. Then check_common_options.
+parse_common_options() {
+  local lines=$1
+  shift
+  while (($#)); do
+    case "$1" in
+      -h | --help) sed -n "${lines}p" "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+      *) common_option "$1" "${2-}" || { echo "error: unknown argument '$1' (see --help)" >&2; exit 2; }; shift 2 ;;
+    esac
+  done
+  check_common_options
+}
+
 # check_common_options: exits with a message naming the bad value; fills seed_list from seeds.
 check_common_options() {
   [[ -x "$bin" ]] || { echo "error: amos-slam binary '$bin' not found or not executable; build first (scripts/build.sh) or pass --bin" >&2; exit 1; }

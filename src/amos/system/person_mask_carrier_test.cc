@@ -28,6 +28,16 @@ dynamic::FrameFlow flowOf(int x0, float dx) {
   return flow;
 }
 
+// Segmentation on every third frame, used two frames later; no dilation, so masks compare exactly.
+PersonMaskCarrier everyThirdFrameUsedTwoLater() {
+  dynamic::PriorScheduleOptions schedule;
+  schedule.interval = 3;
+  schedule.lag = 2;
+  segmentation::MaskDilationOptions no_dilation;
+  no_dilation.size = 0;
+  return PersonMaskCarrier(no_dilation, schedule);
+}
+
 int leftmostColumn(const cv::Mat& mask) {
   for (int x = 0; x < mask.cols; ++x)
     if (cv::countNonZero(mask.col(x)) > 0) return x;
@@ -35,12 +45,7 @@ int leftmostColumn(const cv::Mat& mask) {
 }
 
 TEST(PersonMaskCarrier, OwnSegmentationAsGivenLateOnesCarriedOverTheFramesSince) {
-  dynamic::PriorScheduleOptions schedule;
-  schedule.interval = 3;
-  schedule.lag = 2;
-  segmentation::MaskDilationOptions no_dilation;
-  no_dilation.size = 0;
-  PersonMaskCarrier carrier(no_dilation, schedule);
+  PersonMaskCarrier carrier = everyThirdFrameUsedTwoLater();
   // The person walks 5 px per frame to the right: at 100 + 5 k in frame k.
   const auto seg0 = personAt(100), seg3 = personAt(115);
   ASSERT_TRUE(carrier.startsFrom(0));
@@ -62,12 +67,7 @@ TEST(PersonMaskCarrier, OwnSegmentationAsGivenLateOnesCarriedOverTheFramesSince)
 // A live source: frame 3's segmentation is late at frames 5 and 6, whose masks are carried on from frame 0's; frame
 // 7 finds it ready and carries it over frames 4-7. Beyond one period more the carrier refuses (canCarry).
 TEST(PersonMaskCarrier, CarriesOnWhileALateSegmentationIsAwaitedThenTakesItOverTheFramesSince) {
-  dynamic::PriorScheduleOptions schedule;
-  schedule.interval = 3;
-  schedule.lag = 2;
-  segmentation::MaskDilationOptions no_dilation;
-  no_dilation.size = 0;
-  PersonMaskCarrier carrier(no_dilation, schedule);
+  PersonMaskCarrier carrier = everyThirdFrameUsedTwoLater();
   const auto seg0 = personAt(100);
   auto seg3 = personAt(115);
   seg3.instances[0].box.width = 30;  // the network sees the person 30 px wide now: tells the two segmentations apart
