@@ -1,7 +1,5 @@
 #include "amos/system/slam_system.h"
 
-#include "amos/mapping/local_bundle_adjustment.h"
-
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
@@ -9,6 +7,7 @@
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
+#include "amos/mapping/local_bundle_adjustment.h"
 
 namespace amos::system {
 
