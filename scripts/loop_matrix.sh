@@ -27,22 +27,23 @@ cd "$root"
 failures=0
 declare -A result  # result[key|field]: loops, ate, keyframes ("fail" when the job failed)
 
+fail_job() {  # KEY: its cells say "fail"
+  for f in loops ate keyframes; do result[$1|$f]=fail; done
+  failures=$((failures + 1))
+}
+
 # run KEY PRESET SEED FRAMES MODE
 run() {
   local key=$1 preset=$2 seed=$3 mode=$5 seq dir
   frames=$4  # render() reads it
   dir="$out/runs/$key"
-  if ! seq=$(render "$preset" "$seed" 0); then
-    for f in loops ate keyframes; do result[$key|$f]=fail; done
-    failures=$((failures + 1)); return 0
-  fi
+  if ! seq=$(render "$preset" "$seed" 0); then fail_job "$key"; return 0; fi
   rm -rf "$dir"
   log "run $key --mode $mode ..."
   if ! "$bin" run --sequence "$seq" --config "$config" --output "$dir" --mode "$mode" --deterministic \
       > "$dir.log" 2>&1 || [[ ! -f "$dir/stats.json" ]]; then
     log "run $key FAILED (log: $dir.log)"; tail -3 "$dir.log" >&2
-    for f in loops ate keyframes; do result[$key|$f]=fail; done
-    failures=$((failures + 1)); return 0
+    fail_job "$key"; return 0
   fi
   result[$key|loops]=$(json_get "$dir/stats.json" .mapping.loops_closed)
   result[$key|ate]=$(json_get "$dir/stats.json" .evaluation.ate_rmse_m)

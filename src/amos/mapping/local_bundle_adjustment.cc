@@ -11,9 +11,9 @@ namespace {
 // Bundle adjustment of the keyframes `select` picks (called under the map's shared lock; empty = nothing to do)
 // and every point they see; the other keyframes that see those points are held fixed, as is the map's first.
 template <typename Select>
-LocalBaStats runBundleAdjustment(map::Map& map, Select select, const BundleAdjustmentOptions& options,
+BaStats runBundleAdjustment(map::Map& map, Select select, const BundleAdjustmentOptions& options,
                                  const std::atomic<bool>* abort) {
-  LocalBaStats stats;
+  BaStats stats;
   BaProblem problem;
   std::vector<map::KeyFramePtr> kfs;
   std::vector<map::MapPointPtr> pts;
@@ -34,10 +34,10 @@ LocalBaStats runBundleAdjustment(map::Map& map, Select select, const BundleAdjus
       problem.keyframes.push_back({kf->T_cw(), fixed || kf->id() == map.firstKeyFrameId()});
     };
     for (const auto& kf : local) addKf(kf, false);
-    stats.local_keyframes = static_cast<int>(kfs.size());
+    stats.adjusted_keyframes = static_cast<int>(kfs.size());
     // Local points, in keyframe then keypoint order (deterministic).
     std::unordered_map<const map::MapPoint*, int> pt_index;
-    for (int k = 0; k < stats.local_keyframes; ++k) {
+    for (int k = 0; k < stats.adjusted_keyframes; ++k) {
       for (const auto& p : kfs[k]->mapPoints()) {
         if (!p || p->isBad() || pt_index.count(p.get())) continue;
         pt_index[p.get()] = static_cast<int>(pts.size());
@@ -53,7 +53,7 @@ LocalBaStats runBundleAdjustment(map::Map& map, Select select, const BundleAdjus
         if (kf && !kf->isBad()) addKf(kf, true);
       }
     }
-    stats.fixed_keyframes = static_cast<int>(kfs.size()) - stats.local_keyframes;
+    stats.fixed_keyframes = static_cast<int>(kfs.size()) - stats.adjusted_keyframes;
     const auto& inv_sigma2 = local.front()->sensor().invSigma2();
     for (std::size_t i = 0; i < pts.size(); ++i) {
       for (const auto& [id, idx] : pts[i]->observations()) {
@@ -87,7 +87,7 @@ LocalBaStats runBundleAdjustment(map::Map& map, Select select, const BundleAdjus
     map.eraseObservation(r.point, r.kf->id());
     ++stats.outliers_removed;
   }
-  for (int k = 0; k < stats.local_keyframes; ++k) {
+  for (int k = 0; k < stats.adjusted_keyframes; ++k) {
     if (!kfs[k]->isBad() && !problem.keyframes[k].fixed) kfs[k]->setPose(result.T_cw[k]);
   }
   for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -100,7 +100,7 @@ LocalBaStats runBundleAdjustment(map::Map& map, Select select, const BundleAdjus
 
 }  // namespace
 
-LocalBaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& keyframe,
+BaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& keyframe,
                                       const BundleAdjustmentOptions& options, const std::atomic<bool>* abort) {
   auto select = [&] {
     std::vector<map::KeyFramePtr> local;
@@ -116,7 +116,7 @@ LocalBaStats runLocalBundleAdjustment(map::Map& map, const map::KeyFramePtr& key
   return runBundleAdjustment(map, select, options, abort);
 }
 
-LocalBaStats runGlobalBundleAdjustment(map::Map& map, const BundleAdjustmentOptions& options,
+BaStats runGlobalBundleAdjustment(map::Map& map, const BundleAdjustmentOptions& options,
                                        const std::atomic<bool>* abort) {
   auto select = [&] {
     std::vector<map::KeyFramePtr> all;

@@ -182,9 +182,9 @@ void LocalMapper::process(Job job) {
   if (queuedKeyFrames() == 0) {
     watch.restart();
     if (options_.local_ba && map_->numKeyFrames() > 2) {
-      const LocalBaStats ba = runLocalBundleAdjustment(*map_, kf, options_.ba, &abort_ba_);
+      const BaStats ba = runLocalBundleAdjustment(*map_, kf, options_.ba, &abort_ba_);
       spdlog::debug("local BA for keyframe {}: {} local + {} fixed keyframes, {} points, {} observations, {} outliers{}",
-                    kf->id(), ba.local_keyframes, ba.fixed_keyframes, ba.points, ba.observations,
+                    kf->id(), ba.adjusted_keyframes, ba.fixed_keyframes, ba.points, ba.observations,
                     ba.outliers_removed, ba.aborted ? " (aborted)" : "");
       ++delta.ba_runs;
       delta.ba_aborted += ba.aborted;

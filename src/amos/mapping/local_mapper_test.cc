@@ -274,7 +274,6 @@ TEST(LocalMapper, BundleAdjustmentBringsAMisplacedKeyFrameBack) {
   EXPECT_THAT(kept, ::testing::Not(PoseNear(slide().T_cw(frame), 0.02, 0.5 * kDeg)));
 }
 
-
 // Global bundle adjustment (run after a loop closure): every keyframe but the first moved off its pose after
 // mapping, as a pose graph leaves them; the adjustment of the whole map brings each back against the points, and
 // the first keyframe, the gauge, does not move.
@@ -299,8 +298,8 @@ TEST(GlobalBundleAdjustment, BringsEveryKeyFrameBackAndKeepsTheFirst) {
                                                             0.01, 0.3 * kDeg)));
     }
   }
-  const LocalBaStats stats = runGlobalBundleAdjustment(*m.map, BundleAdjustmentOptions{}, nullptr);
-  EXPECT_EQ(stats.local_keyframes, static_cast<int>(kfs.size()));
+  const BaStats stats = runGlobalBundleAdjustment(*m.map, BundleAdjustmentOptions{}, nullptr);
+  EXPECT_EQ(stats.adjusted_keyframes, static_cast<int>(kfs.size()));
   EXPECT_EQ(stats.fixed_keyframes, 0);
   std::shared_lock lock(m.map->mutex());
   EXPECT_THAT(kfs.front()->T_cw(), PoseNear(first_before, 1e-12, 1e-12));

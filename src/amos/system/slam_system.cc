@@ -41,11 +41,11 @@ SlamSystem::SlamSystem(const SlamOptions& options)
         }
         if (closer->process(kf) && global_ba) {
           core::Stopwatch watch;
-          const mapping::LocalBaStats stats = mapping::runGlobalBundleAdjustment(*map, ba, nullptr);
+          const mapping::BaStats stats = mapping::runGlobalBundleAdjustment(*map, ba, nullptr);
           times->add("loop.global_ba", watch.elapsedMs());
           spdlog::info("global bundle adjustment after the loop: {} keyframes, {} points, {} outliers removed, "
                        "{:.0f} ms",
-                       stats.local_keyframes, stats.points, stats.outliers_removed, watch.elapsedMs());
+                       stats.adjusted_keyframes, stats.points, stats.outliers_removed, watch.elapsedMs());
         }
         if (after) after(kf);
       });

@@ -55,9 +55,10 @@ struct TrackerOptions {
   // many map points as closeTrackedMax, ORB-SLAM2's own bar for a well-tracked RGB-D frame). With twice
   // localMinInliers (60) as the bar, Bonn crowd frame 71 went from 69 tracked points to 20 (people stepped in front
   // of what was left) and was lost for 13 frames in 1 of ~10 normal runs: a frame tracking under 100 points is
-  // one crowded frame away from a loss and should give the map its view. ORB-SLAM2 has no such rule: with a still camera and people walking past it makes a
-  // keyframe each time they cover a quarter of the points (15-19 in 10 s of the synthetic walking_static against
-  // 1 without the people, 69 in the 9 s of Bonn crowd, 38 with the rule). 1.5 deg and 1.5 %: the view then
+  // one crowded frame away from a loss and should give the map its view. ORB-SLAM2 has no such rule: with a still
+  // camera and people walking past it makes a keyframe each time they cover a quarter of the points (15-19 in
+  // 10 s of the synthetic walking_static against 1 without the people, 69 in the 9 s of Bonn crowd, 38 with the
+  // rule). 1.5 deg and 1.5 %: the view then
   // overlaps the reference's by ~97 % (60 deg field of view) and the parallax at the median depth stays under
   // ~1 deg; 3 deg and 3 % (Bonn: 25 keyframes) cost the synthetic walking_halfsphere, whose camera orbits slowly,
   // accuracy on 2 of 5 seeds (1.60-1.63x its static twin instead of 1.15-1.49x). 0.1: movers must hide at
