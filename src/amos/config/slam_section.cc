@@ -37,6 +37,11 @@ KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps) {
   s.add("Tracking.keyFrameMoverShare", &o.keyframe_mover_share,
         "... while movers (the dynamic mask) cover at least this share of the image (any of the three 0 = off, "
         "ORB-SLAM2's rule)");
+  s.add("Tracking.keyFrameViewRotation", &o.keyframe_view_rotation_deg,
+        "a keyframe may be made while local mapping is busy once the camera has turned this far (degrees) from its "
+        "reference keyframe ...; 0 = off");
+  s.add("Tracking.keyFrameViewBaseline", &o.keyframe_view_baseline,
+        "... or moved this share of the median keypoint depth; 0 = off");
   s.add("Tracking.closeTrackedMax", &o.close_tracked_max, "... or when fewer close points than this are tracked");
   s.add("Tracking.closeUntrackedMin", &o.close_untracked_min, "... and at least this many close points are not");
   s.add("Tracking.newPointsMin", &o.new_points_min, "depth points a new keyframe creates at least, closest first");

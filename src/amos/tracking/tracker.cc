@@ -56,6 +56,8 @@ void TrackerOptions::check() const {
   core::requireInRange(keyframe_min_rotation_deg, "keyframe_min_rotation_deg", 0.0, 90.0);
   core::requireInRange(keyframe_min_baseline, "keyframe_min_baseline", 0.0, 1.0);
   core::requireInRange(keyframe_mover_share, "keyframe_mover_share", 0.0, 1.0);
+  core::requireInRange(keyframe_view_rotation_deg, "keyframe_view_rotation_deg", 0.0, 180.0);
+  core::requireInRange(keyframe_view_baseline, "keyframe_view_baseline", 0.0, 10.0);
   core::requireAtLeast(close_tracked_max, "close_tracked_max", 0);
   core::requireAtLeast(close_untracked_min, "close_untracked_min", 0);
   core::requireAtLeast(new_points_min, "new_points_min", 0);
@@ -560,10 +562,18 @@ bool Tracker::needNewKeyFrame(const map::Frame& frame, int inliers) const {
   const bool c1a = frame.id >= last_keyframe_frame_ + max_frames;
   const bool c1b = frame.id >= last_keyframe_frame_ + static_cast<map::FrameId>(options_.min_frames_between_keyframes) && idle;
   const bool c1c = inliers < ref_matches * 0.25 || need_close;
+  // The view has moved on from the reference keyframe's, whether or not mapping is idle (keyFrameView*).
+  const auto view = options_.keyframe_view_rotation_deg > 0 || options_.keyframe_view_baseline > 0
+                        ? viewChangeFromReference(frame)
+                        : std::nullopt;
+  const bool c1d = view && ((options_.keyframe_view_rotation_deg > 0 &&
+                             view->rotation_deg >= options_.keyframe_view_rotation_deg) ||
+                            (options_.keyframe_view_baseline > 0 &&
+                             view->baseline_share >= options_.keyframe_view_baseline));
   const bool c2 = (inliers < ref_matches * ref_ratio || need_close) && inliers > 15;
   spdlog::debug("frame {}: keyframe test: inliers {} reference tracked {} (ratio {}) close tracked {} untracked {}{}",
                 frame.id, inliers, ref_matches, ref_ratio, tracked_close, untracked_close, idle ? "" : " mapping busy");
-  if (!((c1a || c1b || c1c) && c2)) return false;
+  if (!((c1a || c1b || c1c || c1d) && c2)) return false;
   const bool sound = inliers >= ref_matches * 0.25 && inliers >= options_.close_tracked_max;
   if (sound && stillBehindMovers(frame)) {
     spdlog::debug("frame {}: no keyframe: movers hide part of the view, the camera is still at the reference "
@@ -579,28 +589,33 @@ bool Tracker::needNewKeyFrame(const map::Frame& frame, int inliers) const {
   return true;
 }
 
-bool Tracker::stillBehindMovers(const map::Frame& frame) const {
-  if (!reference_kf_ || options_.keyframe_min_rotation_deg <= 0 || options_.keyframe_min_baseline <= 0 ||
-      options_.keyframe_mover_share <= 0 || frame.dynamic_mask.empty())
-    return false;
-  if (cv::countNonZero(frame.dynamic_mask) < options_.keyframe_mover_share * static_cast<double>(frame.dynamic_mask.total()))
-    return false;
+std::optional<Tracker::ViewChange> Tracker::viewChangeFromReference(const map::Frame& frame) const {
+  if (!reference_kf_) return std::nullopt;
   std::vector<float> depths;
   const map::FrameFeatures& f = *frame.features;
   depths.reserve(f.size());
   for (std::size_t i = 0; i < f.size(); ++i)
     if (f.depth[i] > 0) depths.push_back(f.depth[i]);
-  if (depths.empty()) return false;
+  if (depths.empty()) return std::nullopt;
   const auto mid = depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2);
   std::nth_element(depths.begin(), mid, depths.end());
-  // The caller (track, through needNewKeyFrame) holds the map's shared lock that keyFramePose needs.
   const core::SE3 T_rw = map_->keyFramePose(reference_kf_->id());
   // T_cr = T_cw * T_wr: its rotation is the turn between the two views, its translation (in the camera frame) the
   // baseline between the two camera centres.
   const core::SE3 T_cr = frame.T_cw * T_rw.inverse();
   const double kDegree = 3.14159265358979323846 / 180.0;
-  return core::rotationAngle(T_cr) < options_.keyframe_min_rotation_deg * kDegree &&
-         core::translationNorm(T_cr) < options_.keyframe_min_baseline * static_cast<double>(*mid);
+  return ViewChange{core::rotationAngle(T_cr) / kDegree, core::translationNorm(T_cr) / static_cast<double>(*mid)};
+}
+
+bool Tracker::stillBehindMovers(const map::Frame& frame) const {
+  if (options_.keyframe_min_rotation_deg <= 0 || options_.keyframe_min_baseline <= 0 ||
+      options_.keyframe_mover_share <= 0 || frame.dynamic_mask.empty())
+    return false;
+  if (cv::countNonZero(frame.dynamic_mask) < options_.keyframe_mover_share * static_cast<double>(frame.dynamic_mask.total()))
+    return false;
+  const auto view = viewChangeFromReference(frame);
+  return view && view->rotation_deg < options_.keyframe_min_rotation_deg &&
+         view->baseline_share < options_.keyframe_min_baseline;
 }
 
 void Tracker::createNewKeyFrame(map::Frame& frame) {

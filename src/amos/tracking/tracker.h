@@ -45,7 +45,15 @@ struct TrackerOptions {
   int max_local_keyframes = 80;      // Tracking.maxLocalKeyFrames
   int max_frames_between_keyframes = 30;  // Tracking.maxFrames (ORB-SLAM2: fps)
   int min_frames_between_keyframes = 0;   // Tracking.minFrames
-  double keyframe_ref_ratio = 0.75;  // Tracking.keyFrameRefRatio: tracked / reference-keyframe points
+  // Tracking.keyFrameRefRatio: a keyframe when the frame tracks fewer than this share of the reference keyframe's
+  // points (with one of the timing conditions). ORB-SLAM2's RGB-D value is 0.75, its monocular one 0.9: 0.85
+  // keeps consecutive keyframes sharing most of their points, so local BA ties each new pose to several
+  // well-constrained ones; on the 20 s synthetic room laps (static_loop seeds 1-10, --deterministic) the lap closes
+  // at 5.4-8.4 mm instead of 6.6-11.6 mm, with 57-121 keyframes instead of 22-32; 0.9 gives 4.4-6.1 mm but 119-192
+  // keyframes and a fifth of the speed of --deterministic runs. The synthetic walking presets' static twins gain
+  // 0-8 %, the Bonn crowd slice is unchanged; the cost: TUM fr2 desk's first 50 frames, 5.4 mm (mean over 8 start
+  // offsets) instead of 4.9 (0.8: 4.9, but normal-run laps then close under 1 cm on 17 of 20 runs, not 19).
+  double keyframe_ref_ratio = 0.85;
   // Tracking.keyFrameMinRotation (degrees) / keyFrameMinBaseline (share of the frame's median keypoint depth) /
   // keyFrameMoverShare: a camera that stays within the first two of its reference keyframe while movers cover at
   // least keyFrameMoverShare of the image (its dynamic mask) sees the scene that keyframe already holds; the
@@ -68,6 +76,17 @@ struct TrackerOptions {
   double keyframe_min_rotation_deg = 1.5;
   double keyframe_min_baseline = 0.015;
   double keyframe_mover_share = 0.1;
+  // Tracking.keyFrameViewRotation (degrees) / keyFrameViewBaseline (share of the median keypoint depth): a camera
+  // that has turned or moved this far from its reference keyframe may make a keyframe even while local mapping
+  // is busy (beside ORB-SLAM2's "mapping idle" and "maxFrames passed", under the same tracked-points test). ORB-SLAM2's
+  // rule ties the keyframe density to the feed: a folder read faster than the sensor keeps mapping busy, and a 20 s
+  // room lap (static_loop) got 20-34 keyframes against 57-121 when mapping keeps up (--deterministic); the lap's
+  // drift, which the loop closure has to absorb, grows with that spacing: seeds 1-10 in normal runs closed at
+  // 5.9-10.4 mm with keyFrameRefRatio 0.85 alone, 4.9-9.0 and 5.8-10.5 mm (two runs, 40-64 keyframes) with this.
+  // 5 deg: the view shifts by ~8 % of a 60 deg field of view, about the share of points whose loss triggers a
+  // keyframe (keyFrameRefRatio); 5 % of the median depth gives a point there ~3 deg of parallax. 0 = off.
+  double keyframe_view_rotation_deg = 5.0;
+  double keyframe_view_baseline = 0.05;
   int close_tracked_max = 100;       // Tracking.closeTrackedMax: fewer tracked close points ...
   int close_untracked_min = 70;      // Tracking.closeUntrackedMin: ... and this many untracked ones -> new keyframe
   int new_points_min = 100;          // Tracking.newPointsMin: depth points created per keyframe (at least, closest first)
@@ -152,6 +171,14 @@ class Tracker {
   // within Tracking.keyFrameMinRotation / keyFrameMinBaseline of the reference keyframe's. Called with the map's
   // shared lock held (map.h's [shared]).
   bool stillBehindMovers(const map::Frame& frame) const;
+  // How far the frame's camera is from its reference keyframe's: the turn (degrees) and the baseline as a share of
+  // the frame's median keypoint depth; nullopt without a reference keyframe or keypoint depths. Called with the
+  // map's shared lock held.
+  struct ViewChange {
+    double rotation_deg = 0;
+    double baseline_share = 0;
+  };
+  std::optional<ViewChange> viewChangeFromReference(const map::Frame& frame) const;
   void createNewKeyFrame(map::Frame& frame);
 
   TrackerOptions options_;

@@ -123,6 +123,44 @@ TEST(Tracker, NoKeyFrameWhileMoversHideTheViewOfAStillCamera) {
   EXPECT_GE(run(off, true), 1);
 }
 
+// Tracking.keyFrameView*: local mapping that never becomes idle (a folder read faster than mapping keeps up) and
+// no maxFrames deadline in reach: ORB-SLAM2's timing conditions then let no keyframe through during a pan, the
+// view rule does once the camera has turned keyFrameViewRotation from its reference keyframe.
+TEST(Tracker, MakesKeyFramesByViewChangeWhileMappingIsBusy) {
+  class BusySink final : public KeyFrameSink {
+   public:
+    void insertKeyFrame(const map::KeyFramePtr&, std::vector<map::MapPointPtr>) override { ++inserted; }
+    bool isIdle() const override { return inserted == 0; }  // idle only for the map's first keyframe
+    std::size_t queuedKeyFrames() const override { return 0; }
+    void interruptBundleAdjustment() override {}
+    int inserted = 0;
+  };
+  core::Vector6d pan;
+  pan << 0, 0, 0, 0, 1.0 * kDeg, 0;
+  const testing::SyntheticSequence seq(room(), testing::constantVelocityPath(16, pan));
+  auto run = [&](TrackerOptions options) {
+    options.max_frames_between_keyframes = 1000;
+    auto map = std::make_shared<map::Map>();
+    BusySink sink;
+    Tracker tracker(options, map, &sink);
+    testing::FrameBuilder builder(testing::testIntrinsics());
+    std::vector<int> created;
+    for (int i = 0; i < seq.size(); ++i) {
+      const TrackResult r = tracker.track(builder.build(seq.view(i), seq.timestamp(i)));
+      EXPECT_EQ(r.state, TrackingState::kOk) << "frame " << i;
+      if (i > 0 && r.new_keyframe) created.push_back(i);
+    }
+    return created;
+  };
+  TrackerOptions off;
+  off.keyframe_view_rotation_deg = 0;
+  off.keyframe_view_baseline = 0;
+  EXPECT_TRUE(run(off).empty());
+  const std::vector<int> created = run(TrackerOptions{});
+  ASSERT_FALSE(created.empty()) << "no keyframe in a 15 deg pan";
+  EXPECT_GE(created.front(), 5) << "a keyframe before the camera had turned 5 deg";
+}
+
 // A blank image before the map exists leaves tracking uninitialised; one after makes it lost; the view coming
 // back near where it was is tracked again, at the true pose.
 TEST(Tracker, IsLostOnABlankImageAndRecoversWhenTheViewReturns) {
