@@ -42,6 +42,18 @@ slam() {
 field() { json_get "$out/runs/$1/stats.json" "$2"; }
 mm() { [[ "$1" == null ]] && echo "-" || awk -v v="$1" 'BEGIN { printf "%.2f", v * 1000 }'; }
 cm() { [[ "$1" == null ]] && echo "-" || awk -v v="$1" 'BEGIN { printf "%.2f", v * 100 }'; }
+# save_ms / load_ms KEY: the map save / load time that run KEY logged ("... in N ms" / "loaded in N ms").
+save_ms() { grep -o 'map saved to .* in [0-9]* ms' "$out/runs/$1.log" | grep -o '[0-9]* ms$' | tr -d ' ms' || echo "-"; }
+load_ms() { grep -o 'map points, loaded in [0-9]* ms' "$out/runs/$1.log" | grep -o '[0-9]*' | head -1 || echo "-"; }
+# tracked_ate_mm KEY SEQ: ATE RMSE (mm) over the frames run KEY tracked. A lost frame repeats the last tracked pose
+# in trajectory.txt (ORB-SLAM2's convention), so a line whose pose equals the line before it is left out.
+tracked_ate_mm() {
+  local dir="$out/runs/$1"
+  awk '/^#/ { print; next } { k = $2 " " $3 " " $4 " " $5 " " $6 " " $7 " " $8; if (k != p) print; p = k }' \
+    "$dir/trajectory.txt" > "$dir/tracked.txt"
+  "$bin" eval --gt "$2/groundtruth.txt" --est "$dir/tracked.txt" 2> /dev/null |
+    awk '/^ATE/ { printf "%.2f (%d frames)", $3 * 1000, $NF }'
+}
 
 echo "## Maps that last: --deterministic, binary $(basename "$bin")"
 echo
@@ -65,8 +77,8 @@ fi
 echo
 echo "### walking_loop (first $frames frames, --mode full) localised in the map of static_loop (600 frames, --mode none)"
 echo
-echo "| seed | map keyframes | map file (MB) | frames localised | ATE (mm) |"
-echo "|---|---|---|---|---|"
+echo "| seed | map keyframes | map file (MB) | saved in (ms) | loaded in (ms) | frames localised | ATE (mm) |"
+echo "|---|---|---|---|---|---|---|"
 for seed in "${seed_list[@]}"; do
   frames=600
   lap=$(render static_loop "$seed" 0) || { failures=$((failures + 1)); echo "| $seed | fail | | | |"; continue; }
@@ -76,7 +88,8 @@ for seed in "${seed_list[@]}"; do
   if slam "static_loop_s$seed" --sequence "$lap" --config "$config" --mode none --save-map "$map" &&
      slam "walking_loop_s$seed" --sequence "$walk" --config "$config" --mode full --load-map "$map" --localize; then
     size=$(awk -v b="$(wc -c < "$map")" 'BEGIN { printf "%.1f", b / 1e6 }')
-    echo "| $seed | $(field "static_loop_s$seed" .keyframes) | $size |" \
+    echo "| $seed | $(field "static_loop_s$seed" .keyframes) | $size | $(save_ms "static_loop_s$seed") |" \
+         "$(load_ms "walking_loop_s$seed") |" \
          "$(field "walking_loop_s$seed" .evaluation.est_poses) of $(field "walking_loop_s$seed" .frames) |" \
          "$(mm "$(field "walking_loop_s$seed" .evaluation.ate_rmse_m)") |"
   else
@@ -95,7 +108,7 @@ for seed in "${seed_list[@]}"; do
   if slam "covered_halfsphere_s$seed" --sequence "$seq" --config "$config" --mode full; then
     lost=$(field "covered_halfsphere_s$seed" .lost)
     echo "| $seed | $lost | $((lost - covered_frames)) | $(field "covered_halfsphere_s$seed" .relocalised) |" \
-         "$(mm "$(field "covered_halfsphere_s$seed" .evaluation.ate_rmse_m)") |"
+         "$(tracked_ate_mm "covered_halfsphere_s$seed" "$seq") |"
   else
     echo "| $seed | fail | | | |"
   fi
