@@ -1,6 +1,8 @@
 #include "amos/tracking/relocalizer.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 
 #include "amos/core/error.h"
@@ -55,10 +57,23 @@ map::KeyFramePtr Relocalizer::relocalize(map::Frame& frame, const map::Map& map)
     int n = 0;
     std::vector<map::MapPointPtr> matches =
         match::matchFrameToKeyFrame(frame, *kf, options_.match_ratio, matching_, &n);
-    if (n < options_.min_matches) continue;
-    if (match::poseFromMatchesByPnp(frame, matches, options_.pnp) == 0) continue;
+    // Why a candidate failed, for a relocalisation that comes late (-v): too few descriptor matches, no PnP pose,
+    // or too few inliers after the projection searches.
+    if (n < options_.min_matches) {
+      spdlog::debug("frame {}: relocalisation candidate keyframe {}: {} matches (< {})", frame.id, kf->id(), n,
+                    options_.min_matches);
+      continue;
+    }
+    if (match::poseFromMatchesByPnp(frame, matches, options_.pnp) == 0) {
+      spdlog::debug("frame {}: relocalisation candidate keyframe {}: {} matches, no PnP pose", frame.id, kf->id(), n);
+      continue;
+    }
     int good = optimize(frame);
-    if (good < 10) continue;
+    if (good < 10) {
+      spdlog::debug("frame {}: relocalisation candidate keyframe {}: {} matches, {} inliers", frame.id, kf->id(), n,
+                    good);
+      continue;
+    }
     if (good < options_.min_inliers) {
       // Look for more matches by projecting the keyframe's points with the estimated pose.
       const int extra = match::searchKeyFrameByProjection(frame, *kf, match::matchedPoints(frame), 10, 100, matching_);
@@ -71,6 +86,8 @@ map::KeyFramePtr Relocalizer::relocalize(map::Frame& frame, const map::Map& map)
       }
     }
     if (good >= options_.min_inliers) return kf;
+    spdlog::debug("frame {}: relocalisation candidate keyframe {}: {} matches, {} inliers (< {})", frame.id, kf->id(),
+                  n, good, options_.min_inliers);
   }
   frame.resetMatches();
   return nullptr;
