@@ -562,20 +562,20 @@ bool Tracker::needNewKeyFrame(const map::Frame& frame, int inliers) const {
   const bool c1a = frame.id >= last_keyframe_frame_ + max_frames;
   const bool c1b = frame.id >= last_keyframe_frame_ + static_cast<map::FrameId>(options_.min_frames_between_keyframes) && idle;
   const bool c1c = inliers < ref_matches * 0.25 || need_close;
+  const bool c2 = (inliers < ref_matches * ref_ratio || need_close) && inliers > 15;
+  spdlog::debug("frame {}: keyframe test: inliers {} reference tracked {} (ratio {}) close tracked {} untracked {}{}",
+                frame.id, inliers, ref_matches, ref_ratio, tracked_close, untracked_close, idle ? "" : " mapping busy");
+  if (!c2) return false;
+  // How far the camera is from the reference keyframe's viewpoint, measured once for both view rules.
+  const std::optional<ViewChange> view = viewChangeFromReference(frame);
   // The view has moved on from the reference keyframe's, whether or not mapping is idle (keyFrameView*).
-  const auto view = options_.keyframe_view_rotation_deg > 0 || options_.keyframe_view_baseline > 0
-                        ? viewChangeFromReference(frame)
-                        : std::nullopt;
   const bool c1d = view && ((options_.keyframe_view_rotation_deg > 0 &&
                              view->rotation_deg >= options_.keyframe_view_rotation_deg) ||
                             (options_.keyframe_view_baseline > 0 &&
                              view->baseline_share >= options_.keyframe_view_baseline));
-  const bool c2 = (inliers < ref_matches * ref_ratio || need_close) && inliers > 15;
-  spdlog::debug("frame {}: keyframe test: inliers {} reference tracked {} (ratio {}) close tracked {} untracked {}{}",
-                frame.id, inliers, ref_matches, ref_ratio, tracked_close, untracked_close, idle ? "" : " mapping busy");
-  if (!((c1a || c1b || c1c || c1d) && c2)) return false;
+  if (!(c1a || c1b || c1c || c1d)) return false;
   const bool sound = inliers >= ref_matches * 0.25 && inliers >= options_.close_tracked_max;
-  if (sound && stillBehindMovers(frame)) {
+  if (sound && stillBehindMovers(frame, view)) {
     spdlog::debug("frame {}: no keyframe: movers hide part of the view, the camera is still at the reference "
                   "keyframe's viewpoint",
                   frame.id);
@@ -607,14 +607,13 @@ std::optional<Tracker::ViewChange> Tracker::viewChangeFromReference(const map::F
   return ViewChange{core::rotationAngle(T_cr) / kDegree, core::translationNorm(T_cr) / static_cast<double>(*mid)};
 }
 
-bool Tracker::stillBehindMovers(const map::Frame& frame) const {
-  if (options_.keyframe_min_rotation_deg <= 0 || options_.keyframe_min_baseline <= 0 ||
+bool Tracker::stillBehindMovers(const map::Frame& frame, const std::optional<ViewChange>& view) const {
+  if (!view || options_.keyframe_min_rotation_deg <= 0 || options_.keyframe_min_baseline <= 0 ||
       options_.keyframe_mover_share <= 0 || frame.dynamic_mask.empty())
     return false;
   if (cv::countNonZero(frame.dynamic_mask) < options_.keyframe_mover_share * static_cast<double>(frame.dynamic_mask.total()))
     return false;
-  const auto view = viewChangeFromReference(frame);
-  return view && view->rotation_deg < options_.keyframe_min_rotation_deg &&
+  return view->rotation_deg < options_.keyframe_min_rotation_deg &&
          view->baseline_share < options_.keyframe_min_baseline;
 }
 

@@ -167,10 +167,6 @@ class Tracker {
   // Drops outlier matches after pose optimisation; returns matches to points that are in the map.
   int discardOutliers(map::Frame& frame) const;
   bool needNewKeyFrame(const map::Frame& frame, int inliers) const;
-  // Whether movers (the frame's dynamic mask) cover Tracking.keyFrameMoverShare of the image and the camera is
-  // within Tracking.keyFrameMinRotation / keyFrameMinBaseline of the reference keyframe's. Called with the map's
-  // shared lock held (map.h's [shared]).
-  bool stillBehindMovers(const map::Frame& frame) const;
   // How far the frame's camera is from its reference keyframe's: the turn (degrees) and the baseline as a share of
   // the frame's median keypoint depth; nullopt without a reference keyframe or keypoint depths. Called with the
   // map's shared lock held.
@@ -179,6 +175,10 @@ class Tracker {
     double baseline_share = 0;
   };
   std::optional<ViewChange> viewChangeFromReference(const map::Frame& frame) const;
+  // Whether movers (the frame's dynamic mask) cover Tracking.keyFrameMoverShare of the image and the camera, `view`
+  // away from its reference keyframe (viewChangeFromReference), is within Tracking.keyFrameMinRotation /
+  // keyFrameMinBaseline of it.
+  bool stillBehindMovers(const map::Frame& frame, const std::optional<ViewChange>& view) const;
   void createNewKeyFrame(map::Frame& frame);
 
   TrackerOptions options_;
