@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Maps that last (issue 15): a map saved by one run, localised in by another.
-#   bash scripts/maps_check.sh [--seeds "1 2 3"] [--bin build/bin/amos-slam] [--out out/maps]
+#   bash scripts/maps_check.sh [--seeds "1 2 3"] [--frames 300] [--bin build/bin/amos-slam] [--out out/maps]
 #                              [--config configs/tum3.yaml]
 #   1. Bonn crowd dev slice (configs/bonn.yaml, --mode full): the first half mapped and saved, the second half
-#      localised in it (--load-map --localize) from a cold start: frames localised, ATE over them, load time;
-#   2. per seed: static_loop (600 frames, --mode none) mapped and saved, walking_loop (people walking, first 300
-#      frames, --mode full) localised in it: frames localised, ATE; the map's keyframes and file size;
+#      localised in it (--load-map --localize) from a cold start: frames localised, ATE over them;
+#   2. per seed: static_loop (600 frames, --mode none) mapped and saved, walking_loop (people walking, first --frames
+#      frames, --mode full) localised in it: frames localised, ATE; the map's keyframes, file size, save and
+#      load times;
 #   3. per seed: covered_halfsphere (lens covered, black and no depth, from 5 to 7 s = frames 150-209, while the
 #      camera moves on; --mode full): frames lost beyond the covered ones (= frames until relocalised) and ATE.
 # Every run is --deterministic. Tables (markdown) go to stdout, progress to stderr. Sequences are cached in
@@ -20,8 +21,9 @@ out="$root/out/maps"
 config="$root/configs/tum3.yaml"
 
 # shellcheck source=scripts/synth_lib.sh
-source "$root/scripts/synth_lib.sh"  # options, log, json_get, render, formatting
-parse_common_options 2,11 "$@"
+source "$root/scripts/synth_lib.sh"  # options, log, json_get, render, formatting (mm, cm)
+parse_common_options 2,13 "$@"
+walk_frames=$frames  # --frames: the walking_loop frames localised
 mkdir -p "$out/sequences" "$out/runs"
 cd "$root"
 failures=0
@@ -40,8 +42,6 @@ slam() {
   fi
 }
 field() { json_get "$out/runs/$1/stats.json" "$2"; }
-mm() { [[ "$1" == null ]] && echo "-" || awk -v v="$1" 'BEGIN { printf "%.2f", v * 1000 }'; }
-cm() { [[ "$1" == null ]] && echo "-" || awk -v v="$1" 'BEGIN { printf "%.2f", v * 100 }'; }
 # save_ms / load_ms KEY: the map save / load time that run KEY logged ("... in N ms" / "loaded in N ms").
 save_ms() { grep -o 'map saved to .* in [0-9]* ms' "$out/runs/$1.log" | grep -o '[0-9]* ms$' | tr -d ' ms' || echo "-"; }
 load_ms() { grep -o 'map points, loaded in [0-9]* ms' "$out/runs/$1.log" | grep -o '[0-9]*' | head -1 || echo "-"; }
@@ -75,15 +75,15 @@ else
 fi
 
 echo
-echo "### walking_loop (first $frames frames, --mode full) localised in the map of static_loop (600 frames, --mode none)"
+echo "### walking_loop (first $walk_frames frames, --mode full) localised in the map of static_loop (600 frames, --mode none)"
 echo
 echo "| seed | map keyframes | map file (MB) | saved in (ms) | loaded in (ms) | frames localised | ATE (mm) |"
 echo "|---|---|---|---|---|---|---|"
 for seed in "${seed_list[@]}"; do
   frames=600
-  lap=$(render static_loop "$seed" 0) || { failures=$((failures + 1)); echo "| $seed | fail | | | |"; continue; }
-  frames=300
-  walk=$(render walking_loop "$seed" 0) || { failures=$((failures + 1)); echo "| $seed | fail | | | |"; continue; }
+  lap=$(render static_loop "$seed" 0) || { failures=$((failures + 1)); echo "| $seed | fail | | | | | |"; continue; }
+  frames=$walk_frames
+  walk=$(render walking_loop "$seed" 0) || { failures=$((failures + 1)); echo "| $seed | fail | | | | | |"; continue; }
   map="$out/runs/static_loop_s$seed.amap"
   if slam "static_loop_s$seed" --sequence "$lap" --config "$config" --mode none --save-map "$map" &&
      slam "walking_loop_s$seed" --sequence "$walk" --config "$config" --mode full --load-map "$map" --localize; then
@@ -93,7 +93,7 @@ for seed in "${seed_list[@]}"; do
          "$(field "walking_loop_s$seed" .evaluation.est_poses) of $(field "walking_loop_s$seed" .frames) |" \
          "$(mm "$(field "walking_loop_s$seed" .evaluation.ate_rmse_m)") |"
   else
-    echo "| $seed | fail | | | |"
+    echo "| $seed | fail | | | | | |"
   fi
 done
 

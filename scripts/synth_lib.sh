@@ -103,6 +103,7 @@ render() {
 # Formatting: metres -> mm, fraction -> 3 decimals / percent; "fail" and "null" pass through as-is.
 num() { [[ $1 =~ ^-?[0-9.]+([eE][-+]?[0-9]+)?$ ]]; }
 mm() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.2f", 1000 * v }'; else printf '%s' "${1/null/n/a}"; fi; }
+cm() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.2f", 100 * v }'; else printf '%s' "${1/null/n/a}"; fi; }
 dec() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.3f", v }'; else printf '%s' "${1/null/n/a}"; fi; }
 pct() { if num "$1"; then awk -v v="$1" 'BEGIN { printf "%.3f", 100 * v }'; else printf '%s' "${1/null/n/a}"; fi; }
 ratio() { if num "$1" && num "$2"; then awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.2f", a / b; else printf "n/a" }'; else printf 'n/a'; fi; }
