@@ -115,6 +115,18 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "superpixels outside the dynamic clusters whose own tracks move under the refitted pose are seeds too");
   s.add("Dynamic.Temporal.excludeFromFits", &o.temporal.exclude_last_mask_from_fits,
         "tracks starting in the last frame's mask take no part in the pose refit and the F fit");
+  s.add("Dynamic.Depth.enabled", &o.depth.enabled,
+        "superpixels whose depth moved against the last frame's (under the judged pose) are dynamic evidence too");
+  s.add("Dynamic.Depth.sampleStep", &o.depth.sample_step_px, "every step-th pixel in x and y is a depth sample");
+  s.add("Dynamic.Depth.noiseBase", &o.depth.noise_base_m, "axial depth noise sigma(z) = base + quadratic (z - offset)^2 (m)");
+  s.add("Dynamic.Depth.noiseQuadratic", &o.depth.noise_quadratic, "... its quadratic term (1/m)");
+  s.add("Dynamic.Depth.noiseOffset", &o.depth.noise_offset_m, "... its offset (m)");
+  s.add("Dynamic.Depth.sigmas", &o.depth.sigmas,
+        "a superpixel moves when its median depth residual is this many standard errors from zero");
+  s.add("Dynamic.Depth.minResidual", &o.depth.min_residual_m, "... and at least this far (m)");
+  s.add("Dynamic.Depth.minSamples", &o.depth.min_samples, "valid depth samples a superpixel needs to be judged");
+  s.add("Dynamic.Depth.clusterShare", &o.depth.cluster_share,
+        "a cluster is dynamic when this share of its depth samples lies in moving superpixels");
 
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
         "1 = initial-pose hypotheses and models are ranked by the image cells their inliers cover, 0 = by their number");

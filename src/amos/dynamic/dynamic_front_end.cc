@@ -8,6 +8,7 @@
 #include "amos/core/stage_timer.h"
 #include "amos/dynamic/candidate_scoring.h"
 #include "amos/dynamic/cluster_voting.h"
+#include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/epipolar_evidence.h"
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/mask_building.h"
@@ -18,6 +19,7 @@ namespace amos::dynamic {
 DynamicFrontEnd::DynamicFrontEnd(const core::PinholeCamera& camera, const DynamicOptions& options)
     : camera_(camera), options_(options) {
   options_.check();
+  if (options_.depth.enabled) depth_grid_ = DepthSampleGrid(camera_, options_.depth.sample_step_px);
 }
 
 namespace {
@@ -120,13 +122,40 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
       fitEpipolarEvidence(out.tracks, confirmation.fit_tracks, camera_, options_.epipolar, diag);
   lap("epipolar");
 
+  // Depth evidence (depth_evidence.h): superpixels whose depth moved under the judged pose, for movers that carry
+  // too few tracks to be scored.
+  DepthEvidence depth;
+  std::vector<bool> depth_moving;
+  if (options_.depth.enabled) {
+    depth = superpixelDepthEvidence(in.depth, in.last_depth, in.T_cw_last, confirmation.refit.T_cw, camera_,
+                                    depth_grid_, partition.segmentation.labels, diag.superpixels,
+                                    options_.reprojection.depth_edge_ratio, options_.depth);
+    depth_moving.resize(depth.superpixels.size());
+    for (std::size_t s = 0; s < depth_moving.size(); ++s) depth_moving[s] = depth.superpixels[s].moving;
+    diag.depth_moving_superpixels = depth.moving_superpixels;
+    lap("depth");
+  }
+
   // Decision: the epipolar violators vote for clusters and judged prior regions, then the mask follows the dynamic
   // clusters per superpixel (or covers them whole) and the prior regions that stay.
   const PriorRegions judged_prior = judge_prior ? prior : PriorRegions{};
   ClusterVoting voting = voteClusters(epipolar.violators, regions.decision_map, candidates.cluster_scores,
                                       confirmation.confirmed, judged_prior, options_, diag);
+  if (options_.depth.enabled) {
+    std::vector<int> cluster_of_superpixel;
+    cluster_of_superpixel.reserve(partition.segmentation.superpixels.size());
+    for (const Superpixel& sp : partition.segmentation.superpixels) cluster_of_superpixel.push_back(sp.cluster);
+    const std::vector<bool> moved = depthMovingClusters(depth, cluster_of_superpixel, diag.clusters, options_.depth);
+    for (std::size_t c = 0; c < moved.size() && c < voting.dynamic_cluster.size(); ++c) {
+      if (moved[c] && !voting.dynamic_cluster[c]) {
+        voting.dynamic_cluster[c] = true;
+        ++diag.dynamic_clusters;
+        ++diag.depth_dynamic_clusters;
+      }
+    }
+  }
   const DynamicMask mask = buildDynamicMask(in, out.tracks, partition, regions, candidates, confirmation, epipolar,
-                                            voting, judged_prior, options_, diag);
+                                            voting, judged_prior, depth_moving, options_, diag);
   cv::bitwise_or(out.mask, mask.mask, out.mask);
   lap("decision");
 

@@ -21,6 +21,7 @@
 //   candidates = scoreCandidates(tracks, regions, prior);      // candidate_scoring.h, III-C Eq. 5-6
 //   confirmation = confirmUnderRefittedPose(candidates);       // pose_confirmation.h, III-C Eq. 5
 //   epipolar = fitEpipolarEvidence(confirmation.fit_tracks);   // epipolar_evidence.h, III-C Eq. 7-8
+//   depth = superpixelDepthEvidence(depth, last_depth);       // depth_evidence.h (Dynamic.Depth.enabled)
 //   voting = voteClusters(epipolar.violators, candidates, confirmation);  // cluster_voting.h, III-C
 //   mask |= buildDynamicMask(candidates, confirmation, epipolar, voting); // mask_building.h, III-C boundaries
 //
@@ -35,6 +36,7 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
+#include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/dynamic_options.h"
 
 namespace amos::dynamic {
@@ -79,6 +81,8 @@ struct DynamicDiagnostics {
   int f_ransac_inliers = 0;       // first (RANSAC) fit
   int f_refit_points = 0;         // points kept for the second fit
   int f_final_inliers = 0;        // inliers of the final F
+  int depth_moving_superpixels = 0;  // superpixels whose depth moved (depth_evidence.h; 0 when it is off)
+  int depth_dynamic_clusters = 0;    // clusters made dynamic by the depth evidence alone
   int prior_regions = 0;          // connected components of the prior mask
   int dynamic_prior_regions = 0;  // of which kept in the mask
 };
@@ -115,6 +119,7 @@ class DynamicFrontEnd {
  private:
   core::PinholeCamera camera_;
   DynamicOptions options_;
+  DepthSampleGrid depth_grid_;  // with Dynamic.Depth.enabled
 };
 
 }  // namespace amos::dynamic

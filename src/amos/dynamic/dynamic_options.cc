@@ -38,6 +38,7 @@ void DynamicOptions::check() const {
   boundary.check();
   initial_pose.check();
   prior.check();
+  depth.check();
   core::requireOption(prior_masked_extraction_coverage >= 0 && prior_masked_extraction_coverage <= 1,
                       core::option(prior_masked_extraction_coverage, "prior_masked_extraction_coverage"),
                       fmt::format("must be in [0, 1], got {}", prior_masked_extraction_coverage));

@@ -6,6 +6,7 @@
 
 #include "amos/dynamic/boundary_assignment.h"
 #include "amos/dynamic/corner_tracking.h"
+#include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/epipolar_check.h"
 #include "amos/dynamic/geometric_clustering.h"
@@ -59,6 +60,7 @@ struct DynamicOptions {
   EpipolarOptions epipolar;          // Dynamic.Epipolar.*
   BoundaryOptions boundary;          // Dynamic.Boundary.*
   TemporalOptions temporal;          // Dynamic.Temporal.*
+  DepthEvidenceOptions depth;        // Dynamic.Depth.*: movers without tracks, from the depth images
   InitialPoseOptions initial_pose;   // Dynamic.InitialPose.* (used by tracking, III-D)
   PriorScheduleOptions prior;        // Dynamic.Prior.*: how often the person segmentation runs
   void check() const;

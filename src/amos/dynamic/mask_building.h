@@ -38,11 +38,14 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 // clusters with seed_outside), then seeded region growing (growRegions) that may enter a superpixel as dynamic only
 // in a dynamic cluster or from a dynamic seed, and never across an occlusion edge of depth (CV_32F metres).
 // `graph`: the superpixels' adjacency and occlusion edges when computed ahead (null: computed here).
+// `depth_moving`: per superpixel, whether its depth moved (depth_evidence.h; empty = no depth evidence): such a
+// superpixel that the tracks leave unlabelled is a dynamic seed (border superpixels excepted).
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
                                      bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
-                                     const SuperpixelGraph* graph = nullptr);
+                                     const SuperpixelGraph* graph = nullptr,
+                                     const std::vector<bool>& depth_moving = {});
 
 struct DynamicMask {
   cv::Mat mask;                          // CV_8U, 255 = dynamic
@@ -50,12 +53,13 @@ struct DynamicMask {
 };
 
 // The geometric stage's mask. judged_prior: the prior regions voted on (cluster_voting.h), empty when they are not
-// judged (the caller then masks every prior region itself). Fills diag.dynamic_superpixels.
+// judged (the caller then masks every prior region itself). depth_moving: per superpixel, from the depth evidence
+// (empty without). Fills diag.dynamic_superpixels.
 DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<PointTrack>& tracks,
                              const GeometricPartition& partition, const DecisionRegions& regions,
                              const CandidateScoring& candidates, const PoseConfirmation& confirmation,
                              const EpipolarEvidence& epipolar, const ClusterVoting& voting,
-                             const PriorRegions& judged_prior, const DynamicOptions& options,
-                             DynamicDiagnostics& diag);
+                             const PriorRegions& judged_prior, const std::vector<bool>& depth_moving,
+                             const DynamicOptions& options, DynamicDiagnostics& diag);
 
 }  // namespace amos::dynamic

@@ -272,6 +272,8 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   auto consume = [&](const system::DynamicFrameOutput& out) {
     const io::RgbdFrame& frame = out.frame;
     source_report.latency_ms.push_back(msSince(frame.arrival));
+    if (options.source != FrameSourceKind::kFolder)
+      spdlog::debug("frame {}: {:.1f} ms from arrival to pose", frame.index, source_report.latency_ms.back());
     ++n;
     if (frame.depth_dropout) {
       DepthDropouts& d = result.info.depth_dropouts;

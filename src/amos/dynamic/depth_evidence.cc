@@ -1,0 +1,149 @@
+#include "amos/dynamic/depth_evidence.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "amos/core/error.h"
+#include "amos/core/option_error.h"
+
+namespace amos::dynamic {
+
+void DepthEvidenceOptions::check() const {
+  core::requireInRange(sample_step_px, "sample_step_px", 1, 32);
+  core::requirePositive(noise_base_m, "noise_base_m");
+  core::requireAtLeast(noise_quadratic, "noise_quadratic", 0.0);
+  core::requireAtLeast(noise_offset_m, "noise_offset_m", 0.0);
+  core::requirePositive(sigmas, "sigmas");
+  core::requireAtLeast(min_residual_m, "min_residual_m", 0.0);
+  core::requireAtLeast(min_samples, "min_samples", 1);
+  core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
+}
+
+DepthSampleGrid::DepthSampleGrid(const core::PinholeCamera& camera, int step_px) {
+  core::require(step_px >= 1, "DepthSampleGrid: step must be >= 1");
+  std::vector<cv::Point2f> raw;
+  for (int y = step_px / 2; y < camera.height(); y += step_px)
+    for (int x = step_px / 2; x < camera.width(); x += step_px) {
+      pixels_.emplace_back(x, y);
+      raw.emplace_back(static_cast<float>(x), static_cast<float>(y));
+    }
+  const std::vector<cv::Point2f> undistorted = camera.undistort(raw);
+  normalised_.reserve(undistorted.size());
+  for (const cv::Point2f& u : undistorted)
+    normalised_.emplace_back((u.x - camera.cx()) / camera.fx(), (u.y - camera.cy()) / camera.fy());
+}
+
+namespace {
+
+// Offset of the depth-edge test: 2 px, as far as a fraction-of-a-pixel pose error and the sensor's edge blur reach.
+constexpr int kEdgeOffset = 2;
+
+// Depth at (x, y) when it is valid and none of the four neighbours kEdgeOffset away lies across a depth edge;
+// else 0. (x, y) must be kEdgeOffset inside the image.
+float smoothDepthAt(const cv::Mat& depth, int x, int y, double ratio) {
+  const float z = depth.at<float>(y, x);
+  if (!(z > 0.f)) return 0.f;
+  const float tolerance = static_cast<float>(ratio) * z;
+  for (const auto& [dx, dy] : {std::pair{kEdgeOffset, 0}, {-kEdgeOffset, 0}, {0, kEdgeOffset}, {0, -kEdgeOffset}}) {
+    const float n = depth.at<float>(y + dy, x + dx);
+    if (!(n > 0.f) || std::abs(n - z) > tolerance) return 0.f;
+  }
+  return z;
+}
+
+double median(std::vector<double>& v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  if (v.size() % 2 == 1) return *mid;
+  return 0.5 * (*mid + *std::max_element(v.begin(), mid));
+}
+
+}  // namespace
+
+DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_depth, const core::SE3& T_cw_last,
+                                      const core::SE3& T_cw, const core::PinholeCamera& camera,
+                                      const DepthSampleGrid& grid, const cv::Mat& labels, int count,
+                                      double depth_edge_ratio, const DepthEvidenceOptions& options) {
+  core::require(depth.type() == CV_32F && last_depth.type() == CV_32F && depth.size() == last_depth.size(),
+                "superpixelDepthEvidence: depth images must be CV_32F of one size");
+  core::require(labels.type() == CV_32S && labels.size() == depth.size(),
+                "superpixelDepthEvidence: labels must be CV_32S of the depth's size");
+  core::require(depth.cols == camera.width() && depth.rows == camera.height(),
+                "superpixelDepthEvidence: the images do not have the camera's size");
+  const core::SE3 T_last_cur = T_cw_last * T_cw.inverse();
+  const Eigen::Matrix3d R = T_last_cur.linear();
+  const Eigen::Vector3d t = T_last_cur.translation();
+  const int margin = kEdgeOffset;
+  // Pass 1: the lifted points in the last camera and their ideal (undistorted) pixels there.
+  struct Lifted {
+    int label;
+    float z;  // depth of the lifted point in the last camera
+  };
+  std::vector<Lifted> lifted;
+  std::vector<cv::Point2f> projected;
+  const std::size_t n = grid.pixels().size();
+  lifted.reserve(n);
+  projected.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const cv::Point p = grid.pixels()[i];
+    if (p.x < margin || p.y < margin || p.x >= depth.cols - margin || p.y >= depth.rows - margin) continue;
+    const float z = smoothDepthAt(depth, p.x, p.y, depth_edge_ratio);
+    if (z <= 0.f) continue;
+    const cv::Point2d& xn = grid.normalised()[i];
+    const Eigen::Vector3d X_last = R * Eigen::Vector3d(xn.x * z, xn.y * z, z) + t;
+    if (X_last.z() <= 0.1) continue;
+    const Eigen::Vector2d u = camera.project(X_last);
+    lifted.push_back({labels.at<int>(p), static_cast<float>(X_last.z())});
+    projected.emplace_back(static_cast<float>(u.x()), static_cast<float>(u.y()));
+  }
+  // The raw pixels the last depth image holds them at.
+  if (camera.intrinsics().hasDistortion()) projected = camera.distort(projected);
+
+  // Pass 2: residuals per superpixel.
+  DepthEvidence out;
+  out.superpixels.resize(static_cast<std::size_t>(std::max(count, 0)));
+  std::vector<std::vector<double>> residuals(out.superpixels.size());
+  std::vector<double> sigma_sum(out.superpixels.size(), 0.0);
+  for (std::size_t i = 0; i < lifted.size(); ++i) {
+    const int x = static_cast<int>(std::lround(projected[i].x)), y = static_cast<int>(std::lround(projected[i].y));
+    if (x < margin || y < margin || x >= depth.cols - margin || y >= depth.rows - margin) continue;
+    const float z_last = smoothDepthAt(last_depth, x, y, depth_edge_ratio);
+    if (z_last <= 0.f) continue;
+    const int label = lifted[i].label;
+    if (label < 0 || label >= count) continue;
+    residuals[static_cast<std::size_t>(label)].push_back(static_cast<double>(z_last) - lifted[i].z);
+    const double s1 = options.sigma(z_last), s2 = options.sigma(lifted[i].z);
+    sigma_sum[static_cast<std::size_t>(label)] += std::sqrt(s1 * s1 + s2 * s2);
+    ++out.samples;
+  }
+  // The median of n samples of a Gaussian has a standard error of sqrt(pi / 2) sigma / sqrt(n).
+  const double median_efficiency = std::sqrt(M_PI / 2);
+  for (std::size_t s = 0; s < residuals.size(); ++s) {
+    SuperpixelDepth& sp = out.superpixels[s];
+    sp.samples = static_cast<int>(residuals[s].size());
+    if (sp.samples < options.min_samples) continue;
+    const double sigma = sigma_sum[s] / sp.samples;
+    sp.median_m = median(residuals[s]);
+    sp.threshold_m = std::max(options.min_residual_m, options.sigmas * median_efficiency * sigma / std::sqrt(sp.samples));
+    sp.moving = std::abs(sp.median_m) > sp.threshold_m;
+    out.moving_superpixels += sp.moving;
+  }
+  return out;
+}
+
+std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const std::vector<int>& cluster_of_superpixel,
+                                      int num_clusters, const DepthEvidenceOptions& options) {
+  std::vector<int> samples(static_cast<std::size_t>(std::max(num_clusters, 0)), 0), moving(samples.size(), 0);
+  for (std::size_t s = 0; s < evidence.superpixels.size() && s < cluster_of_superpixel.size(); ++s) {
+    const int c = cluster_of_superpixel[s];
+    if (c < 0 || c >= num_clusters) continue;
+    samples[static_cast<std::size_t>(c)] += evidence.superpixels[s].samples;
+    if (evidence.superpixels[s].moving) moving[static_cast<std::size_t>(c)] += evidence.superpixels[s].samples;
+  }
+  std::vector<bool> out(samples.size(), false);
+  for (std::size_t c = 0; c < samples.size(); ++c)
+    out[c] = samples[c] > 0 && moving[c] >= options.cluster_share * samples[c];
+  return out;
+}
+
+}  // namespace amos::dynamic
