@@ -125,6 +125,15 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "a superpixel moves when its median depth residual is this many standard errors from zero");
   s.add("Dynamic.Depth.minResidual", &o.depth.min_residual_m, "... and at least this far (m)");
   s.add("Dynamic.Depth.minSamples", &o.depth.min_samples, "valid depth samples a superpixel needs to be judged");
+  s.add("Dynamic.Depth.violationSigmas", &o.depth.violation_sigmas,
+        "a sample violates free space when the last frame saw a surface this many sigma behind its point");
+  s.add("Dynamic.Depth.violationShare", &o.depth.violation_share,
+        "a superpixel moves when this share of its samples violate free space ...");
+  s.add("Dynamic.Depth.minViolations", &o.depth.min_violations, "... and at least this many");
+  s.add("Dynamic.Depth.unscoredClusterSuperpixels", &o.depth.unscored_cluster_superpixels,
+        "a cluster too poor in tracks to be scored is dynamic with this many moving superpixels");
+  s.add("Dynamic.Depth.baselineFrames", &o.depth.baseline_frames,
+        "the depth is also compared with that of the frame this many frames back, for slow movers (0 = off)");
   s.add("Dynamic.Depth.clusterShare", &o.depth.cluster_share,
         "a cluster is dynamic when this share of its depth samples lies in moving superpixels");
 

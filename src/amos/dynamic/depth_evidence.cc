@@ -17,6 +17,11 @@ void DepthEvidenceOptions::check() const {
   core::requireAtLeast(min_residual_m, "min_residual_m", 0.0);
   core::requireAtLeast(min_samples, "min_samples", 1);
   core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
+  core::requirePositive(violation_sigmas, "violation_sigmas");
+  core::requireInRange(violation_share, "violation_share", 1e-6, 1.0);
+  core::requireAtLeast(min_violations, "min_violations", 1);
+  core::requireAtLeast(unscored_cluster_superpixels, "unscored_cluster_superpixels", 1);
+  core::requireAtLeast(baseline_frames, "baseline_frames", 0);
 }
 
 DepthSampleGrid::DepthSampleGrid(const core::PinholeCamera& camera, int step_px) {
@@ -63,7 +68,8 @@ double median(std::vector<double>& v) {
 DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_depth, const core::SE3& T_cw_last,
                                       const core::SE3& T_cw, const core::PinholeCamera& camera,
                                       const DepthSampleGrid& grid, const cv::Mat& labels, int count,
-                                      double depth_edge_ratio, const DepthEvidenceOptions& options) {
+                                      double depth_edge_ratio, const DepthEvidenceOptions& options,
+                                      bool free_space_only) {
   core::require(depth.type() == CV_32F && last_depth.type() == CV_32F && depth.size() == last_depth.size(),
                 "superpixelDepthEvidence: depth images must be CV_32F of one size");
   core::require(labels.type() == CV_32S && labels.size() == depth.size(),
@@ -111,9 +117,13 @@ DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_
     if (z_last <= 0.f) continue;
     const int label = lifted[i].label;
     if (label < 0 || label >= count) continue;
-    residuals[static_cast<std::size_t>(label)].push_back(static_cast<double>(z_last) - lifted[i].z);
+    const double r = static_cast<double>(z_last) - lifted[i].z;
+    residuals[static_cast<std::size_t>(label)].push_back(r);
     const double s1 = options.sigma(z_last), s2 = options.sigma(lifted[i].z);
-    sigma_sum[static_cast<std::size_t>(label)] += std::sqrt(s1 * s1 + s2 * s2);
+    const double sigma = std::sqrt(s1 * s1 + s2 * s2);
+    sigma_sum[static_cast<std::size_t>(label)] += sigma;
+    if (r > std::max(options.min_residual_m, options.violation_sigmas * sigma))
+      ++out.superpixels[static_cast<std::size_t>(label)].violations;
     ++out.samples;
   }
   // The median of n samples of a Gaussian has a standard error of sqrt(pi / 2) sigma / sqrt(n).
@@ -124,25 +134,56 @@ DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_
     if (sp.samples < options.min_samples) continue;
     const double sigma = sigma_sum[s] / sp.samples;
     sp.median_m = median(residuals[s]);
-    sp.threshold_m = std::max(options.min_residual_m, options.sigmas * median_efficiency * sigma / std::sqrt(sp.samples));
-    sp.moving = std::abs(sp.median_m) > sp.threshold_m;
+    sp.standard_error_m = median_efficiency * sigma / std::sqrt(sp.samples);
+    sp.threshold_m = std::max(options.min_residual_m, options.sigmas * sp.standard_error_m);
+    sp.receded = free_space_only && sp.median_m < -sp.threshold_m;
+    sp.moving = (free_space_only ? sp.median_m : std::abs(sp.median_m)) > sp.threshold_m ||
+                (sp.violations >= options.min_violations && sp.violations >= options.violation_share * sp.samples);
     out.moving_superpixels += sp.moving;
   }
   return out;
 }
 
+DepthEvidence combineDepthEvidence(const DepthEvidence& a, const DepthEvidence& b) {
+  core::require(a.superpixels.size() == b.superpixels.size(),
+                "combineDepthEvidence: the two comparisons have different superpixel counts");
+  DepthEvidence out;
+  out.samples = std::max(a.samples, b.samples);
+  out.superpixels.resize(a.superpixels.size());
+  for (std::size_t s = 0; s < a.superpixels.size(); ++s) {
+    const SuperpixelDepth &x = a.superpixels[s], &y = b.superpixels[s];
+    SuperpixelDepth& o = out.superpixels[s];
+    o.samples = std::max(x.samples, y.samples);
+    o.violations = std::max(x.violations, y.violations);
+    const bool still_receding = x.samples > 0 && x.median_m < -2 * x.standard_error_m;
+    o.moving = x.moving || y.moving || (y.receded && still_receding);
+    const SuperpixelDepth& shown = !x.moving && o.moving ? y : x;
+    o.median_m = shown.median_m;
+    o.threshold_m = shown.threshold_m;
+    out.moving_superpixels += o.moving;
+  }
+  return out;
+}
+
 std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const std::vector<int>& cluster_of_superpixel,
-                                      int num_clusters, const DepthEvidenceOptions& options) {
-  std::vector<int> samples(static_cast<std::size_t>(std::max(num_clusters, 0)), 0), moving(samples.size(), 0);
+                                      const std::vector<bool>& scored, int num_clusters,
+                                      const DepthEvidenceOptions& options) {
+  std::vector<int> samples(static_cast<std::size_t>(std::max(num_clusters, 0)), 0), moving(samples.size(), 0),
+      moving_superpixels(samples.size(), 0);
   for (std::size_t s = 0; s < evidence.superpixels.size() && s < cluster_of_superpixel.size(); ++s) {
     const int c = cluster_of_superpixel[s];
     if (c < 0 || c >= num_clusters) continue;
     samples[static_cast<std::size_t>(c)] += evidence.superpixels[s].samples;
-    if (evidence.superpixels[s].moving) moving[static_cast<std::size_t>(c)] += evidence.superpixels[s].samples;
+    if (!evidence.superpixels[s].moving) continue;
+    moving[static_cast<std::size_t>(c)] += evidence.superpixels[s].samples;
+    ++moving_superpixels[static_cast<std::size_t>(c)];
   }
   std::vector<bool> out(samples.size(), false);
-  for (std::size_t c = 0; c < samples.size(); ++c)
-    out[c] = samples[c] > 0 && moving[c] >= options.cluster_share * samples[c];
+  for (std::size_t c = 0; c < samples.size(); ++c) {
+    const bool unscored = c >= scored.size() || !scored[c];
+    out[c] = (samples[c] > 0 && moving[c] >= options.cluster_share * samples[c]) ||
+             (unscored && moving_superpixels[c] >= options.unscored_cluster_superpixels);
+  }
   return out;
 }
 

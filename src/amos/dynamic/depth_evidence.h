@@ -40,9 +40,29 @@ struct DepthEvidenceOptions {
   double min_residual_m = 0.01;
   // Dynamic.Depth.minSamples: valid samples a superpixel needs to be judged (a median of fewer is noise).
   int min_samples = 8;
+  // Dynamic.Depth.violationSigmas: a sample violates free space when the last frame measured a surface farther
+  // than its lifted point by this many sigma (and minResidual): the point stands where the last frame saw empty
+  // space, which no static point can (a static point revealed by the motion lies behind what hid it: the opposite
+  // sign). This is the leading edge of a mover crossing the view, whose flat inside shows no depth change. 3: a
+  // sample of the static world passes it in ~0.1 % of the cases.
+  double violation_sigmas = 3.0;
+  // Dynamic.Depth.violationShare: a superpixel moves when at least this share of its samples violate free space
+  // (and at least minViolations of them). 0.2: a mover advancing 5 px per frame into a superpixel of S ~ 26 px.
+  double violation_share = 0.2;
+  int min_violations = 4;  // Dynamic.Depth.minViolations
   // Dynamic.Depth.clusterShare: a decision cluster is dynamic when at least this share of its valid samples lies in
-  // moving superpixels (the mask then grows over the cluster from them, boundary_assignment.h).
+  // moving superpixels (the mask then grows over the cluster from them, boundary_assignment.h) ...
   double cluster_share = 0.3;
+  // Dynamic.Depth.unscoredClusterSuperpixels: ... or when it holds at least this many moving superpixels and too
+  // few tracks for Eq. 5 to score it: the inside of a trackless mover (a plain fabric chair crossing the view)
+  // shows no depth change, only its leading edge does, and nothing says that the rest of its cluster is static.
+  int unscored_cluster_superpixels = 2;
+  // Dynamic.Depth.baselineFrames: the current depth is also compared with that of the frame this many frames back
+  // (DynamicFrameInput::baseline_depth), and a superpixel moves when either comparison says so. Against the last
+  // frame alone a mover must shift by minResidual (1 cm) in 33 ms, 0.3 m/s; over 10 frames (0.33 s) 3 cm/s will
+  // do: a door easing into its stops, a chair starting to roll (2-3 px per frame at 1 m). The price: a mover that
+  // stops stays marked for up to this many frames. 0 = the last frame only.
+  int baseline_frames = 10;
   void check() const;
   // Axial noise at depth z [m].
   double sigma(double z) const { return noise_base_m + noise_quadratic * (z - noise_offset_m) * (z - noise_offset_m); }
@@ -63,9 +83,14 @@ class DepthSampleGrid {
 
 struct SuperpixelDepth {
   int samples = 0;           // valid samples in the superpixel
+  int violations = 0;        // samples violating free space (see violation_sigmas)
   double median_m = 0;       // median residual z_last(p') - z (0 with fewer than min_samples)
   double threshold_m = 0;    // what |median_m| had to exceed
+  double standard_error_m = 0;  // of the median, from the sensor noise
   bool moving = false;
+  // With free_space_only: the median says that the surface now lies behind what the other frame saw (below
+  // -threshold_m), which alone does not make the superpixel move (see combineDepthEvidence).
+  bool receded = false;
 };
 
 struct DepthEvidence {
@@ -77,14 +102,27 @@ struct DepthEvidence {
 // depth, last_depth: CV_32F metres (0 = none), raw pixels of the camera; labels: CV_32S superpixel label of every
 // pixel (0 .. count-1). T_cw_last, T_cw: the poses of the two frames. depth_edge_ratio: a neighbour 2 px away whose
 // depth differs by more than this share marks a depth edge (Dynamic.Reprojection.depthEdgeRatio).
+// free_space_only: only a positive median (the surface now stands in front of what the other frame saw) moves a
+// superpixel; for a comparison over many frames, where a negative one is mostly background that a mover has
+// uncovered meanwhile (over one frame that is a strip, too thin to move a median).
 DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_depth, const core::SE3& T_cw_last,
                                       const core::SE3& T_cw, const core::PinholeCamera& camera,
                                       const DepthSampleGrid& grid, const cv::Mat& labels, int count,
-                                      double depth_edge_ratio, const DepthEvidenceOptions& options);
+                                      double depth_edge_ratio, const DepthEvidenceOptions& options,
+                                      bool free_space_only = false);
 
-// Per cluster, whether at least options.cluster_share of its valid samples lie in moving superpixels.
+// Per superpixel, the evidence of either comparison (a: the last frame's, b: a baseline frame's, free space only):
+// moving when either says so, or when b says that the surface receded and a that it is still receding now (its
+// median at least two standard errors below zero): background uncovered by a mover some frames ago is at rest
+// now, a door swinging away is not. The larger sample and violation counts, the median of the one that moves
+// (else of a).
+DepthEvidence combineDepthEvidence(const DepthEvidence& a, const DepthEvidence& b);
+
+// Per cluster, whether at least options.cluster_share of its valid samples lie in moving superpixels, or it holds
+// options.unscored_cluster_superpixels moving superpixels and scored[c] is false (Eq. 5 had too few tracks).
 // cluster_of_superpixel: each superpixel's cluster (0 .. num_clusters-1).
 std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const std::vector<int>& cluster_of_superpixel,
-                                      int num_clusters, const DepthEvidenceOptions& options);
+                                      const std::vector<bool>& scored, int num_clusters,
+                                      const DepthEvidenceOptions& options);
 
 }  // namespace amos::dynamic

@@ -34,6 +34,8 @@ void checkInput(const DynamicFrameInput& in) {
                 "DynamicFrontEnd: prior_mask must be empty or CV_8UC1 of the image size");
   core::require(in.last_mask.empty() || (in.last_mask.type() == CV_8UC1 && in.last_mask.size() == size),
                 "DynamicFrontEnd: last_mask must be empty or CV_8UC1 of the image size");
+  core::require(in.baseline_depth.empty() || (in.baseline_depth.type() == CV_32F && in.baseline_depth.size() == size),
+                "DynamicFrontEnd: baseline_depth must be empty or CV_32F of the image size");
   if (!in.last_gray.empty()) {
     core::require(in.last_gray.type() == CV_8UC1 && in.last_gray.size() == size,
                   "DynamicFrontEnd: last_gray must be CV_8UC1 of the image size");
@@ -127,9 +129,14 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   DepthEvidence depth;
   std::vector<bool> depth_moving;
   if (options_.depth.enabled) {
-    depth = superpixelDepthEvidence(in.depth, in.last_depth, in.T_cw_last, confirmation.refit.T_cw, camera_,
-                                    depth_grid_, partition.segmentation.labels, diag.superpixels,
-                                    options_.reprojection.depth_edge_ratio, options_.depth);
+    auto against = [&](const cv::Mat& other_depth, const core::SE3& T_cw_other, bool free_space_only) {
+      return superpixelDepthEvidence(in.depth, other_depth, T_cw_other, confirmation.refit.T_cw, camera_, depth_grid_,
+                                     partition.segmentation.labels, diag.superpixels,
+                                     options_.reprojection.depth_edge_ratio, options_.depth, free_space_only);
+    };
+    depth = against(in.last_depth, in.T_cw_last, false);
+    if (!in.baseline_depth.empty())
+      depth = combineDepthEvidence(depth, against(in.baseline_depth, in.T_cw_baseline, true));
     depth_moving.resize(depth.superpixels.size());
     for (std::size_t s = 0; s < depth_moving.size(); ++s) depth_moving[s] = depth.superpixels[s].moving;
     diag.depth_moving_superpixels = depth.moving_superpixels;
@@ -145,7 +152,11 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     std::vector<int> cluster_of_superpixel;
     cluster_of_superpixel.reserve(partition.segmentation.superpixels.size());
     for (const Superpixel& sp : partition.segmentation.superpixels) cluster_of_superpixel.push_back(sp.cluster);
-    const std::vector<bool> moved = depthMovingClusters(depth, cluster_of_superpixel, diag.clusters, options_.depth);
+    std::vector<bool> scored;
+    for (const ClusterScore& score : candidates.cluster_scores)
+      scored.push_back(score.points >= options_.reprojection.min_points_per_cluster);
+    const std::vector<bool> moved =
+        depthMovingClusters(depth, cluster_of_superpixel, scored, diag.clusters, options_.depth);
     for (std::size_t c = 0; c < moved.size() && c < voting.dynamic_cluster.size(); ++c) {
       if (moved[c] && !voting.dynamic_cluster[c]) {
         voting.dynamic_cluster[c] = true;

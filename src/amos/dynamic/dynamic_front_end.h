@@ -53,6 +53,10 @@ struct DynamicFrameInput {
   // The last frame's final dynamic mask (CV_8U, 255 = dynamic), in the last frame's pixels; empty when unknown
   // (first frame, after a lost frame, mode none). Temporal evidence: movers rarely stop between two frames.
   cv::Mat last_mask;
+  // The depth and pose of the frame Dynamic.Depth.baselineFrames back (depth_evidence.h), for slow movers; empty
+  // when unknown (the depth evidence then compares with the last frame only).
+  cv::Mat baseline_depth;
+  core::SE3 T_cw_baseline = core::SE3::Identity();
   // Optional: last->current corner tracks already computed (e.g. for the initial pose model 2); when null the
   // front end detects and tracks corners itself. Non-owning.
   const std::vector<PointTrack>* tracks = nullptr;

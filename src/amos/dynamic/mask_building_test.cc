@@ -66,7 +66,7 @@ TEST(MaskBuilding, WholeClustersAndTheKeptPriorRegions) {
   prior.components(cv::Rect(10, 30, 5, 4)).setTo(2);
   voting.dynamic_prior_region = {false, false, true};
   DynamicDiagnostics diag;
-  const DynamicMask mask = buildDynamicMask(in, {}, partition, regions, {}, {}, {}, voting, prior, options, diag);
+  const DynamicMask mask = buildDynamicMask(in, {}, partition, regions, {}, {}, {}, voting, prior, {}, options, diag);
   // The right half (border blocks included) and region 2.
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(20, 0, 20, 40))), 800);
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 20);
@@ -109,7 +109,7 @@ TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
   voting.dynamic_cluster = {true, false};
   DynamicDiagnostics diag;
   const DynamicMask mask = buildDynamicMask(in, tracks, partition, regions, candidates, confirmation, epipolar,
-                                            voting, PriorRegions{}, DynamicOptions{}, diag);
+                                            voting, PriorRegions{}, {}, DynamicOptions{}, diag);
   EXPECT_EQ(mask.dynamic_superpixel, leftHalfSuperpixels());
   EXPECT_EQ(diag.dynamic_superpixels, 8);
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 800);

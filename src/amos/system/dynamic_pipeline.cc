@@ -181,7 +181,13 @@ void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput m
   const tracking::TrackResult& result = out.slam.track;
   if (result.state != tracking::TrackingState::kOk) {
     state_.last.reset();  // a lost frame's pose would poison the reprojection test of the next one
+    state_.depth_history.clear();
     return;
+  }
+  if (options_.depth.enabled && options_.depth.baseline_frames > 1) {
+    state_.depth_history.emplace_back(out.frame.depth, result.T_cw);
+    if (state_.depth_history.size() > static_cast<std::size_t>(options_.depth.baseline_frames))
+      state_.depth_history.pop_front();
   }
   const bool geometry = scheduler_.tasks().geometry;
   if (geometry && (result.new_keyframe || result.initialized_map)) {
@@ -222,6 +228,10 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       input.T_cw_last = last.T_cw;
       input.last_mask = last.dynamic_mask;
       input.T_cw_initial = last.T_cw;
+      if (state_.depth_history.size() == static_cast<std::size_t>(options_.depth.baseline_frames)) {
+        input.baseline_depth = state_.depth_history.front().first;
+        input.T_cw_baseline = state_.depth_history.front().second;
+      }
       if (tasks.geometry) {
         tracks = trackCorners(motion.pyramid);  // 2
         std::optional<dynamic::PoseModel> model;
