@@ -121,9 +121,12 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.Depth.noiseBase", &o.depth.noise_base_m, "axial depth noise sigma(z) = base + quadratic (z - offset)^2 (m)");
   s.add("Dynamic.Depth.noiseQuadratic", &o.depth.noise_quadratic, "... its quadratic term (1/m)");
   s.add("Dynamic.Depth.noiseOffset", &o.depth.noise_offset_m, "... its offset (m)");
+  s.add("Dynamic.Depth.maxDepth", &o.depth.max_depth_m, "depth samples farther than this (m) in either frame do not count");
   s.add("Dynamic.Depth.sigmas", &o.depth.sigmas,
         "a superpixel moves when its median depth residual is this many standard errors from zero");
   s.add("Dynamic.Depth.minResidual", &o.depth.min_residual_m, "... and at least this far (m)");
+  s.add("Dynamic.Depth.minRelativeResidual", &o.depth.min_relative_residual,
+        "... and at least this share of the depth (a real sensor's depth bias varies over the image)");
   s.add("Dynamic.Depth.minSamples", &o.depth.min_samples, "valid depth samples a superpixel needs to be judged");
   s.add("Dynamic.Depth.violationSigmas", &o.depth.violation_sigmas,
         "a sample violates free space when the last frame saw a surface this many sigma behind its point");
@@ -134,6 +137,8 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "a cluster too poor in tracks to be scored is dynamic with this many moving superpixels");
   s.add("Dynamic.Depth.baselineFrames", &o.depth.baseline_frames,
         "the depth is also compared with that of the frame this many frames back, for slow movers (0 = off)");
+  s.add("Dynamic.Depth.baselineRelativeResidual", &o.depth.baseline_relative_residual,
+        "minRelativeResidual of that comparison");
   s.add("Dynamic.Depth.clusterShare", &o.depth.cluster_share,
         "a cluster is dynamic when this share of its depth samples lies in moving superpixels");
 

@@ -15,6 +15,8 @@ void DepthEvidenceOptions::check() const {
   core::requireAtLeast(noise_offset_m, "noise_offset_m", 0.0);
   core::requirePositive(sigmas, "sigmas");
   core::requireAtLeast(min_residual_m, "min_residual_m", 0.0);
+  core::requirePositive(max_depth_m, "max_depth_m");
+  core::requireInRange(min_relative_residual, "min_relative_residual", 0.0, 1.0);
   core::requireAtLeast(min_samples, "min_samples", 1);
   core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
   core::requirePositive(violation_sigmas, "violation_sigmas");
@@ -22,6 +24,7 @@ void DepthEvidenceOptions::check() const {
   core::requireAtLeast(min_violations, "min_violations", 1);
   core::requireAtLeast(unscored_cluster_superpixels, "unscored_cluster_superpixels", 1);
   core::requireAtLeast(baseline_frames, "baseline_frames", 0);
+  core::requireInRange(baseline_relative_residual, "baseline_relative_residual", 0.0, 1.0);
 }
 
 DepthSampleGrid::DepthSampleGrid(const core::PinholeCamera& camera, int step_px) {
@@ -41,7 +44,7 @@ DepthSampleGrid::DepthSampleGrid(const core::PinholeCamera& camera, int step_px)
 namespace {
 
 // Offset of the depth-edge test: 2 px, as far as a fraction-of-a-pixel pose error and the sensor's edge blur reach.
-constexpr int kEdgeOffset = 2;
+constexpr int kEdgeOffset = 4;
 
 // Depth at (x, y) when it is valid and none of the four neighbours kEdgeOffset away lies across a depth edge;
 // else 0. (x, y) must be kEdgeOffset inside the image.
@@ -94,7 +97,7 @@ DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_
     const cv::Point p = grid.pixels()[i];
     if (p.x < margin || p.y < margin || p.x >= depth.cols - margin || p.y >= depth.rows - margin) continue;
     const float z = smoothDepthAt(depth, p.x, p.y, depth_edge_ratio);
-    if (z <= 0.f) continue;
+    if (z <= 0.f || z > options.max_depth_m) continue;
     const cv::Point2d& xn = grid.normalised()[i];
     const Eigen::Vector3d X_last = R * Eigen::Vector3d(xn.x * z, xn.y * z, z) + t;
     if (X_last.z() <= 0.1) continue;
@@ -109,12 +112,12 @@ DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_
   DepthEvidence out;
   out.superpixels.resize(static_cast<std::size_t>(std::max(count, 0)));
   std::vector<std::vector<double>> residuals(out.superpixels.size());
-  std::vector<double> sigma_sum(out.superpixels.size(), 0.0);
+  std::vector<double> sigma_sum(out.superpixels.size(), 0.0), depth_sum(out.superpixels.size(), 0.0);
   for (std::size_t i = 0; i < lifted.size(); ++i) {
     const int x = static_cast<int>(std::lround(projected[i].x)), y = static_cast<int>(std::lround(projected[i].y));
     if (x < margin || y < margin || x >= depth.cols - margin || y >= depth.rows - margin) continue;
     const float z_last = smoothDepthAt(last_depth, x, y, depth_edge_ratio);
-    if (z_last <= 0.f) continue;
+    if (z_last <= 0.f || z_last > options.max_depth_m) continue;
     const int label = lifted[i].label;
     if (label < 0 || label >= count) continue;
     const double r = static_cast<double>(z_last) - lifted[i].z;
@@ -122,7 +125,9 @@ DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_
     const double s1 = options.sigma(z_last), s2 = options.sigma(lifted[i].z);
     const double sigma = std::sqrt(s1 * s1 + s2 * s2);
     sigma_sum[static_cast<std::size_t>(label)] += sigma;
-    if (r > std::max(options.min_residual_m, options.violation_sigmas * sigma))
+    depth_sum[static_cast<std::size_t>(label)] += lifted[i].z;
+    if (r > std::max({options.min_residual_m, options.min_relative_residual * lifted[i].z,
+                      options.violation_sigmas * sigma}))
       ++out.superpixels[static_cast<std::size_t>(label)].violations;
     ++out.samples;
   }
@@ -135,7 +140,9 @@ DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_
     const double sigma = sigma_sum[s] / sp.samples;
     sp.median_m = median(residuals[s]);
     sp.standard_error_m = median_efficiency * sigma / std::sqrt(sp.samples);
-    sp.threshold_m = std::max(options.min_residual_m, options.sigmas * sp.standard_error_m);
+    sp.depth_m = depth_sum[s] / sp.samples;
+    sp.threshold_m = std::max({options.min_residual_m, options.min_relative_residual * sp.depth_m,
+                               options.sigmas * sp.standard_error_m});
     sp.receded = free_space_only && sp.median_m < -sp.threshold_m;
     sp.moving = (free_space_only ? sp.median_m : std::abs(sp.median_m)) > sp.threshold_m ||
                 (sp.violations >= options.min_violations && sp.violations >= options.violation_share * sp.samples);
@@ -160,6 +167,8 @@ DepthEvidence combineDepthEvidence(const DepthEvidence& a, const DepthEvidence& 
     const SuperpixelDepth& shown = !x.moving && o.moving ? y : x;
     o.median_m = shown.median_m;
     o.threshold_m = shown.threshold_m;
+    o.standard_error_m = shown.standard_error_m;
+    o.depth_m = shown.depth_m;
     out.moving_superpixels += o.moving;
   }
   return out;

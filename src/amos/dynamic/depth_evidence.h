@@ -31,6 +31,11 @@ struct DepthEvidenceOptions {
   double noise_base_m = 0.0012;
   double noise_quadratic = 0.0019;
   double noise_offset_m = 0.4;
+  // Dynamic.Depth.maxDepth: samples farther than this in either frame do not count. The specified range of the
+  // structured-light sensors (Kinect v1 4 m, Xtion 3.5 m): beyond it the error is no longer the noise model's
+  // Gaussian (disparity steps of 5 cm and more at 4-5 m, multipath), and TUM fr2/desk's static background at 4-5.6 m
+  // was the only thing its 10-frame comparison found moving.
+  double max_depth_m = 4.0;
   // Dynamic.Depth.sigmas: a superpixel moves when its median residual is this many of its standard errors from
   // zero. 4: on ~300 static superpixels per frame a Gaussian statistic passes 4 sigma once in ~50 frames.
   double sigmas = 4.0;
@@ -38,6 +43,12 @@ struct DepthEvidenceOptions {
   // shifts a point at 3 m by 3 mm sideways, which on a surface seen at 60-70 deg from its normal reads as 5-8 mm
   // of depth: 1 cm stays above that.
   double min_residual_m = 0.01;
+  // Dynamic.Depth.minRelativeResidual: ... and at least this share of the depth. A real structured-light sensor's
+  // error is not only noise: its depth carries a bias that varies over the image by ~1 % of the depth (the "donut"
+  // of a Kinect's depth distortion), which a surface seen at other pixels in the other frame reads as motion (TUM
+  // fr2/desk, static: the floor at 2-3 m; geometry mode marks 6.4 % of its pixels with 0 and 2.3 % with 0.02,
+  // against 2.1 % without the depth evidence). 0 for an ideal sensor.
+  double min_relative_residual = 0.02;
   // Dynamic.Depth.minSamples: valid samples a superpixel needs to be judged (a median of fewer is noise).
   int min_samples = 8;
   // Dynamic.Depth.violationSigmas: a sample violates free space when the last frame measured a surface farther
@@ -63,6 +74,10 @@ struct DepthEvidenceOptions {
   // do: a door easing into its stops, a chair starting to roll (2-3 px per frame at 1 m). The price: a mover that
   // stops stays marked for up to this many frames. 0 = the last frame only.
   int baseline_frames = 10;
+  // Dynamic.Depth.baselineRelativeResidual: minRelativeResidual for that comparison. The sensor's depth bias varies
+  // over the image, and over 10 frames a surface moves across more of it than over one: TUM fr2/desk's static
+  // floor and walls at 3.5-3.8 m read 2 % (6-8 cm) farther than 10 frames before. 0.04: twice the one-frame floor.
+  double baseline_relative_residual = 0.04;
   void check() const;
   // Axial noise at depth z [m].
   double sigma(double z) const { return noise_base_m + noise_quadratic * (z - noise_offset_m) * (z - noise_offset_m); }
@@ -87,6 +102,7 @@ struct SuperpixelDepth {
   double median_m = 0;       // median residual z_last(p') - z (0 with fewer than min_samples)
   double threshold_m = 0;    // what |median_m| had to exceed
   double standard_error_m = 0;  // of the median, from the sensor noise
+  double depth_m = 0;           // mean depth of the samples
   bool moving = false;
   // With free_space_only: the median says that the surface now lies behind what the other frame saw (below
   // -threshold_m), which alone does not make the superpixel move (see combineDepthEvidence).

@@ -144,7 +144,8 @@ TEST(DepthEvidence, BaselineRecessionCountsOnlyWhileTheSurfaceStillRecedes) {
   last.superpixels.resize(2);
   baseline.superpixels.resize(2);
   for (int s = 0; s < 2; ++s) {
-    baseline.superpixels[s] = {40, 0, -0.08, 0.01, 0.002, false, true};  // 8 cm behind what the baseline saw
+    SuperpixelDepth& b = baseline.superpixels[s];  // 8 cm behind what the baseline saw
+    b.samples = 40, b.median_m = -0.08, b.threshold_m = 0.01, b.standard_error_m = 0.002, b.receded = true;
     last.superpixels[s].samples = 40;
     last.superpixels[s].standard_error_m = 0.002;
   }

@@ -129,14 +129,18 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   DepthEvidence depth;
   std::vector<bool> depth_moving;
   if (options_.depth.enabled) {
-    auto against = [&](const cv::Mat& other_depth, const core::SE3& T_cw_other, bool free_space_only) {
+    auto against = [&](const cv::Mat& other_depth, const core::SE3& T_cw_other, bool baseline) {
+      DepthEvidenceOptions options = options_.depth;
+      if (baseline) options.min_relative_residual = options.baseline_relative_residual;
       return superpixelDepthEvidence(in.depth, other_depth, T_cw_other, confirmation.refit.T_cw, camera_, depth_grid_,
                                      partition.segmentation.labels, diag.superpixels,
-                                     options_.reprojection.depth_edge_ratio, options_.depth, free_space_only);
+                                     options_.reprojection.depth_edge_ratio, options, baseline);
     };
     depth = against(in.last_depth, in.T_cw_last, false);
-    if (!in.baseline_depth.empty())
-      depth = combineDepthEvidence(depth, against(in.baseline_depth, in.T_cw_baseline, true));
+    if (!in.baseline_depth.empty()) {
+      const DepthEvidence base = against(in.baseline_depth, in.T_cw_baseline, true);
+      depth = combineDepthEvidence(depth, base);
+    }
     depth_moving.resize(depth.superpixels.size());
     for (std::size_t s = 0; s < depth_moving.size(); ++s) depth_moving[s] = depth.superpixels[s].moving;
     diag.depth_moving_superpixels = depth.moving_superpixels;

@@ -228,7 +228,8 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       input.T_cw_last = last.T_cw;
       input.last_mask = last.dynamic_mask;
       input.T_cw_initial = last.T_cw;
-      if (state_.depth_history.size() == static_cast<std::size_t>(options_.depth.baseline_frames)) {
+      if (options_.depth.baseline_frames > 1 &&
+          state_.depth_history.size() == static_cast<std::size_t>(options_.depth.baseline_frames)) {
         input.baseline_depth = state_.depth_history.front().first;
         input.T_cw_baseline = state_.depth_history.front().second;
       }
