@@ -124,6 +124,35 @@ TEST(DynamicPipeline, LookAheadGivesTheSameMasksAndPoses) {
   EXPECT_GE(with_people, 10);  // the comparison is about real masks, not empty ones
 }
 
+// The depth evidence keeps the depth of the last frames as its baseline (Dynamic.Depth.baselineFrames): geometry
+// mode with it processes every frame with the baseline off, shorter than the run and engaged, and gives the same
+// masks with and without look-ahead.
+TEST(DynamicPipeline, DepthEvidenceBaselineIsDeterministicAndMayBeOff) {
+  AMOS_REQUIRE_DATA("bonn_crowd_dev");
+  const std::vector<io::RgbdFrame> frames = bonnFrames(8, 90);
+  ASSERT_EQ(frames.size(), 8u);
+  auto run = [&](int baseline_frames, std::size_t ahead) {
+    SlamSystem slam(bonnOptions());
+    dynamic::DynamicOptions options;
+    options.mode = dynamic::DynamicMode::kGeometry;
+    options.depth.enabled = true;
+    options.depth.baseline_frames = baseline_frames;
+    DynamicPipeline pipeline(slam, options, nullptr);
+    std::vector<cv::Mat> masks;
+    feedPipeline(pipeline, frames, ahead, [&](const DynamicFrameOutput& out) { masks.push_back(out.dynamic_mask); });
+    pipeline.finish();
+    return masks;
+  };
+  for (const int baseline : {0, 1, 3, 20}) EXPECT_EQ(run(baseline, 0).size(), frames.size()) << "baseline " << baseline;
+  const std::vector<cv::Mat> plain = run(3, 0), ahead = run(3, 1);
+  int marked = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    EXPECT_TRUE(sameMask(plain[k], ahead[k])) << "frame " << k;
+    marked += cv::countNonZero(plain[k]) > 0;
+  }
+  EXPECT_GE(marked, 1);  // people walk through these frames
+}
+
 // A segmenter that records which frames (by the code in pixel (0, 0)) it has started, so a test can wait until a
 // given frame reaches it. Its masks are empty.
 class RecordingSegmenter : public segmentation::Segmenter {
