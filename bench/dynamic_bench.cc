@@ -168,6 +168,24 @@ void BM_KMeansClusters(benchmark::State& state) {
 }
 BENCHMARK(BM_KMeansClusters)->Unit(benchmark::kMillisecond);
 
+// The depth evidence (depth_evidence.h) of one Bonn frame pair against its superpixels, as the front end runs it
+// once per comparison (the last frame; the baseline frame adds a second run), with the initial pose.
+void BM_DepthEvidence(benchmark::State& state) {
+  const BenchData& d = data();
+  const SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
+  DepthEvidenceOptions options;
+  const DepthSampleGrid grid(d.camera, options.sample_step_px);
+  DepthEvidence e;
+  for (auto _ : state) {
+    e = superpixelDepthEvidence(d.current.depth, d.last.depth, core::SE3::Identity(), d.T_cw_initial, d.camera, grid,
+                                seg.labels, static_cast<int>(seg.superpixels.size()), 0.05, options);
+    benchmark::DoNotOptimize(e.samples);
+  }
+  state.counters["samples"] = e.samples;
+  state.counters["moving_superpixels"] = e.moving_superpixels;
+}
+BENCHMARK(BM_DepthEvidence)->Unit(benchmark::kMillisecond);
+
 void BM_CornerTracking(benchmark::State& state) {
   const BenchData& d = data();
   const CornerTrackingOptions options;
