@@ -198,4 +198,40 @@ std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const std::
   return out;
 }
 
+DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, const cv::Mat& last_depth,
+                                 const core::SE3& T_cw_last, const cv::Mat& baseline_depth,
+                                 const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
+                                 const DepthSampleGrid& grid, const SuperpixelSegmentation& segmentation,
+                                 double depth_edge_ratio, const DepthEvidenceOptions& options) {
+  const int count = static_cast<int>(segmentation.superpixels.size());
+  DepthEvidence evidence = superpixelDepthEvidence(depth, last_depth, T_cw_last, T_cw, camera, grid,
+                                                   segmentation.labels, count, depth_edge_ratio, options);
+  if (baseline_depth.empty()) return evidence;
+  DepthEvidenceOptions baseline = options;
+  baseline.min_relative_residual = options.baseline_relative_residual;
+  return combineDepthEvidence(evidence, superpixelDepthEvidence(depth, baseline_depth, T_cw_baseline, T_cw, camera,
+                                                                grid, segmentation.labels, count, depth_edge_ratio,
+                                                                baseline, true));
+}
+
+int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
+                           const std::vector<ClusterScore>& cluster_scores, int min_points,
+                           const DepthEvidenceOptions& options, std::vector<bool>& dynamic_cluster) {
+  std::vector<int> cluster_of_superpixel;
+  cluster_of_superpixel.reserve(segmentation.superpixels.size());
+  for (const Superpixel& sp : segmentation.superpixels) cluster_of_superpixel.push_back(sp.cluster);
+  std::vector<bool> scored;
+  for (const ClusterScore& score : cluster_scores) scored.push_back(score.points >= min_points);
+  const std::vector<bool> moved = depthMovingClusters(evidence, cluster_of_superpixel, scored,
+                                                      static_cast<int>(dynamic_cluster.size()), options);
+  int added = 0;
+  for (std::size_t c = 0; c < moved.size() && c < dynamic_cluster.size(); ++c) {
+    if (moved[c] && !dynamic_cluster[c]) {
+      dynamic_cluster[c] = true;
+      ++added;
+    }
+  }
+  return added;
+}
+
 }  // namespace amos::dynamic

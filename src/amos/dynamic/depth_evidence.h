@@ -24,6 +24,8 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
+#include "amos/dynamic/depth_slic.h"
+#include "amos/dynamic/reprojection_scoring.h"
 
 namespace amos::dynamic {
 
@@ -147,5 +149,20 @@ DepthEvidence combineDepthEvidence(const DepthEvidence& a, const DepthEvidence& 
 std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const std::vector<int>& cluster_of_superpixel,
                                       const std::vector<bool>& scored, int num_clusters,
                                       const DepthEvidenceOptions& options);
+
+// The front end's two comparisons (depth_evidence.h's header): the current frame (depth, pose T_cw) against the
+// last one, and, when baseline_depth is not empty, against the baseline frame with its own relative floor, free
+// space only, combined (combineDepthEvidence).
+DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, const cv::Mat& last_depth,
+                                 const core::SE3& T_cw_last, const cv::Mat& baseline_depth,
+                                 const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
+                                 const DepthSampleGrid& grid, const SuperpixelSegmentation& segmentation,
+                                 double depth_edge_ratio, const DepthEvidenceOptions& options);
+
+// Marks dynamic (in dynamic_cluster, per cluster) the clusters that depthMovingClusters finds moving, a cluster
+// counting as scored when Eq. 5 had min_points tracks for it (cluster_scores). Returns how many it added.
+int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
+                           const std::vector<ClusterScore>& cluster_scores, int min_points,
+                           const DepthEvidenceOptions& options, std::vector<bool>& dynamic_cluster);
 
 }  // namespace amos::dynamic

@@ -129,20 +129,10 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   DepthEvidence depth;
   std::vector<bool> depth_moving;
   if (options_.depth.enabled) {
-    auto against = [&](const cv::Mat& other_depth, const core::SE3& T_cw_other, bool baseline) {
-      DepthEvidenceOptions options = options_.depth;
-      if (baseline) options.min_relative_residual = options.baseline_relative_residual;
-      return superpixelDepthEvidence(in.depth, other_depth, T_cw_other, confirmation.refit.T_cw, camera_, depth_grid_,
-                                     partition.segmentation.labels, diag.superpixels,
-                                     options_.reprojection.depth_edge_ratio, options, baseline);
-    };
-    depth = against(in.last_depth, in.T_cw_last, false);
-    if (!in.baseline_depth.empty()) {
-      const DepthEvidence base = against(in.baseline_depth, in.T_cw_baseline, true);
-      depth = combineDepthEvidence(depth, base);
-    }
-    depth_moving.resize(depth.superpixels.size());
-    for (std::size_t s = 0; s < depth_moving.size(); ++s) depth_moving[s] = depth.superpixels[s].moving;
+    depth = frameDepthEvidence(in.depth, confirmation.refit.T_cw, in.last_depth, in.T_cw_last, in.baseline_depth,
+                               in.T_cw_baseline, camera_, depth_grid_, partition.segmentation,
+                               options_.reprojection.depth_edge_ratio, options_.depth);
+    for (const SuperpixelDepth& sp : depth.superpixels) depth_moving.push_back(sp.moving);
     diag.depth_moving_superpixels = depth.moving_superpixels;
     lap("depth");
   }
@@ -153,21 +143,10 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   ClusterVoting voting = voteClusters(epipolar.violators, regions.decision_map, candidates.cluster_scores,
                                       confirmation.confirmed, judged_prior, options_, diag);
   if (options_.depth.enabled) {
-    std::vector<int> cluster_of_superpixel;
-    cluster_of_superpixel.reserve(partition.segmentation.superpixels.size());
-    for (const Superpixel& sp : partition.segmentation.superpixels) cluster_of_superpixel.push_back(sp.cluster);
-    std::vector<bool> scored;
-    for (const ClusterScore& score : candidates.cluster_scores)
-      scored.push_back(score.points >= options_.reprojection.min_points_per_cluster);
-    const std::vector<bool> moved =
-        depthMovingClusters(depth, cluster_of_superpixel, scored, diag.clusters, options_.depth);
-    for (std::size_t c = 0; c < moved.size() && c < voting.dynamic_cluster.size(); ++c) {
-      if (moved[c] && !voting.dynamic_cluster[c]) {
-        voting.dynamic_cluster[c] = true;
-        ++diag.dynamic_clusters;
-        ++diag.depth_dynamic_clusters;
-      }
-    }
+    diag.depth_dynamic_clusters =
+        addDepthMovingClusters(depth, partition.segmentation, candidates.cluster_scores,
+                               options_.reprojection.min_points_per_cluster, options_.depth, voting.dynamic_cluster);
+    diag.dynamic_clusters += diag.depth_dynamic_clusters;
   }
   const DynamicMask mask = buildDynamicMask(in, out.tracks, partition, regions, candidates, confirmation, epipolar,
                                             voting, judged_prior, depth_moving, options_, diag);
