@@ -70,6 +70,28 @@ double median(std::vector<double>& v) {
 
 }  // namespace
 
+LiftedDepthSamples liftDepthSamples(const cv::Mat& depth, const DepthSampleGrid& grid, const cv::Mat& labels,
+                                    double depth_edge_ratio, const DepthEvidenceOptions& options) {
+  core::require(depth.type() == CV_32F, "liftDepthSamples: depth must be CV_32F metres");
+  core::require(labels.type() == CV_32S && labels.size() == depth.size(),
+                "liftDepthSamples: labels must be CV_32S of the depth's size");
+  const int margin = kEdgeOffset;
+  LiftedDepthSamples out;
+  const std::size_t n = grid.pixels().size();
+  out.labels.reserve(n);
+  out.points_c.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const cv::Point p = grid.pixels()[i];
+    if (p.x < margin || p.y < margin || p.x >= depth.cols - margin || p.y >= depth.rows - margin) continue;
+    const float z = smoothDepthAt(depth, p.x, p.y, depth_edge_ratio);
+    if (z <= 0.f || z > options.max_depth_m) continue;
+    const cv::Point2d& xn = grid.normalised()[i];
+    out.labels.push_back(labels.at<int>(p));
+    out.points_c.emplace_back(xn.x * z, xn.y * z, z);
+  }
+  return out;
+}
+
 DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_depth, const core::SE3& T_cw_last,
                                       const core::SE3& T_cw, const core::PinholeCamera& camera,
                                       const DepthSampleGrid& grid, const cv::Mat& labels, int count,
@@ -77,10 +99,16 @@ DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_
                                       bool free_space_only) {
   core::require(depth.type() == CV_32F && last_depth.type() == CV_32F && depth.size() == last_depth.size(),
                 "superpixelDepthEvidence: depth images must be CV_32F of one size");
-  core::require(labels.type() == CV_32S && labels.size() == depth.size(),
-                "superpixelDepthEvidence: labels must be CV_32S of the depth's size");
-  core::require(depth.cols == camera.width() && depth.rows == camera.height(),
-                "superpixelDepthEvidence: the images do not have the camera's size");
+  return superpixelDepthEvidence(liftDepthSamples(depth, grid, labels, depth_edge_ratio, options), last_depth,
+                                 T_cw_last, T_cw, camera, count, depth_edge_ratio, options, free_space_only);
+}
+
+DepthEvidence superpixelDepthEvidence(const LiftedDepthSamples& current, const cv::Mat& last_depth,
+                                      const core::SE3& T_cw_last, const core::SE3& T_cw,
+                                      const core::PinholeCamera& camera, int count, double depth_edge_ratio,
+                                      const DepthEvidenceOptions& options, bool free_space_only) {
+  core::require(last_depth.type() == CV_32F && last_depth.cols == camera.width() && last_depth.rows == camera.height(),
+                "superpixelDepthEvidence: the other frame's depth must be CV_32F of the camera's size");
   const core::SE3 T_last_cur = T_cw_last * T_cw.inverse();
   const Eigen::Matrix3d R = T_last_cur.linear();
   const Eigen::Vector3d t = T_last_cur.translation();
@@ -92,19 +120,14 @@ DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_
   };
   std::vector<Lifted> lifted;
   std::vector<cv::Point2f> projected;
-  const std::size_t n = grid.pixels().size();
+  const std::size_t n = current.points_c.size();
   lifted.reserve(n);
   projected.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const cv::Point p = grid.pixels()[i];
-    if (p.x < margin || p.y < margin || p.x >= depth.cols - margin || p.y >= depth.rows - margin) continue;
-    const float z = smoothDepthAt(depth, p.x, p.y, depth_edge_ratio);
-    if (z <= 0.f || z > options.max_depth_m) continue;
-    const cv::Point2d& xn = grid.normalised()[i];
-    const Eigen::Vector3d X_last = R * Eigen::Vector3d(xn.x * z, xn.y * z, z) + t;
+    const Eigen::Vector3d X_last = R * current.points_c[i] + t;
     if (X_last.z() <= 0.1) continue;
     const Eigen::Vector2d u = camera.project(X_last);
-    lifted.push_back({labels.at<int>(p), static_cast<float>(X_last.z())});
+    lifted.push_back({current.labels[i], static_cast<float>(X_last.z())});
     projected.emplace_back(static_cast<float>(u.x()), static_cast<float>(u.y()));
   }
   // The raw pixels the last depth image holds them at.
@@ -117,7 +140,7 @@ DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_
   std::vector<double> sigma_sum(out.superpixels.size(), 0.0), depth_sum(out.superpixels.size(), 0.0);
   for (std::size_t i = 0; i < lifted.size(); ++i) {
     const int x = static_cast<int>(std::lround(projected[i].x)), y = static_cast<int>(std::lround(projected[i].y));
-    if (x < margin || y < margin || x >= depth.cols - margin || y >= depth.rows - margin) continue;
+    if (x < margin || y < margin || x >= last_depth.cols - margin || y >= last_depth.rows - margin) continue;
     const float z_last = smoothDepthAt(last_depth, x, y, depth_edge_ratio);
     if (z_last <= 0.f || z_last > options.max_depth_m) continue;
     const int label = lifted[i].label;
@@ -204,14 +227,14 @@ DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, co
                                  const DepthSampleGrid& grid, const SuperpixelSegmentation& segmentation,
                                  double depth_edge_ratio, const DepthEvidenceOptions& options) {
   const int count = static_cast<int>(segmentation.superpixels.size());
-  DepthEvidence evidence = superpixelDepthEvidence(depth, last_depth, T_cw_last, T_cw, camera, grid,
-                                                   segmentation.labels, count, depth_edge_ratio, options);
+  const LiftedDepthSamples current = liftDepthSamples(depth, grid, segmentation.labels, depth_edge_ratio, options);
+  DepthEvidence evidence =
+      superpixelDepthEvidence(current, last_depth, T_cw_last, T_cw, camera, count, depth_edge_ratio, options);
   if (baseline_depth.empty()) return evidence;
   DepthEvidenceOptions baseline = options;
   baseline.min_relative_residual = options.baseline_relative_residual;
-  return combineDepthEvidence(evidence, superpixelDepthEvidence(depth, baseline_depth, T_cw_baseline, T_cw, camera,
-                                                                grid, segmentation.labels, count, depth_edge_ratio,
-                                                                baseline, true));
+  return combineDepthEvidence(evidence, superpixelDepthEvidence(current, baseline_depth, T_cw_baseline, T_cw, camera,
+                                                                count, depth_edge_ratio, baseline, true));
 }
 
 int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
@@ -232,6 +255,16 @@ int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmen
     }
   }
   return added;
+}
+
+void DepthBaselineHistory::add(const cv::Mat& depth, const core::SE3& T_cw) {
+  if (frames_ == 0) return;
+  frames_back_.emplace_back(depth, T_cw);
+  if (frames_back_.size() > frames_) frames_back_.pop_front();
+}
+
+const std::pair<cv::Mat, core::SE3>* DepthBaselineHistory::baseline() const {
+  return frames_ > 0 && frames_back_.size() == frames_ ? &frames_back_.front() : nullptr;
 }
 
 }  // namespace amos::dynamic

@@ -20,6 +20,8 @@
 // (depthMovingClusters). Measured on issue 16's objects_xyz (geometry, seeds 5-7): the plain chair's recall
 // 0.20 -> ~0.8; on TUM fr2/desk (static, real Kinect) the marked share rises from 2.1 to 2.3 %.
 #include <opencv2/core.hpp>
+#include <deque>
+#include <utility>
 #include <vector>
 
 #include "amos/core/camera.h"
@@ -124,12 +126,27 @@ struct DepthEvidence {
   int moving_superpixels = 0;
 };
 
-// depth, last_depth: CV_32F metres (0 = none), raw pixels of the camera; labels: CV_32S superpixel label of every
-// pixel (0 .. count-1). T_cw_last, T_cw: the poses of the two frames. depth_edge_ratio: a neighbour 4 px away whose
-// depth differs by more than this share marks a depth edge (Dynamic.Reprojection.depthEdgeRatio).
-// free_space_only: only a positive median (the surface now stands in front of what the other frame saw) moves a
-// superpixel; for a comparison over many frames, where a negative one is mostly background that a mover has
-// uncovered meanwhile (over one frame that is a strip, too thin to move a median).
+// The current frame's side of a comparison, the same for every frame it is compared with: the samples of `grid`
+// with a valid depth (CV_32F metres, 0 = none) that lies on no depth edge (a neighbour 4 px away differing by more
+// than depth_edge_ratio, Dynamic.Reprojection.depthEdgeRatio) and within options.max_depth_m, lifted into the
+// current camera, with their superpixel label (labels: CV_32S, the depth's size).
+struct LiftedDepthSamples {
+  std::vector<int> labels;
+  std::vector<Eigen::Vector3d> points_c;
+};
+LiftedDepthSamples liftDepthSamples(const cv::Mat& depth, const DepthSampleGrid& grid, const cv::Mat& labels,
+                                    double depth_edge_ratio, const DepthEvidenceOptions& options);
+
+// The lifted samples of the current frame (pose T_cw) against the depth of another frame (last_depth, CV_32F, pose
+// T_cw_last), per superpixel (count labels). free_space_only: only a positive median (the surface now stands in
+// front of what the other frame saw) moves a superpixel; for a comparison over many frames, where a negative one is
+// mostly background that a mover has uncovered meanwhile (over one frame that is a strip, too thin to move a
+// median).
+DepthEvidence superpixelDepthEvidence(const LiftedDepthSamples& current, const cv::Mat& last_depth,
+                                      const core::SE3& T_cw_last, const core::SE3& T_cw,
+                                      const core::PinholeCamera& camera, int count, double depth_edge_ratio,
+                                      const DepthEvidenceOptions& options, bool free_space_only = false);
+// The same from the current depth image (liftDepthSamples, then the comparison).
 DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_depth, const core::SE3& T_cw_last,
                                       const core::SE3& T_cw, const core::PinholeCamera& camera,
                                       const DepthSampleGrid& grid, const cv::Mat& labels, int count,
@@ -164,5 +181,22 @@ DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, co
 int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
                            const std::vector<ClusterScore>& cluster_scores, int min_points,
                            const DepthEvidenceOptions& options, std::vector<bool>& dynamic_cluster);
+
+// The depth and pose of the last frames, for the comparison with the frame Dynamic.Depth.baselineFrames back
+// (DynamicFrameInput::baseline_depth). Keeps nothing when that is 0 or 1 (the last frame is compared anyway).
+class DepthBaselineHistory {
+ public:
+  explicit DepthBaselineHistory(int frames = 0) : frames_(frames > 1 ? static_cast<std::size_t>(frames) : 0) {}
+  // A frame processed with its pose (the oldest beyond `frames` is dropped).
+  void add(const cv::Mat& depth, const core::SE3& T_cw);
+  // After a lost frame: its pose would poison the comparison, so the history starts again.
+  void clear() { frames_back_.clear(); }
+  // The frame `frames` back from the next one, once that many were added; else null.
+  const std::pair<cv::Mat, core::SE3>* baseline() const;
+
+ private:
+  std::size_t frames_;
+  std::deque<std::pair<cv::Mat, core::SE3>> frames_back_;  // oldest first
+};
 
 }  // namespace amos::dynamic

@@ -1,7 +1,5 @@
 #include "amos/report/mover_diagnosis.h"
 
-#include <deque>
-
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -52,7 +50,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
            "c<id>:<mover share of cluster>/<share of mover> n<tracks> i<initial px>[C] r<refit px>[K] [D]\n";
   cv::Mat last_gray, last_depth, last_mask;
   core::SE3 T_cw_last, T_cw_before;
-  std::deque<std::pair<cv::Mat, core::SE3>> depth_history;  // as the pipeline keeps it (Dynamic.Depth.baselineFrames)
+  dynamic::DepthBaselineHistory depth_history(dyn.depth.baseline_frames);  // as the pipeline keeps it
   bool have_before = false;
   while (auto frame = reader.next()) {
     const int k = static_cast<int>(frame->index);
@@ -65,9 +63,9 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
       in.gray = gray, in.bgr = frame->bgr, in.depth = frame->depth;
       in.last_gray = last_gray, in.last_depth = last_depth, in.last_mask = last_mask;
       in.T_cw_last = T_cw_last;
-      if (dyn.depth.baseline_frames > 1 && depth_history.size() == static_cast<std::size_t>(dyn.depth.baseline_frames)) {
-        in.baseline_depth = depth_history.front().first;
-        in.T_cw_baseline = depth_history.front().second;
+      if (const auto* baseline = depth_history.baseline()) {
+        in.baseline_depth = baseline->first;
+        in.T_cw_baseline = baseline->second;
       }
       in.T_cw_initial = options.exact_initial ? T_cw
                         : have_before        ? T_cw_last * T_cw_before.inverse() * T_cw_last
@@ -104,8 +102,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
     }
     if (!last_gray.empty()) T_cw_before = T_cw_last, have_before = true;
     last_gray = gray, last_depth = frame->depth, T_cw_last = T_cw;
-    depth_history.emplace_back(frame->depth, T_cw);
-    if (depth_history.size() > static_cast<std::size_t>(std::max(dyn.depth.baseline_frames, 0))) depth_history.pop_front();
+    depth_history.add(frame->depth, T_cw);
     if ((k + 1) % 50 == 0) spdlog::info("diagnose-movers: frame {}", k + 1);
   }
   out << "\nid name frames recall causes\n";

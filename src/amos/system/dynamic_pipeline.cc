@@ -46,6 +46,7 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
   options_.check();
   if (scheduler_.tasks().segmentation)
     state_.person_masks.emplace(scheduler_.segmentation()->dilation(), options_.prior);
+  if (options_.depth.enabled) state_.depth_history = dynamic::DepthBaselineHistory(options_.depth.baseline_frames);
 }
 
 DynamicPipeline::~DynamicPipeline() = default;
@@ -184,11 +185,7 @@ void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput m
     state_.depth_history.clear();
     return;
   }
-  if (options_.depth.enabled && options_.depth.baseline_frames > 1) {
-    state_.depth_history.emplace_back(out.frame.depth, result.T_cw);
-    if (state_.depth_history.size() > static_cast<std::size_t>(options_.depth.baseline_frames))
-      state_.depth_history.pop_front();
-  }
+  state_.depth_history.add(out.frame.depth, result.T_cw);
   const bool geometry = scheduler_.tasks().geometry;
   if (geometry && (result.new_keyframe || result.initialized_map)) {
     state_.keyframe_pyramids.emplace_back(slam_.tracker().referenceKeyFrameView().id, motion.pyramid);
@@ -228,10 +225,9 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       input.T_cw_last = last.T_cw;
       input.last_mask = last.dynamic_mask;
       input.T_cw_initial = last.T_cw;
-      if (options_.depth.baseline_frames > 1 &&
-          state_.depth_history.size() == static_cast<std::size_t>(options_.depth.baseline_frames)) {
-        input.baseline_depth = state_.depth_history.front().first;
-        input.T_cw_baseline = state_.depth_history.front().second;
+      if (const auto* baseline = state_.depth_history.baseline()) {
+        input.baseline_depth = baseline->first;
+        input.T_cw_baseline = baseline->second;
       }
       if (tasks.geometry) {
         tracks = trackCorners(motion.pyramid);  // 2

@@ -132,9 +132,9 @@ class DynamicPipeline {
     // LK pyramids of recent keyframes by id, for the reference-keyframe model (bounded: old ones are dropped).
     std::deque<std::pair<std::uint64_t, dynamic::ImagePyramid>> keyframe_pyramids;
     std::optional<PersonMaskCarrier> person_masks;  // modes prior and full
-    // Depth and pose of the last tracked frames, oldest first, up to Dynamic.Depth.baselineFrames of them (the
-    // depth evidence's baseline; emptied when a frame is lost, like `last`).
-    std::deque<std::pair<cv::Mat, core::SE3>> depth_history;
+    // Depth and pose of the last tracked frames, the depth evidence's baseline (emptied when a frame is lost, like
+    // `last`).
+    dynamic::DepthBaselineHistory depth_history;
   };
 
   // The steps of stage B (see the header comment), in order.
