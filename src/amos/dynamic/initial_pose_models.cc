@@ -7,6 +7,7 @@
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
+#include "amos/dynamic/frame_regions.h"
 
 namespace amos::dynamic {
 
@@ -116,6 +117,15 @@ int countInlierCells(const core::SE3& T_cw, const PoseCorrespondences& correspon
                                      camera.intrinsics().width, camera.intrinsics().height, cols, rows);
 }
 
+std::vector<PointTrack> tracksOffMask(const std::vector<PointTrack>& tracks, const cv::Mat& last_mask) {
+  if (last_mask.empty()) return tracks;
+  std::vector<PointTrack> kept;
+  kept.reserve(tracks.size());
+  for (const PointTrack& t : tracks)
+    if (!maskAt(last_mask, t.last)) kept.push_back(t);
+  return kept;
+}
+
 PoseCandidate poseFromCorrespondences(PoseModel model, const PoseCorrespondences& correspondences,
                                       const core::PinholeCamera& camera, const InitialPoseOptions& options) {
   PoseCandidate candidate;
@@ -136,21 +146,30 @@ InitialPoseResult selectInitialPose(std::vector<PoseCandidate> candidates, const
   options.check();
   InitialPoseResult result;
   result.common_size = static_cast<int>(common.size());
-  int best = -1;
+  int best = -1;  // the most common inliers (ties: model order)
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     PoseCandidate& c = candidates[i];
     if (!c.valid) continue;
     c.common_inliers = countInliers(c.T_cw, common, camera, options.inlier_threshold_px);
-    if (options.select_by_coverage) {
+    if (best < 0 || c.common_inliers > candidates[best].common_inliers) best = static_cast<int>(i);
+  }
+  if (options.select_by_coverage && best >= 0) {
+    // Of the candidates with at least coverage_min_support times the most inliers, the widest (as inside the PnP
+    // RANSACs, geometry::PnpRansacOptions::coverage_min_support).
+    const double floor = options.pnp.coverage_min_support * candidates[best].common_inliers;
+    int widest = -1;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      PoseCandidate& c = candidates[i];
+      if (!c.valid) continue;
       c.common_cells =
           countInlierCells(c.T_cw, common, camera, options.inlier_threshold_px, kCoverageCols, kCoverageRows);
-      const PoseCandidate* b = best < 0 ? nullptr : &candidates[best];
-      if (!b || c.common_cells > b->common_cells ||
-          (c.common_cells == b->common_cells && c.common_inliers > b->common_inliers))
-        best = static_cast<int>(i);
-    } else if (best < 0 || c.common_inliers > candidates[best].common_inliers) {
-      best = static_cast<int>(i);
+      if (c.common_inliers < floor) continue;
+      const PoseCandidate* w = widest < 0 ? nullptr : &candidates[widest];
+      if (!w || c.common_cells > w->common_cells ||
+          (c.common_cells == w->common_cells && c.common_inliers > w->common_inliers))
+        widest = static_cast<int>(i);
     }
+    best = widest;
   }
   if (best >= 0) {
     result.ok = true;

@@ -42,15 +42,16 @@ struct InitialPoseOptions {
   // thousand, while LK and the RANSAC's inlier counting cost grow with the number. Matters once the keyframes hold
   // many points (Dynamic.priorMaskedExtraction puts the whole feature budget on the static part of the view).
   int keyframe_max_points = 300;
-  // Dynamic.InitialPose.selectByCoverage: hypotheses and models are ranked by how much of the image their inliers
-  // cover (cells of an 8 x 6 grid holding at least one inlier; ties: more inliers), inside the PnP RANSACs
-  // (PnpRansacOptions::coverage_cols / rows) and between the three models, not by the number of inliers alone. A
-  // mover is compact and the static world surrounds it: when a textured person holds most of the corners and the
-  // detector has not found it, the motion that follows the person has the most inliers, but in a few cells.
-  // walking_rpy seed 4 (full, the detector misses both walkers in the first frames): 16.4 -> 4.5 mm (static twin
-  // 2.8 mm). Off by default: on the Bonn crowd slice (full) it lost 17 frames in each of three normal runs (1 in
-  // --deterministic, ATE 1.45 cm) against none without; a crowd that fills most of the view leaves the static
-  // world too few cells of its own, and why it then loses frames is not diagnosed yet.
+  // Dynamic.InitialPose.selectByCoverage: of the hypotheses (inside the PnP RANSACs, PnpRansacOptions::
+  // coverage_cols / rows) and of the three models whose inliers number at least half the most any of them has
+  // (PnpRansacOptions::coverage_min_support), the one whose inliers cover the most of the image wins (cells of an
+  // 8 x 6 grid holding at least one inlier; ties: more inliers). A mover is compact and the static world surrounds
+  // it: when a textured person holds most of the corners and the detector has not found it, the motion that
+  // follows the person has the most inliers, but in a few cells. walking_rpy seed 4 (full, the detector misses a
+  // walker that fills a sixth of the first frames): the pose followed the walker for 8 frames, 14.0 mm against a
+  // static twin's 2.4 mm. Without the floor a crowd lost frames: where people fill most of the view, a pose that
+  // follows some of them gathered a few chance inliers in many cells (Bonn crowd frame 67: 77 inliers in 22 cells
+  // against the static pose's 141 in 8).
   bool select_by_coverage = false;
   void check() const;
 };
@@ -94,6 +95,12 @@ PoseCorrespondences keyframeCorrespondences(const FramePairPyramids& keyframe_to
                                             const std::vector<cv::Point2f>& keyframe_pixels,
                                             const std::vector<Eigen::Vector3d>& keyframe_points_w,
                                             const core::PinholeCamera& camera, const CornerTrackingOptions& tracking);
+
+// The tracks that do not start inside last_mask (CV_8U, != 0 = dynamic; empty: all of them), in their order. Model 2
+// is fitted on these when Dynamic.Temporal.excludeFromFits is on: the corners on the last frame's movers do not
+// vote for the camera's motion (in a crowd they are most of the tracks, and a pose that follows some of the people
+// can gather as many inliers as the one that the static rest supports).
+std::vector<PointTrack> tracksOffMask(const std::vector<PointTrack>& tracks, const cv::Mat& last_mask);
 
 // Model 2 correspondences: last->current tracks with their world points from backProjectTracks (Eq. 6).
 PoseCorrespondences lastFrameCorrespondences(const std::vector<PointTrack>& tracks,

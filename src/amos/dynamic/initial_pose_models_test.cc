@@ -111,6 +111,47 @@ TEST(InitialPoseModels, SelectionByCoveragePrefersTheSpreadInliers) {
   EXPECT_LE(by_coverage.candidates[0].common_cells, 4);
 }
 
+// ... but only among candidates with at least half the most inliers (PnpRansacOptions::coverage_min_support): a
+// pose that gathers 40 inliers spread over the image (chance agreement in a crowd) does not beat 200 packed in a
+// quarter of it (the static world seen between people).
+TEST(InitialPoseModels, SelectionByCoverageNeedsHalfTheMostInliers) {
+  const core::PinholeCamera cam = testCamera();
+  const core::SE3 T_static = pose(0.01, 0, 0, 0, 0.01, 0), T_other = pose(-0.05, 0.02, 0, 0, -0.03, 0);
+  PoseCorrespondences common = observe(T_other, cam, 40, 3);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(20, 300), v(20, 220);
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector3d p_c = cam.backProject(u(rng), v(rng), 3.0);
+    common.points_w.push_back(T_static.inverse() * p_c);
+    common.pixels.push_back(cam.project(p_c));
+  }
+  std::vector<PoseCandidate> candidates(2);
+  candidates[0] = {PoseModel::kReferenceKeyframe, true, T_static};
+  candidates[1] = {PoseModel::kLastFrame, true, T_other};
+  InitialPoseOptions options;
+  options.select_by_coverage = true;
+  const InitialPoseResult floored = selectInitialPose(candidates, common, cam, options);
+  EXPECT_EQ(floored.model, PoseModel::kReferenceKeyframe);
+  EXPECT_GT(floored.candidates[1].common_cells, floored.candidates[0].common_cells);  // the wider one, yet not chosen
+  options.pnp.coverage_min_support = 0;  // coverage alone
+  EXPECT_EQ(selectInitialPose(candidates, common, cam, options).model, PoseModel::kLastFrame);
+}
+
+// Model 2's tracks without those that start on the last frame's movers (Dynamic.Temporal.excludeFromFits).
+TEST(InitialPoseModels, TracksOffMaskDropsTheTracksStartingOnTheLastMask) {
+  cv::Mat mask(480, 640, CV_8U, cv::Scalar(0));
+  cv::rectangle(mask, cv::Rect(100, 100, 50, 50), cv::Scalar(255), cv::FILLED);
+  std::vector<PointTrack> tracks = {{{120, 120}, {300, 300}, 0},   // starts on the mover (ends off it)
+                                    {{300, 300}, {120, 120}, 1},   // ends on it: kept
+                                    {{149, 149}, {149, 149}, 2},   // on its last pixel
+                                    {{151, 151}, {152, 152}, 3}};  // beside it
+  const std::vector<PointTrack> kept = tracksOffMask(tracks, mask);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].source_index, 1);
+  EXPECT_EQ(kept[1].source_index, 3);
+  EXPECT_EQ(tracksOffMask(tracks, cv::Mat()).size(), 4u);  // no mask (first frame, mode none): all of them
+}
+
 TEST(InitialPoseModels, EstimateRunsPnpPerModelAndKeepsTheBest) {
   const core::PinholeCamera cam = testCamera();
   const core::SE3 T_cw_last = pose(0.0, 0.0, 0.0, 0.0, 0.0, 0.0);

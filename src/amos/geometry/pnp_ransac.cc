@@ -26,6 +26,9 @@ void PnpRansacOptions::check() const {
   core::requireAtLeast(min_inliers, "min_inliers", 4);
   core::requireAtLeast(coverage_cols, "coverage_cols", 0);
   core::requireAtLeast(coverage_rows, "coverage_rows", 0);
+  core::requireOption(coverage_min_support >= 0 && coverage_min_support <= 1,
+                      core::option(coverage_min_support, "coverage_min_support"),
+                      fmt::format("must be in [0, 1], got {}", coverage_min_support));
 }
 
 namespace {
@@ -220,13 +223,20 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
   std::vector<int> support;
 
   // LO-RANSAC over the minimal solver's hypotheses; the iteration budget shrinks as the best inlier ratio grows
-  // (confidence).
-  core::SE3 best_T = core::SE3::Identity();
-  int best_count = 0, best_cells = 0;
+  // (confidence). With the coverage ranking a second best is kept: the hypothesis whose inliers reach the most
+  // cells; it is returned when its support is at least coverage_min_support times the largest.
+  struct Best {
+    core::SE3 T = core::SE3::Identity();
+    int count = 0, cells = 0;
+  };
+  Best by_count, by_cells;
   const bool by_coverage = options.coverage_cols > 0 && options.coverage_rows > 0;
   auto coveredCells = [&](const std::vector<int>& inliers) {
     return countCoveredCells(pixels, inliers, camera.intrinsics().width, camera.intrinsics().height,
                              options.coverage_cols, options.coverage_rows);
+  };
+  auto moreCells = [](int cells, int count, const Best& best) {
+    return cells > best.cells || (cells == best.cells && count > best.count);
   };
   int budget = options.max_iterations;
   for (int it = 0; it < budget; ++it) {
@@ -239,14 +249,13 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
     for (const core::SE3& T : hypotheses) {
       int count = countInliers(T, points_w, pixels, camera, threshold2);
       int cells = 0;
-      if (by_coverage) {
-        if (count < sample_size + 1) continue;
+      bool more_cells = false;
+      if (by_coverage && count >= sample_size + 1) {
         collectInliers(T, points_w, pixels, camera, threshold2, support);
         cells = coveredCells(support);
-        if (cells < best_cells || (cells == best_cells && count <= best_count)) continue;
-      } else if (count <= best_count) {
-        continue;
+        more_cells = moreCells(cells, count, by_cells);
       }
+      if (count <= by_count.count && !more_cells) continue;
       core::SE3 T_best = T;
       // Local optimisation (LO-RANSAC, Chum et al. 2003): a hypothesis from a few noisy points underestimates its
       // support; refitting it to its inliers recovers the true inlier ratio, so the budget below shrinks as it
@@ -257,11 +266,12 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
         if (by_coverage) {
           std::vector<int> support_lo;
           collectInliers(T_lo, points_w, pixels, camera, threshold2, support_lo);
+          const int count_lo = static_cast<int>(support_lo.size());
           const int cells_lo = coveredCells(support_lo);
-          if (cells_lo > cells || (cells_lo == cells && static_cast<int>(support_lo.size()) > count)) {
-            count = static_cast<int>(support_lo.size());
-            cells = cells_lo;
-            T_best = T_lo;
+          // Each ranking keeps whichever of the hypothesis and its refit it prefers (the hypothesis on ties).
+          for (const Best& b : {Best{T, count, cells}, Best{T_lo, count_lo, cells_lo}}) {
+            if (b.count > by_count.count) by_count = b;
+            if (moreCells(b.cells, b.count, by_cells)) by_cells = b;
           }
         } else {
           const int count_lo = countInliers(T_lo, points_w, pixels, camera, threshold2);
@@ -270,21 +280,27 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
             T_best = T_lo;
           }
         }
+      } else if (by_coverage && count > by_count.count) {
+        by_count = {T, count, 0};  // too little support to refit, or to rank by cells
       }
-      best_count = count;
-      best_cells = cells;
-      best_T = T_best;
-      const double w = static_cast<double>(count) / n;
+      if (!by_coverage) by_count = {T_best, count, 0};
+      // The budget follows the best hypothesis's support (the widest one's under the coverage ranking: drawing
+      // until an all-inlier sample of it is likely).
+      const int leading = by_coverage && by_cells.count > 0 ? by_cells.count : by_count.count;
+      const double w = static_cast<double>(leading) / n;
       const double p_all_inliers = std::pow(w, sample_size);
       if (p_all_inliers >= 1.0 - 1e-12) {
         budget = it + 1;
-      } else {
+      } else if (p_all_inliers > 0) {
         const double needed = std::log(1.0 - options.confidence) / std::log(1.0 - p_all_inliers);
         // Compare in double: `needed` overflows int when the inlier ratio is tiny.
         budget = static_cast<int>(std::min<double>(options.max_iterations, std::ceil(needed)));
       }
     }
   }
+  const bool take_cells = by_coverage && by_cells.count >= options.coverage_min_support * by_count.count;
+  const core::SE3 best_T = take_cells ? by_cells.T : by_count.T;
+  const int best_count = take_cells ? by_cells.count : by_count.count;
   if (best_count < std::max(kMinSupport, options.min_inliers)) return result;
 
   // Refine on the inliers, then re-evaluate them with the refined pose, until the set is stable.

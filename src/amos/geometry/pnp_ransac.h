@@ -29,10 +29,14 @@ struct PnpRansacOptions {
   int min_inliers = 15;  // below this the result is a failure
   unsigned seed = 42;
   PnpMinimalSolver minimal_solver = PnpMinimalSolver::kAp3p;
-  // coverage_cols x coverage_rows > 0: hypotheses are ranked by how many cells of that grid over the image their
-  // inliers reach (ties: more inliers), not by the number of inliers alone; see
-  // dynamic::InitialPoseOptions::select_by_coverage. 0 = by number (the usual RANSAC).
+  // coverage_cols x coverage_rows > 0: of the hypotheses whose support is at least coverage_min_support times the
+  // largest support found, the one whose inliers reach the most cells of that grid over the image wins (ties: more
+  // inliers); see dynamic::InitialPoseOptions::select_by_coverage. 0 = by number alone (the usual RANSAC).
   int coverage_cols = 0, coverage_rows = 0;
+  // Why a floor: a hypothesis that gathers a few chance inliers (within the threshold by luck) scattered over many
+  // cells must not beat one that many correspondences support. Within a factor of 2 the numbers say little (a
+  // textured person holds twice the corners per pixel of a plain wall), beyond it they do.
+  double coverage_min_support = 0.5;
   void check() const;
 };
 

@@ -194,4 +194,46 @@ TEST(PnpRansac, CoverageRankingPrefersTheSpreadStaticMotionToACompactMover) {
   EXPECT_EQ(by_coverage.inliers.size(), 120u);
 }
 
+// PnpRansacOptions::coverage_min_support: the widest hypothesis wins only with at least that share of the largest
+// support. 210 points of the static world packed in the upper-left quarter (what a crowd leaves visible), 90 of a
+// second motion spread over the image: the spread one covers more cells but has less than half the support. Over
+// five RANSAC seeds the floor keeps the static pose every time; by coverage alone the spread motion wins whenever
+// a sample of it is drawn (the budget, confidence 1 - 1e-15, makes that likely on most seeds).
+TEST(PnpRansac, CoverageRankingNeedsAShareOfTheLargestSupport) {
+  const auto camera = testing::testCamera();
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  core::Vector6d xi_static, xi_other;
+  xi_static << 0.02, 0.0, 0.0, 0.0, 0.01, 0.0;
+  xi_other << -0.05, 0.02, 0.0, 0.0, -0.03, 0.0;
+  const core::SE3 T_cw_static = core::expSE3(xi_static), T_cw_other = core::expSE3(xi_other);
+  std::vector<Eigen::Vector3d> points_w;
+  std::vector<Eigen::Vector2d> pixels;
+  for (int i = 0; i < 300; ++i) {
+    const bool packed = i < 210;
+    const double u = packed ? 320 * u01(rng) : 640 * u01(rng);
+    const double v = packed ? 240 * u01(rng) : 480 * u01(rng);
+    const Eigen::Vector3d p_c = camera.backProject(u, v, 2.0 + 3.0 * u01(rng));
+    points_w.push_back((packed ? T_cw_static : T_cw_other).inverse() * p_c);
+    pixels.push_back(camera.project(p_c));
+  }
+  PnpRansacOptions options;
+  options.coverage_cols = 8;
+  options.coverage_rows = 6;
+  options.confidence = 1 - 1e-15;
+  int spread_wins = 0;
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    options.seed = seed;
+    options.coverage_min_support = 0.5;
+    const PnpResult floored = solvePnpRansac(points_w, pixels, camera, options);
+    ASSERT_TRUE(floored.success);
+    EXPECT_LT(core::translationNorm(floored.T_cw * T_cw_static.inverse()), 1e-3) << "seed " << seed;
+    options.coverage_min_support = 0;  // coverage alone
+    const PnpResult unfloored = solvePnpRansac(points_w, pixels, camera, options);
+    ASSERT_TRUE(unfloored.success);
+    spread_wins += core::translationNorm(unfloored.T_cw * T_cw_other.inverse()) < 1e-3;
+  }
+  EXPECT_GE(spread_wins, 3);
+}
+
 }  // namespace amos::geometry

@@ -4,6 +4,7 @@
 #include <future>
 
 #include <opencv2/calib3d.hpp>
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -113,8 +114,11 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
   std::optional<core::SE3> velocity;
   if (state_.last) {
     const LastFrame& last = *state_.last;
-    const auto lifted = dynamic::backProjectTracks(tracks, last.depth, last.T_cw, camera, options_.reprojection);
-    from_last = dynamic::lastFrameCorrespondences(tracks, lifted, camera);
+    // Temporal evidence (Dynamic.Temporal.excludeFromFits, as in the fits of the judgement): see tracksOffMask.
+    const std::vector<dynamic::PointTrack> fit_tracks =
+        options_.temporal.exclude_last_mask_from_fits ? dynamic::tracksOffMask(tracks, last.dynamic_mask) : tracks;
+    const auto lifted = dynamic::backProjectTracks(fit_tracks, last.depth, last.T_cw, camera, options_.reprojection);
+    from_last = dynamic::lastFrameCorrespondences(fit_tracks, lifted, camera);
     T_cw_last = last.T_cw;
     velocity = slam_.tracker().velocity();
   }
@@ -122,6 +126,15 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
                                                                          camera, options_.initial_pose);
   times_.add("dynamic.initial_pose", watch.elapsedMs());
   times_.add("cpu.initial_pose", threadCpuMs() - cpu);
+  if (spdlog::should_log(spdlog::level::debug)) {
+    std::string line;
+    for (const dynamic::PoseCandidate& c : result.candidates)
+      line += c.valid ? fmt::format(" {}: {} own, {} common inliers, {} cells;", dynamic::toString(c.model),
+                                    c.own_inliers, c.common_inliers, c.common_cells)
+                      : fmt::format(" {}: none;", dynamic::toString(c.model));
+    spdlog::debug("frame {}: initial pose{} {} correspondences; {}", state_.processed, line, result.common_size,
+                  result.ok ? "chosen: " + dynamic::toString(result.model) : std::string("no pose"));
+  }
   if (!result.ok) return std::nullopt;
   model = result.model;
   return result.T_cw;
