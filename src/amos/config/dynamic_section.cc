@@ -71,6 +71,8 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.LK.epsilon", &o.tracking.lk_epsilon, "LK stops on a level when its step is below this (px)");
   s.add("Dynamic.LK.forwardBackwardThreshold", &o.tracking.forward_backward_px,
         "a track must come back this close to where it started (px)");
+  s.add("Dynamic.LK.forwardBackward", &o.tracking.forward_backward_check,
+        "1 = the corner tracks are checked by tracking them back (twice the LK cost), 0 = forward only");
 
   s.add("Dynamic.Reprojection.cauchyScale", &o.reprojection.cauchy_scale_px,
         "scale of the Cauchy loss on the reprojection errors (px)");
@@ -143,7 +145,8 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "a cluster is dynamic when this share of its depth samples lies in moving superpixels");
 
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
-        "1 = initial-pose hypotheses and models are ranked by the image cells their inliers cover, 0 = by their number");
+        "1 = of the initial-pose hypotheses and models with at least half the most inliers, the one whose inliers "
+        "cover the most image cells wins; 0 = the most inliers");
   s.add("Dynamic.InitialPose.inlierThreshold", &o.initial_pose.inlier_threshold_px,
         "reprojection error of an inlier of the initial-pose models (px)");
   s.add("Dynamic.InitialPose.keyframeForwardBackward", &o.initial_pose.keyframe_forward_backward,

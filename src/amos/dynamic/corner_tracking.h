@@ -58,7 +58,7 @@ struct CornerTrackingOptions {
   double forward_backward_px = 1.0;
   // Whether trackPoints runs the backward pass at all (it doubles the LK cost). Off, every forward track that
   // converged inside the image is kept: for callers that reject outliers themselves (the reference-keyframe pose
-  // model's RANSAC, see InitialPoseOptions::keyframe_forward_backward). Not a YAML key of its own.
+  // model's RANSAC, see InitialPoseOptions::keyframe_forward_backward). Dynamic.LK.forwardBackward (for the corner tracks).
   bool forward_backward_check = true;
   void check() const;
 };

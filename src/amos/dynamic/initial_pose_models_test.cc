@@ -102,6 +102,7 @@ TEST(InitialPoseModels, SelectionByCoveragePrefersTheSpreadInliers) {
   candidates[0] = {PoseModel::kReferenceKeyframe, true, T_mover};
   candidates[1] = {PoseModel::kLastFrame, true, T_static};
   InitialPoseOptions options;
+  options.select_by_coverage = false;
   const InitialPoseResult by_number = selectInitialPose(candidates, common, cam, options);
   EXPECT_EQ(by_number.model, PoseModel::kReferenceKeyframe);
   options.select_by_coverage = true;

@@ -235,8 +235,12 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
     return countCoveredCells(pixels, inliers, camera.intrinsics().width, camera.intrinsics().height,
                              options.coverage_cols, options.coverage_rows);
   };
-  auto moreCells = [](int cells, int count, const Best& best) {
-    return cells > best.cells || (cells == best.cells && count > best.count);
+  // Whether a support clears the floor (it only rises, as by_count grows: what falls below it stays below), and
+  // whether a hypothesis is wider than by_cells (which no longer counts once it has fallen below the floor).
+  auto eligible = [&](int count) { return count > 0 && count >= options.coverage_min_support * by_count.count; };
+  auto wider = [&](int cells, int count) {
+    if (!eligible(by_cells.count)) return true;
+    return cells > by_cells.cells || (cells == by_cells.cells && count > by_cells.count);
   };
   int budget = options.max_iterations;
   for (int it = 0; it < budget; ++it) {
@@ -249,13 +253,13 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
     for (const core::SE3& T : hypotheses) {
       int count = countInliers(T, points_w, pixels, camera, threshold2);
       int cells = 0;
-      bool more_cells = false;
-      if (by_coverage && count >= sample_size + 1) {
+      bool is_wider = false;
+      if (by_coverage && count >= sample_size + 1 && eligible(count)) {
         collectInliers(T, points_w, pixels, camera, threshold2, support);
         cells = coveredCells(support);
-        more_cells = moreCells(cells, count, by_cells);
+        is_wider = wider(cells, count);
       }
-      if (count <= by_count.count && !more_cells) continue;
+      if (count <= by_count.count && !is_wider) continue;
       core::SE3 T_best = T;
       // Local optimisation (LO-RANSAC, Chum et al. 2003): a hypothesis from a few noisy points underestimates its
       // support; refitting it to its inliers recovers the true inlier ratio, so the budget below shrinks as it
@@ -266,13 +270,12 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
         if (by_coverage) {
           std::vector<int> support_lo;
           collectInliers(T_lo, points_w, pixels, camera, threshold2, support_lo);
-          const int count_lo = static_cast<int>(support_lo.size());
-          const int cells_lo = coveredCells(support_lo);
+          const Best refit{T_lo, static_cast<int>(support_lo.size()), coveredCells(support_lo)};
           // Each ranking keeps whichever of the hypothesis and its refit it prefers (the hypothesis on ties).
-          for (const Best& b : {Best{T, count, cells}, Best{T_lo, count_lo, cells_lo}}) {
+          for (const Best& b : {Best{T, count, cells}, refit})
             if (b.count > by_count.count) by_count = b;
-            if (moreCells(b.cells, b.count, by_cells)) by_cells = b;
-          }
+          for (const Best& b : {Best{T, count, cells}, refit})
+            if (eligible(b.count) && wider(b.cells, b.count)) by_cells = b;
         } else {
           const int count_lo = countInliers(T_lo, points_w, pixels, camera, threshold2);
           if (count_lo > count) {
@@ -286,7 +289,7 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
       if (!by_coverage) by_count = {T_best, count, 0};
       // The budget follows the best hypothesis's support (the widest one's under the coverage ranking: drawing
       // until an all-inlier sample of it is likely).
-      const int leading = by_coverage && by_cells.count > 0 ? by_cells.count : by_count.count;
+      const int leading = by_coverage && eligible(by_cells.count) ? by_cells.count : by_count.count;
       const double w = static_cast<double>(leading) / n;
       const double p_all_inliers = std::pow(w, sample_size);
       if (p_all_inliers >= 1.0 - 1e-12) {
@@ -298,7 +301,7 @@ PnpResult solvePnpRansac(const std::vector<Eigen::Vector3d>& points_w, const std
       }
     }
   }
-  const bool take_cells = by_coverage && by_cells.count >= options.coverage_min_support * by_count.count;
+  const bool take_cells = by_coverage && eligible(by_cells.count);
   const core::SE3 best_T = take_cells ? by_cells.T : by_count.T;
   const int best_count = take_cells ? by_cells.count : by_count.count;
   if (best_count < std::max(kMinSupport, options.min_inliers)) return result;
