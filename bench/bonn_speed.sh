@@ -53,7 +53,7 @@ import json, statistics, sys
 out, runs, variants = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
 threads = {  # which pipeline thread each cpu.* stage runs in
     "prepare": "look-ahead", "segmentation": "segmentation", "mapping": "mapping",
-    "corner_tracking": "tracking", "initial_pose": "tracking", "front_end": "tracking", "track": "tracking"}
+    "corner_tracking": "look-ahead", "initial_pose": "tracking", "front_end": "tracking", "track": "tracking"}
 rows = {}
 for v in variants:
     r = {"fps": [], "cpu": [], "ate": [], "lost": [], "dropped": [], "lat50": [], "lat95": [], "stages": {}}

@@ -70,13 +70,15 @@ FrameMotionInput DynamicPipeline::takeMotion(FrameSlot& slot) {
   return motion;
 }
 
-std::vector<dynamic::PointTrack> DynamicPipeline::trackCorners(const dynamic::ImagePyramid& current) {
-  core::Stopwatch watch;
-  const double cpu = threadCpuMs();
-  auto tracks = dynamic::trackPoints({state_.last->pyramid, current}, state_.last->corners, options_.tracking);
-  times_.add("dynamic.corner_tracking", watch.elapsedMs());
-  times_.add("cpu.corner_tracking", threadCpuMs() - cpu);
-  return tracks;
+FrameCornerTracks DynamicPipeline::takeCornerTracks(FrameSlot& slot) {
+  core::Stopwatch wait;
+  FrameCornerTracks made = slot.corner_tracks.get();
+  times_.add("dynamic.corner_tracking_wait", wait.elapsedMs());
+  if (made.made) {
+    times_.add("dynamic.corner_tracking", made.ms);
+    times_.add("cpu.corner_tracking", made.cpu_ms);
+  }
+  return made;
 }
 
 std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyramid& current,
@@ -224,6 +226,8 @@ DynamicFrameOutput DynamicPipeline::processNext() {
 
   FrameMotionInput motion = takeMotion(slot);  // 1
   double stage_a_cpu = motion.cpu_ms;
+  FrameCornerTracks corner_tracks;
+  if (scheduler_.tasks().geometry) corner_tracks = takeCornerTracks(slot);  // 2
   FrameExtras extras;
   if (options_.mode != dynamic::DynamicMode::kNone) {
     dynamic::DynamicFrameInput input;
@@ -243,7 +247,11 @@ DynamicFrameOutput DynamicPipeline::processNext() {
         input.T_cw_baseline = baseline->second;
       }
       if (tasks.geometry) {
-        tracks = trackCorners(motion.pyramid);  // 2
+        // Stage A tracked the corners of the frame pushed before this one, which is the last frame here: every
+        // pushed frame is processed, in order, and state_.last is that frame whenever it was tracked.
+        core::require(corner_tracks.made, "DynamicPipeline: frame " + std::to_string(slot.number) +
+                                              " has no corner tracks from the frame before it");
+        tracks = std::move(corner_tracks.tracks);
         std::optional<dynamic::PoseModel> model;
         extras.initial_T_cw = initialPose(motion.pyramid, tracks, model);  // 3
         out.initial_pose_model = model;

@@ -10,7 +10,8 @@
 // Stage B, processNext(): the sequential, stateful work, in frame order, on the oldest pushed frame. The steps, in
 // the order they run (each a private member below):
 //   1. takeMotion          wait for the slot's motion input (grey image, LK pyramid, corners)
-//   2. trackCorners        LK tracks of the last frame's corners into this one            (geometry)
+//   2. takeCornerTracks    LK tracks of the last frame's corners into this one, made in   (geometry)
+//                          stage A beside stage B of the last frame (frame_scheduler.h)
 //   3. initialPose         three models (Sec. III-D): reference-keyframe LK + EPnP,       (geometry)
 //                          last-frame corners + EPnP, constant velocity; most inliers wins; after a lost
 //                          frame the keyframe model alone (the tracker's recovery searches around its pose)
@@ -139,7 +140,7 @@ class DynamicPipeline {
 
   // The steps of stage B (see the header comment), in order.
   FrameMotionInput takeMotion(FrameSlot& slot);
-  std::vector<dynamic::PointTrack> trackCorners(const dynamic::ImagePyramid& current);
+  FrameCornerTracks takeCornerTracks(FrameSlot& slot);
   std::optional<core::SE3> initialPose(const dynamic::ImagePyramid& current,
                                        const std::vector<dynamic::PointTrack>& tracks,
                                        std::optional<dynamic::PoseModel>& model);

@@ -36,6 +36,18 @@ FrameMotionInput prepareMotion(const io::RgbdFrame& frame, const StageATasks& ta
   return motion;
 }
 
+FrameCornerTracks trackFrameCorners(const FrameMotionInput& previous, const FrameMotionInput& current,
+                                    const dynamic::CornerTrackingOptions& options) {
+  const double cpu_start = core::threadCpuMs();
+  core::Stopwatch watch;
+  FrameCornerTracks out;
+  out.tracks = dynamic::trackPoints({previous.pyramid, current.pyramid}, previous.corners, options);
+  out.made = true;
+  out.ms = watch.elapsedMs();
+  out.cpu_ms = core::threadCpuMs() - cpu_start;
+  return out;
+}
+
 FrameFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
                               const SlamSystem& slam, const PreparationInputs& inputs) {
   const double cpu_start = core::threadCpuMs();
@@ -78,9 +90,9 @@ FrameScheduler::FrameScheduler(const SlamSystem& slam, const dynamic::DynamicOpt
       options_(options),
       tasks_(StageATasks::forMode(options)),
       segmentation_(std::move(segmentation)),
-      // Room for every task of every frame that may be ahead, so that push() never blocks on a task waiting for
-      // stage B.
-      frame_lane_(std::make_unique<core::SerialExecutor>(2 * (kMaxAhead + 1))) {
+      // Room for every task of every frame that may be ahead (motion, corner tracks, features), so that push()
+      // never blocks on a task waiting for stage B.
+      frame_lane_(std::make_unique<core::SerialExecutor>(3 * (kMaxAhead + 1))) {
   if (tasks_.geometry) partition_lane_ = std::make_unique<core::SerialExecutor>(kMaxAhead + 1);
   core::require(!tasks_.segmentation || segmentation_ != nullptr,
                 "mode " + dynamic::toString(options_.mode) + " needs the person segmenter, but none was created");
@@ -118,6 +130,11 @@ FrameNumber FrameScheduler::push(io::RgbdFrame frame, FrameNumber processed) {
   // Each task holds its own copies of what it reads (cv::Mat headers share the pixels), never the slot.
   slot->motion = frame_lane_->submit([frame = f, tasks = tasks_, this] { return prepareMotion(frame, tasks, options_); })
                      .share();
+  slot->corner_tracks = frame_lane_->submit([previous = last_motion_, motion = slot->motion, tasks = tasks_, this] {
+    if (!tasks.geometry || !previous.valid()) return FrameCornerTracks{};
+    return trackFrameCorners(previous.get(), motion.get(), options_.tracking);
+  });
+  last_motion_ = slot->motion;
   slot->features = frame_lane_->submit([motion = slot->motion, inputs, tasks = tasks_, this] {
     return extractFeatures(motion.get().gray, tasks, options_, slam_, inputs);
   });

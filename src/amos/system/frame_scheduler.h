@@ -9,10 +9,13 @@
 //   full      all of them
 // Lanes, each a core::SerialExecutor running its tasks in push order:
 //   segmentation lane   segmentation(k)                     (the segmentation worker's)
-//   frame lane          motion(k), then features(k)         (features reads motion's grey image)
+//   frame lane          motion(k), corner tracks(k), then features(k)
+//                       (tracks read motion(k-1) and motion(k); features read motion's grey image)
 //   partition lane      partition(k)
-// so that stage B can start on a frame's tracks (which need the motion input only) while its partition and
-// features are still being made, and a frame's stage A costs the time of its longest lane, not of their sum.
+// so that stage B can start on a frame's tracks (which need the motion inputs only) while its partition and
+// features are still being made, and a frame's stage A costs the time of its longest lane, not of their sum. The
+// corner tracks of frame k depend on stage A of frame k-1 only (its grey pyramid and corners), so they are made
+// here, beside stage B of frame k-1, instead of on stage B's own critical path.
 // Declared dependencies on stage B of earlier frames (StageBHandoff), used only by the masked ORB extraction
 // (Dynamic.priorMaskedExtraction; see extractFeatures):
 //   features(k)  <- the dilated person mask of frame k-1
@@ -59,6 +62,9 @@ FrameMotionInput prepareMotion(const io::RgbdFrame& frame, const StageATasks& ta
 FrameFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
                               const SlamSystem& slam, const PreparationInputs& inputs);
 FramePartition partitionFrame(const io::RgbdFrame& frame, const dynamic::DynamicOptions& options);
+// The corners of `previous` tracked into `current` (both from prepareMotion with the geometric stage on).
+FrameCornerTracks trackFrameCorners(const FrameMotionInput& previous, const FrameMotionInput& current,
+                                    const dynamic::CornerTrackingOptions& options);
 
 class FrameScheduler {
  public:
@@ -108,6 +114,9 @@ class FrameScheduler {
   // The last scheduled segmentation, whose people the next one masks again when it does not detect. Touched by
   // push() only.
   std::shared_future<segmentation::SegmentationResult> last_segmentation_;
+  // The motion input of the last frame pushed, whose corners the next frame's tracks start from. Touched by push()
+  // only.
+  std::shared_future<FrameMotionInput> last_motion_;
   // Last members: stopped and joined first, before anything their tasks use goes away.
   std::unique_ptr<core::SerialExecutor> frame_lane_;
   std::unique_ptr<core::SerialExecutor> partition_lane_;  // geometric stage only

@@ -31,6 +31,15 @@ struct FrameMotionInput {
   double pyramid_ms = 0, corners_ms = 0;
   double cpu_ms = 0;  // CPU time of the task
 };
+// The corners of the frame pushed before this one, tracked by LK into this one (geometric stage only): a pure
+// function of the two frames' motion inputs, so stage A makes it; stage B uses it when the frame before was tracked
+// (its LastFrame holds the same corners and pyramid).
+struct FrameCornerTracks {
+  std::vector<dynamic::PointTrack> tracks;
+  bool made = false;  // false: no frame before this one, or the geometric stage is off
+  double ms = 0, cpu_ms = 0;
+};
+
 struct FrameFeatures {
   ExtractedFeatures features;  // ORB keypoints and descriptors of the grey image
   double handoff_wait_ms = 0;  // waiting for the hand-offs of earlier frames (masked extraction only)
@@ -61,6 +70,7 @@ struct FrameSlot {
   // With Dynamic.Prior.auditPredictions, every frame's detector + mask network result, to score what served it.
   std::shared_future<segmentation::SegmentationResult> audit_segmentation;
   std::shared_future<FrameMotionInput> motion;
+  std::future<FrameCornerTracks> corner_tracks;
   std::future<FrameFeatures> features;
   std::future<FramePartition> partition;
   // Stage B's hand-offs: set by stage B of this frame, read through `handoff` by stage A of later frames.
