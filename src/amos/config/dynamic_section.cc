@@ -116,7 +116,8 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.Boundary.seedOutsideClusters", &o.boundary.seed_outside_clusters,
         "superpixels outside the dynamic clusters whose own tracks move under the refitted pose are seeds too");
   s.add("Dynamic.Temporal.excludeFromFits", &o.temporal.exclude_last_mask_from_fits,
-        "tracks starting in the last frame's mask take no part in the pose refit and the F fit");
+        "tracks starting in the last frame's mask take no part in the last-frame initial-pose model, the pose refit "
+        "and the F fit");
   s.add("Dynamic.Depth.enabled", &o.depth.enabled,
         "superpixels whose depth moved against the last frame's (under the judged pose) are dynamic evidence too");
   s.add("Dynamic.Depth.sampleStep", &o.depth.sample_step_px, "every step-th pixel in x and y is a depth sample");

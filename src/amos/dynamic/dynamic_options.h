@@ -27,9 +27,10 @@ std::string toString(DynamicMode mode);
 // Temporal evidence from the last frame's final dynamic mask (DynamicFrameInput::last_mask): a mover seen in the
 // last frame is most likely still moving 33 ms later.
 struct TemporalOptions {
-  // Dynamic.Temporal.excludeFromFits: the tracks starting inside the last mask take no part in the pose refit and
-  // the fundamental-matrix fit (they still take part in every decision). Keeps a mover that the detector and the
-  // candidate stage miss in this frame from biasing the pose the movers are judged against.
+  // Dynamic.Temporal.excludeFromFits: the tracks starting inside the last mask take no part in the last-frame model
+  // of the initial pose (tracksOffMask, initial_pose_models.h), the pose refit and the fundamental-matrix fit (they
+  // still take part in every decision). Keeps a mover that the detector and the candidate stage miss in this frame
+  // from biasing the pose the movers are judged against.
   bool exclude_last_mask_from_fits = true;
 };
 
