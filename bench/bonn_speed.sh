@@ -2,7 +2,8 @@
 # End-to-end speed of the front-end modes on the Bonn dev slice: frames per second of the whole run (PNG decoding
 # included), whole-process CPU per frame (all threads, from /usr/bin/time), the CPU of each pipeline thread per
 # frame (the "cpu.*" stages of stats.json), ATE and lost frames; medians of RUNS runs, the variants interleaved so
-# that a drifting machine affects them alike. Optional variant "paper": --mode full with the schedule and settings
+# that a drifting machine affects them alike; with "none" among the variants also each variant's CPU against
+# none's, round by round. Optional variant "paper": --mode full with the schedule and settings
 # of before issue 12 (every-frame segmentation with the detector, LK window 15 run to 30 iterations / 0.01 px,
 # local BA over every covisible keyframe); "detect6": full with the detector on every other segmentation
 # (Dynamic.Prior.detectEvery 2: every 6th frame), the mask network alone on the others.
@@ -88,4 +89,13 @@ for k in stages:
     cells = [f"{med(rows[v]['stages'][k]):.1f}" if k in rows[v]["stages"] else "-" for v in variants]
     print(f"| {threads.get(k, '?')} | {k} | " + " | ".join(cells) + " |")
 print("(CPU ms per processed frame, medians of runs; the process figure also holds PNG decoding and start-up)")
+# The runs of one round are neighbours in time, so their ratio is less affected by the machine's drift than the
+# ratio of the medians (issue 12's "CPU of full at most 2x that of none").
+if "none" in rows:
+    for v in variants:
+        if v == "none":
+            continue
+        ratios = [c / b for c, b in zip(rows[v]["cpu"], rows["none"]["cpu"])]
+        print(f"CPU {v} / none, round by round: " + ", ".join(f"{x:.2f}" for x in ratios) +
+              f" (median {med(ratios):.2f}x; ratio of the medians {med(rows[v]['cpu']) / med(rows['none']['cpu']):.2f}x)")
 PY
