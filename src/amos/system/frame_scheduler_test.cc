@@ -1,5 +1,5 @@
-// Stage A: which tasks a mode schedules, and the declared dependency of the masked extraction on stage B of the
-// previous frame.
+// Stage A: which tasks a mode schedules, the declared dependency of the masked extraction on stage B of the
+// previous frame, and that of the corner tracks on stage A of the previous frame.
 #include "amos/system/frame_scheduler.h"
 
 #include <gtest/gtest.h>
@@ -100,6 +100,40 @@ TEST(FrameScheduler, SlotsByNumber) {
   EXPECT_THROW(scheduler.slot(0), core::Error);
   EXPECT_EQ(scheduler.slot(1).frame.index, 11u);
   // The destructor must not hang on slot 1's preparation (it has no hand-off to wait for here) nor on others.
+}
+
+// The corner tracks are a stage-A task of the later frame: frame 0 has none, frame 1 gets frame 0's corners tracked
+// into it, exactly what tracking them from the two frames' motion inputs gives; in mode none nothing is tracked.
+TEST(FrameScheduler, CornerTracksComeFromTheFramePushedBefore) {
+  SlamSystem slam(testOptions());
+  dynamic::DynamicOptions options;
+  options.mode = DynamicMode::kGeometry;
+  FrameScheduler scheduler(slam, options, nullptr);
+  scheduler.push(texturedFrame(0), 0);
+  io::RgbdFrame shifted = texturedFrame(1);
+  const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, 3, 0, 1, 2);  // the view moved by (3, 2) px
+  cv::warpAffine(shifted.bgr, shifted.bgr, shift, shifted.bgr.size(), cv::INTER_NEAREST, cv::BORDER_REPLICATE);
+  scheduler.push(shifted, 0);
+  EXPECT_FALSE(scheduler.slot(0).corner_tracks.get().made);
+  const FrameCornerTracks tracks = scheduler.slot(1).corner_tracks.get();
+  ASSERT_TRUE(tracks.made);
+  ASSERT_GT(tracks.tracks.size(), 20u);
+  const std::vector<dynamic::PointTrack> direct =
+      dynamic::trackPoints({scheduler.slot(0).motion.get().pyramid, scheduler.slot(1).motion.get().pyramid},
+                           scheduler.slot(0).motion.get().corners, options.tracking);
+  ASSERT_EQ(tracks.tracks.size(), direct.size());
+  for (std::size_t i = 0; i < direct.size(); ++i) {
+    EXPECT_EQ(tracks.tracks[i].current, direct[i].current);
+    EXPECT_EQ(tracks.tracks[i].source_index, direct[i].source_index);
+  }
+  EXPECT_NEAR(tracks.tracks[0].current.x - tracks.tracks[0].last.x, 3.0, 0.5);
+  EXPECT_NEAR(tracks.tracks[0].current.y - tracks.tracks[0].last.y, 2.0, 0.5);
+
+  options.mode = DynamicMode::kNone;
+  FrameScheduler plain(slam, options, nullptr);
+  plain.push(texturedFrame(0), 0);
+  plain.push(texturedFrame(1), 0);
+  EXPECT_FALSE(plain.slot(1).corner_tracks.get().made);
 }
 
 TEST(FrameScheduler, ModesThatSegmentNeedASegmenter) {
