@@ -150,7 +150,11 @@ InitialPoseResult selectInitialPose(std::vector<PoseCandidate> candidates, const
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     PoseCandidate& c = candidates[i];
     if (!c.valid) continue;
-    c.common_inliers = countInliers(c.T_cw, common, camera, options.inlier_threshold_px);
+    const std::vector<int> inliers = inlierIndices(c.T_cw, common, camera, options.inlier_threshold_px);
+    c.common_inliers = static_cast<int>(inliers.size());
+    if (options.select_by_coverage)
+      c.common_cells = geometry::countCoveredCells(common.pixels, inliers, camera.intrinsics().width,
+                                                   camera.intrinsics().height, kCoverageCols, kCoverageRows);
     if (best < 0 || c.common_inliers > candidates[best].common_inliers) best = static_cast<int>(i);
   }
   if (options.select_by_coverage && best >= 0) {
@@ -159,11 +163,8 @@ InitialPoseResult selectInitialPose(std::vector<PoseCandidate> candidates, const
     const double floor = options.pnp.coverage_min_support * candidates[best].common_inliers;
     int widest = -1;
     for (std::size_t i = 0; i < candidates.size(); ++i) {
-      PoseCandidate& c = candidates[i];
-      if (!c.valid) continue;
-      c.common_cells =
-          countInlierCells(c.T_cw, common, camera, options.inlier_threshold_px, kCoverageCols, kCoverageRows);
-      if (c.common_inliers < floor) continue;
+      const PoseCandidate& c = candidates[i];
+      if (!c.valid || c.common_inliers < floor) continue;
       const PoseCandidate* w = widest < 0 ? nullptr : &candidates[widest];
       if (!w || c.common_cells > w->common_cells ||
           (c.common_cells == w->common_cells && c.common_inliers > w->common_inliers))

@@ -31,6 +31,22 @@ PoseCorrespondences observe(const core::SE3& T_cw, const core::PinholeCamera& ca
   return c;
 }
 
+// n noise-free correspondences at depth z in the pixel box [u0, u1) x [v0, v1), seen by a camera at T_cw: a compact
+// group (a mover, or the static world seen between people).
+PoseCorrespondences observePacked(const core::SE3& T_cw, const core::PinholeCamera& cam, int n, double u0, double u1,
+                                  double v0, double v1, double z, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(u0, u1), v(v0, v1);
+  PoseCorrespondences c;
+  for (int i = 0; i < n; ++i) {
+    const double x = u(rng), y = v(rng);
+    const Eigen::Vector3d p_c = cam.backProject(x, y, z);
+    c.points_w.push_back(T_cw.inverse() * p_c);
+    c.pixels.push_back(cam.project(p_c));
+  }
+  return c;
+}
+
 double poseError(const core::SE3& a, const core::SE3& b) { return core::translationNorm(a.inverse() * b); }
 
 TEST(InitialPoseModels, EveryKthThinsToAtMostTheMaximumInOrder) {
@@ -91,13 +107,7 @@ TEST(InitialPoseModels, SelectionByCoveragePrefersTheSpreadInliers) {
   const core::PinholeCamera cam = testCamera();
   const core::SE3 T_static = pose(0.01, 0, 0, 0, 0.01, 0), T_mover = pose(-0.05, 0.02, 0, 0, -0.03, 0);
   PoseCorrespondences common = observe(T_static, cam, 80, 3);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(20, 140), v(20, 120);
-  for (int i = 0; i < 150; ++i) {
-    const Eigen::Vector3d p_c = cam.backProject(u(rng), v(rng), 1.5);
-    common.points_w.push_back(T_mover.inverse() * p_c);
-    common.pixels.push_back(cam.project(p_c));
-  }
+  common.append(observePacked(T_mover, cam, 150, 20, 140, 20, 120, 1.5, 5));
   std::vector<PoseCandidate> candidates(2);
   candidates[0] = {PoseModel::kReferenceKeyframe, true, T_mover};
   candidates[1] = {PoseModel::kLastFrame, true, T_static};
@@ -119,13 +129,7 @@ TEST(InitialPoseModels, SelectionByCoverageNeedsHalfTheMostInliers) {
   const core::PinholeCamera cam = testCamera();
   const core::SE3 T_static = pose(0.01, 0, 0, 0, 0.01, 0), T_other = pose(-0.05, 0.02, 0, 0, -0.03, 0);
   PoseCorrespondences common = observe(T_other, cam, 40, 3);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(20, 300), v(20, 220);
-  for (int i = 0; i < 200; ++i) {
-    const Eigen::Vector3d p_c = cam.backProject(u(rng), v(rng), 3.0);
-    common.points_w.push_back(T_static.inverse() * p_c);
-    common.pixels.push_back(cam.project(p_c));
-  }
+  common.append(observePacked(T_static, cam, 200, 20, 300, 20, 220, 3.0, 5));
   std::vector<PoseCandidate> candidates(2);
   candidates[0] = {PoseModel::kReferenceKeyframe, true, T_static};
   candidates[1] = {PoseModel::kLastFrame, true, T_other};

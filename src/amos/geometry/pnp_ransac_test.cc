@@ -159,29 +159,50 @@ TEST(PnpRansac, Ap3pFindsThePoseAtLowInlierRatiosWithinTheBudget) {
   }
 }
 
+namespace {
+
+// Points in a pixel box [u0, u0 + du) x [v0, v0 + dv) at depths [z0, z0 + dz), seen by a camera at T_cw: one of the
+// two motions of the coverage tests below.
+struct PointGroup {
+  double u0, du, v0, dv, z0, dz;
+  core::SE3 T_cw;
+};
+struct TwoMotionScene {
+  std::vector<Eigen::Vector3d> points_w;
+  std::vector<Eigen::Vector2d> pixels;
+};
+// `count` points, the first `first_count` of them from `first`, the rest from `rest` (u, v, then depth drawn per
+// point from one uniform stream seeded with `seed`).
+TwoMotionScene twoMotionScene(const core::PinholeCamera& camera, unsigned seed, int count, int first_count,
+                              const PointGroup& first, const PointGroup& rest) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  TwoMotionScene scene;
+  for (int i = 0; i < count; ++i) {
+    const PointGroup& g = i < first_count ? first : rest;
+    const double u = g.u0 + g.du * u01(rng);
+    const double v = g.v0 + g.dv * u01(rng);
+    const Eigen::Vector3d p_c = camera.backProject(u, v, g.z0 + g.dz * u01(rng));
+    scene.points_w.push_back(g.T_cw.inverse() * p_c);
+    scene.pixels.push_back(camera.project(p_c));
+  }
+  return scene;
+}
+
+}  // namespace
+
 // PnpRansacOptions::coverage_cols / rows: 60 % of the points lie on a compact mover (a 120 x 120 px patch) that moved
 // with the camera between the frames, so its points fit another pose; the static 40 % are spread over the image.
 // By number of inliers RANSAC returns the mover's pose; by the cells the inliers cover, the static one.
 TEST(PnpRansac, CoverageRankingPrefersTheSpreadStaticMotionToACompactMover) {
   const auto camera = testing::testCamera();
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
   core::Vector6d xi_static, xi_mover;
   xi_static << 0.02, 0.0, 0.0, 0.0, 0.01, 0.0;
   xi_mover << -0.05, 0.02, 0.0, 0.0, -0.03, 0.0;
   const core::SE3 T_cw_static = core::expSE3(xi_static);
   const core::SE3 T_cw_mover = core::expSE3(xi_mover);  // the pose under which the mover's points project right
-  std::vector<Eigen::Vector3d> points_w;
-  std::vector<Eigen::Vector2d> pixels;
-  for (int i = 0; i < 300; ++i) {
-    const bool mover = i < 180;
-    const double u = mover ? 260 + 120 * u01(rng) : 640 * u01(rng);
-    const double v = mover ? 180 + 120 * u01(rng) : 480 * u01(rng);
-    const Eigen::Vector3d p_c = camera.backProject(u, v, mover ? 1.5 + 0.3 * u01(rng) : 2.0 + 3.0 * u01(rng));
-    const core::SE3& T_cw = mover ? T_cw_mover : T_cw_static;
-    points_w.push_back(T_cw.inverse() * p_c);
-    pixels.push_back(camera.project(p_c));
-  }
+  const auto [points_w, pixels] = twoMotionScene(camera, 11, 300, 180, {260, 120, 180, 120, 1.5, 0.3, T_cw_mover},
+                                                 {0, 640, 0, 480, 2.0, 3.0, T_cw_static});
   PnpRansacOptions options;
   const PnpResult by_number = solvePnpRansac(points_w, pixels, camera, options);
   ASSERT_TRUE(by_number.success);
@@ -201,22 +222,12 @@ TEST(PnpRansac, CoverageRankingPrefersTheSpreadStaticMotionToACompactMover) {
 // a sample of it is drawn (the budget, confidence 1 - 1e-15, makes that likely on most seeds).
 TEST(PnpRansac, CoverageRankingNeedsAShareOfTheLargestSupport) {
   const auto camera = testing::testCamera();
-  std::mt19937 rng(12);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
   core::Vector6d xi_static, xi_other;
   xi_static << 0.02, 0.0, 0.0, 0.0, 0.01, 0.0;
   xi_other << -0.05, 0.02, 0.0, 0.0, -0.03, 0.0;
   const core::SE3 T_cw_static = core::expSE3(xi_static), T_cw_other = core::expSE3(xi_other);
-  std::vector<Eigen::Vector3d> points_w;
-  std::vector<Eigen::Vector2d> pixels;
-  for (int i = 0; i < 300; ++i) {
-    const bool packed = i < 210;
-    const double u = packed ? 320 * u01(rng) : 640 * u01(rng);
-    const double v = packed ? 240 * u01(rng) : 480 * u01(rng);
-    const Eigen::Vector3d p_c = camera.backProject(u, v, 2.0 + 3.0 * u01(rng));
-    points_w.push_back((packed ? T_cw_static : T_cw_other).inverse() * p_c);
-    pixels.push_back(camera.project(p_c));
-  }
+  const auto [points_w, pixels] = twoMotionScene(camera, 12, 300, 210, {0, 320, 0, 240, 2.0, 3.0, T_cw_static},
+                                                 {0, 640, 0, 480, 2.0, 3.0, T_cw_other});
   PnpRansacOptions options;
   options.coverage_cols = 8;
   options.coverage_rows = 6;
