@@ -144,6 +144,16 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "minRelativeResidual of that comparison");
   s.add("Dynamic.Depth.clusterShare", &o.depth.cluster_share,
         "a cluster is dynamic when this share of its depth samples lies in moving superpixels");
+  s.add("Dynamic.BaselineTracks.enabled", &o.baseline_tracks.enabled,
+        "the current frame's points are also tracked into the frame Dynamic.Depth.baselineFrames back and judged "
+        "by their reprojection error there, for movers too slow for one frame");
+  s.add("Dynamic.BaselineTracks.sigmas", &o.baseline_tracks.sigmas,
+        "a point moves when its error (less the median error of all points) exceeds this many noise scales ...");
+  s.add("Dynamic.BaselineTracks.minMotion", &o.baseline_tracks.min_motion_px, "... and this many pixels");
+  s.add("Dynamic.BaselineTracks.minVotes", &o.baseline_tracks.min_votes,
+        "moving points a superpixel or a cluster needs to move");
+  s.add("Dynamic.BaselineTracks.clusterShare", &o.baseline_tracks.cluster_share,
+        "a cluster is dynamic when this share of its points moves");
 
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
         "1 = of the initial-pose hypotheses and models with at least half the most inliers, the one whose inliers "

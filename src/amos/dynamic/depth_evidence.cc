@@ -257,13 +257,13 @@ int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmen
   return added;
 }
 
-void DepthBaselineHistory::add(const cv::Mat& depth, const core::SE3& T_cw) {
+void DepthBaselineHistory::add(const cv::Mat& depth, const cv::Mat& gray, const core::SE3& T_cw) {
   if (frames_ == 0) return;
-  frames_back_.emplace_back(depth, T_cw);
+  frames_back_.push_back({depth, gray, T_cw});
   if (frames_back_.size() > frames_) frames_back_.pop_front();
 }
 
-const std::pair<cv::Mat, core::SE3>* DepthBaselineHistory::baseline() const {
+const BaselineFrame* DepthBaselineHistory::baseline() const {
   return frames_ > 0 && frames_back_.size() == frames_ ? &frames_back_.front() : nullptr;
 }
 

@@ -182,21 +182,30 @@ int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmen
                            const std::vector<ClusterScore>& cluster_scores, int min_points,
                            const DepthEvidenceOptions& options, std::vector<bool>& dynamic_cluster);
 
-// The depth and pose of the last frames, for the comparison with the frame Dynamic.Depth.baselineFrames back
-// (DynamicFrameInput::baseline_depth). Keeps nothing when that is 0 or 1 (the last frame is compared anyway).
+// A frame kept for the comparisons with the frame Dynamic.Depth.baselineFrames back: its depth (this file), its grey
+// image (the long-baseline tracks, baseline_tracks.h; may be empty when those are off) and its pose.
+struct BaselineFrame {
+  cv::Mat depth;
+  cv::Mat gray;
+  core::SE3 T_cw = core::SE3::Identity();
+};
+
+// The last frames, for the comparisons with the frame Dynamic.Depth.baselineFrames back
+// (DynamicFrameInput::baseline_depth, baseline_gray). Keeps nothing when that is 0 or 1 (the last frame is
+// compared anyway).
 class DepthBaselineHistory {
  public:
   explicit DepthBaselineHistory(int frames = 0) : frames_(frames > 1 ? static_cast<std::size_t>(frames) : 0) {}
-  // A frame processed with its pose (the oldest beyond `frames` is dropped).
-  void add(const cv::Mat& depth, const core::SE3& T_cw);
+  // A frame processed with its pose (the oldest beyond `frames` is dropped). The images are shared, not copied.
+  void add(const cv::Mat& depth, const cv::Mat& gray, const core::SE3& T_cw);
   // After a lost frame: its pose would poison the comparison, so the history starts again.
   void clear() { frames_back_.clear(); }
   // The frame `frames` back from the next one, once that many were added; else null.
-  const std::pair<cv::Mat, core::SE3>* baseline() const;
+  const BaselineFrame* baseline() const;
 
  private:
   std::size_t frames_;
-  std::deque<std::pair<cv::Mat, core::SE3>> frames_back_;  // oldest first
+  std::deque<BaselineFrame> frames_back_;  // oldest first
 };
 
 }  // namespace amos::dynamic

@@ -36,6 +36,8 @@ void checkInput(const DynamicFrameInput& in) {
                 "DynamicFrontEnd: last_mask must be empty or CV_8UC1 of the image size");
   core::require(in.baseline_depth.empty() || (in.baseline_depth.type() == CV_32F && in.baseline_depth.size() == size),
                 "DynamicFrontEnd: baseline_depth must be empty or CV_32F of the image size");
+  core::require(in.baseline_gray.empty() || (in.baseline_gray.type() == CV_8UC1 && in.baseline_gray.size() == size),
+                "DynamicFrontEnd: baseline_gray must be empty or CV_8UC1 of the image size");
   if (!in.last_gray.empty()) {
     core::require(in.last_gray.type() == CV_8UC1 && in.last_gray.size() == size,
                   "DynamicFrontEnd: last_gray must be CV_8UC1 of the image size");
@@ -137,6 +139,24 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     lap("depth");
   }
 
+  // Long-baseline tracks (baseline_tracks.h): the tracked points against the frame Dynamic.Depth.baselineFrames
+  // back, for movers too slow for one frame.
+  BaselineMotion baseline;
+  std::vector<bool> baseline_moving;
+  if (options_.baseline_tracks.enabled && !in.baseline_gray.empty()) {
+    std::vector<cv::Point2f> points;
+    points.reserve(out.tracks.size());
+    for (const PointTrack& t : out.tracks) points.push_back(t.current);
+    baseline = baselineMotion(points, in.gray, in.depth, confirmation.refit.T_cw, in.baseline_gray, in.T_cw_baseline,
+                              camera_, options_.tracking, options_.reprojection, options_.baseline_tracks);
+    diag.baseline_points = static_cast<int>(baseline.points.size());
+    diag.baseline_moving_points = baseline.moving_points;
+    baseline_moving = baselineMovingSuperpixels(baseline, partition.segmentation.labels,
+                                                static_cast<int>(partition.segmentation.superpixels.size()),
+                                                options_.baseline_tracks);
+    lap("baseline_tracks");
+  }
+
   // Decision: the epipolar violators vote for clusters and judged prior regions, then the mask follows the dynamic
   // clusters per superpixel (or covers them whole) and the prior regions that stay.
   const PriorRegions judged_prior = judge_prior ? prior : PriorRegions{};
@@ -148,8 +168,18 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
                                options_.reprojection.min_points_per_cluster, options_.depth, voting.dynamic_cluster);
     diag.dynamic_clusters += diag.depth_dynamic_clusters;
   }
+  if (!baseline_moving.empty()) {
+    const std::vector<bool> moved = baselineMovingClusters(
+        baseline, regions.decision_map, static_cast<int>(voting.dynamic_cluster.size()), options_.baseline_tracks);
+    for (std::size_t c = 0; c < moved.size(); ++c)
+      if (moved[c] && !voting.dynamic_cluster[c]) {
+        voting.dynamic_cluster[c] = true;
+        ++diag.baseline_dynamic_clusters;
+        ++diag.dynamic_clusters;
+      }
+  }
   const DynamicMask mask = buildDynamicMask(in, out.tracks, partition, regions, candidates, confirmation, epipolar,
-                                            voting, judged_prior, depth_moving, options_, diag);
+                                            voting, judged_prior, depth_moving, options_, diag, baseline_moving);
   cv::bitwise_or(out.mask, mask.mask, out.mask);
   lap("decision");
 

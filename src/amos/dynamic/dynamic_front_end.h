@@ -36,6 +36,7 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
+#include "amos/dynamic/baseline_tracks.h"
 #include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/dynamic_options.h"
 
@@ -56,6 +57,8 @@ struct DynamicFrameInput {
   // The depth and pose of the frame Dynamic.Depth.baselineFrames back (depth_evidence.h), for slow movers; empty
   // when unknown (the depth evidence then compares with the last frame only).
   cv::Mat baseline_depth;
+  // That frame's grey image (CV_8UC1), for the long-baseline tracks (baseline_tracks.h); empty when unknown.
+  cv::Mat baseline_gray;
   core::SE3 T_cw_baseline = core::SE3::Identity();
   // Optional: last->current corner tracks already computed (e.g. for the initial pose model 2); when null the
   // front end detects and tracks corners itself. Non-owning.
@@ -87,6 +90,9 @@ struct DynamicDiagnostics {
   int f_final_inliers = 0;        // inliers of the final F
   int depth_moving_superpixels = 0;  // superpixels whose depth moved (depth_evidence.h; 0 when it is off)
   int depth_dynamic_clusters = 0;    // clusters made dynamic by the depth evidence alone
+  int baseline_points = 0;              // points followed into the baseline frame (baseline_tracks.h; 0 when off)
+  int baseline_moving_points = 0;       // of which moving
+  int baseline_dynamic_clusters = 0;    // clusters made dynamic by the long-baseline tracks alone
   int prior_regions = 0;          // connected components of the prior mask
   int dynamic_prior_regions = 0;  // of which kept in the mask
 };

@@ -39,6 +39,12 @@ void DynamicOptions::check() const {
   initial_pose.check();
   prior.check();
   depth.check();
+  baseline_tracks.check();
+  core::requireOption(!baseline_tracks.enabled || depth.baseline_frames > 1,
+                      core::option(baseline_tracks.enabled, "baseline_tracks.enabled"),
+                      fmt::format("needs depth.baseline_frames > 1 (the frame it compares with), got {}",
+                                  depth.baseline_frames),
+                      {core::option(depth.baseline_frames, "depth.baseline_frames")});
   core::requireOption(prior_masked_extraction_coverage >= 0 && prior_masked_extraction_coverage <= 1,
                       core::option(prior_masked_extraction_coverage, "prior_masked_extraction_coverage"),
                       fmt::format("must be in [0, 1], got {}", prior_masked_extraction_coverage));

@@ -4,6 +4,7 @@
 // fitted to any sequence.
 #include <string>
 
+#include "amos/dynamic/baseline_tracks.h"
 #include "amos/dynamic/boundary_assignment.h"
 #include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/depth_evidence.h"
@@ -62,6 +63,7 @@ struct DynamicOptions {
   BoundaryOptions boundary;          // Dynamic.Boundary.*
   TemporalOptions temporal;          // Dynamic.Temporal.*
   DepthEvidenceOptions depth;        // Dynamic.Depth.*: movers without tracks, from the depth images
+  BaselineTrackOptions baseline_tracks;  // Dynamic.BaselineTracks.*: slow movers, over Dynamic.Depth.baselineFrames
   InitialPoseOptions initial_pose;   // Dynamic.InitialPose.* (used by tracking, III-D)
   PriorScheduleOptions prior;        // Dynamic.Prior.*: how often the person segmentation runs
   void check() const;

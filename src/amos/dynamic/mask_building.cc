@@ -93,7 +93,8 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
                                      bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
-                                     const SuperpixelGraph* graph, const std::vector<bool>& depth_moving) {
+                                     const SuperpixelGraph* graph, const std::vector<bool>& depth_moving,
+                                     const std::vector<bool>& baseline_moving) {
   const int count = static_cast<int>(segmentation.superpixels.size());
   SuperpixelGraph computed;
   if (graph == nullptr) computed = superpixelGraph(segmentation, depth, options.reprojection.depth_edge_ratio);
@@ -106,6 +107,8 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   for (std::size_t s = 0; s < depth_moving.size() && s < seeds.size(); ++s)
     if (depth_moving[s] && seeds[s] == RegionLabel::kUnlabelled && !(s < border.size() && border[s]))
       seeds[s] = RegionLabel::kDynamic;
+  for (std::size_t s = 0; s < baseline_moving.size() && s < seeds.size(); ++s)
+    if (baseline_moving[s] && !(s < border.size() && border[s])) seeds[s] = RegionLabel::kDynamic;
   std::vector<bool> may_be_dynamic(count);
   for (int s = 0; s < count; ++s)
     may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
@@ -122,15 +125,17 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
                              const CandidateScoring& candidates, const PoseConfirmation& confirmation,
                              const EpipolarEvidence& epipolar, const ClusterVoting& voting,
                              const PriorRegions& judged_prior, const std::vector<bool>& depth_moving,
-                             const DynamicOptions& options, DynamicDiagnostics& diag) {
+                             const DynamicOptions& options, DynamicDiagnostics& diag,
+                             const std::vector<bool>& baseline_moving) {
   DynamicMask out;
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
   const SuperpixelSegmentation& segmentation = partition.segmentation;
   const bool any_dynamic_cluster =
       std::find(voting.dynamic_cluster.begin(), voting.dynamic_cluster.end(), true) != voting.dynamic_cluster.end();
   const bool seed_outside = options.boundary.seed_outside_clusters && confirmation.refit.ok;
-  const bool any_depth_moving = std::find(depth_moving.begin(), depth_moving.end(), true) != depth_moving.end();
-  if (options.boundary.superpixel_mask && (any_dynamic_cluster || seed_outside || any_depth_moving)) {
+  const bool any_moving = std::find(depth_moving.begin(), depth_moving.end(), true) != depth_moving.end() ||
+                          std::find(baseline_moving.begin(), baseline_moving.end(), true) != baseline_moving.end();
+  if (options.boundary.superpixel_mask && (any_dynamic_cluster || seed_outside || any_moving)) {
     // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
     std::vector<TrackEvidence> evidence =
         seedingEvidence(tracks, candidates.lifted, confirmation.residuals, epipolar.distance_px, in.last_depth,
@@ -142,7 +147,7 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
     out.dynamic_superpixel =
         dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
                            seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr,
-                           depth_moving);
+                           depth_moving, baseline_moving);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);

@@ -40,12 +40,15 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 // `graph`: the superpixels' adjacency and occlusion edges when computed ahead (null: computed here).
 // `depth_moving`: per superpixel, whether its depth moved (depth_evidence.h; empty = no depth evidence): such a
 // superpixel that the tracks leave unlabelled is a dynamic seed (border superpixels excepted).
+// `baseline_moving`: per superpixel, whether its points moved over the long baseline (baseline_tracks.h; empty =
+// none): such a superpixel is a dynamic seed whatever its one-frame votes say (border superpixels excepted).
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
                                      bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
                                      const SuperpixelGraph* graph = nullptr,
-                                     const std::vector<bool>& depth_moving = {});
+                                     const std::vector<bool>& depth_moving = {},
+                                     const std::vector<bool>& baseline_moving = {});
 
 struct DynamicMask {
   cv::Mat mask;                          // CV_8U, 255 = dynamic
@@ -53,13 +56,14 @@ struct DynamicMask {
 };
 
 // The geometric stage's mask. judged_prior: the prior regions voted on (cluster_voting.h), empty when they are not
-// judged (the caller then masks every prior region itself). depth_moving: per superpixel, from the depth evidence
-// (empty without). Fills diag.dynamic_superpixels.
+// judged (the caller then masks every prior region itself). depth_moving / baseline_moving: per superpixel, from the
+// depth evidence and the long-baseline tracks (empty without; see dynamicSuperpixels). Fills diag.dynamic_superpixels.
 DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<PointTrack>& tracks,
                              const GeometricPartition& partition, const DecisionRegions& regions,
                              const CandidateScoring& candidates, const PoseConfirmation& confirmation,
                              const EpipolarEvidence& epipolar, const ClusterVoting& voting,
                              const PriorRegions& judged_prior, const std::vector<bool>& depth_moving,
-                             const DynamicOptions& options, DynamicDiagnostics& diag);
+                             const DynamicOptions& options, DynamicDiagnostics& diag,
+                             const std::vector<bool>& baseline_moving = {});
 
 }  // namespace amos::dynamic

@@ -64,8 +64,9 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
       in.last_gray = last_gray, in.last_depth = last_depth, in.last_mask = last_mask;
       in.T_cw_last = T_cw_last;
       if (const auto* baseline = depth_history.baseline()) {
-        in.baseline_depth = baseline->first;
-        in.T_cw_baseline = baseline->second;
+        in.baseline_depth = baseline->depth;
+        in.baseline_gray = baseline->gray;
+        in.T_cw_baseline = baseline->T_cw;
       }
       in.T_cw_initial = options.exact_initial ? T_cw
                         : have_before        ? T_cw_last * T_cw_before.inverse() * T_cw_last
@@ -102,7 +103,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
     }
     if (!last_gray.empty()) T_cw_before = T_cw_last, have_before = true;
     last_gray = gray, last_depth = frame->depth, T_cw_last = T_cw;
-    depth_history.add(frame->depth, T_cw);
+    depth_history.add(frame->depth, gray, T_cw);
     if ((k + 1) % 50 == 0) spdlog::info("diagnose-movers: frame {}", k + 1);
   }
   out << "\nid name frames recall causes\n";

@@ -47,7 +47,8 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
   options_.check();
   if (scheduler_.tasks().segmentation)
     state_.person_masks.emplace(scheduler_.segmentation()->dilation(), options_.prior);
-  if (options_.depth.enabled) state_.depth_history = dynamic::DepthBaselineHistory(options_.depth.baseline_frames);
+  if (options_.depth.enabled || options_.baseline_tracks.enabled)
+    state_.depth_history = dynamic::DepthBaselineHistory(options_.depth.baseline_frames);
 }
 
 DynamicPipeline::~DynamicPipeline() = default;
@@ -200,7 +201,7 @@ void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput m
     state_.depth_history.clear();
     return;
   }
-  state_.depth_history.add(out.frame.depth, result.T_cw);
+  state_.depth_history.add(out.frame.depth, motion.gray, result.T_cw);
   const bool geometry = scheduler_.tasks().geometry;
   if (geometry && (result.new_keyframe || result.initialized_map)) {
     state_.keyframe_pyramids.emplace_back(slam_.tracker().referenceKeyFrameView().id, motion.pyramid);
@@ -243,8 +244,9 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       input.last_mask = last.dynamic_mask;
       input.T_cw_initial = last.T_cw;
       if (const auto* baseline = state_.depth_history.baseline()) {
-        input.baseline_depth = baseline->first;
-        input.T_cw_baseline = baseline->second;
+        input.baseline_depth = baseline->depth;
+        input.baseline_gray = baseline->gray;
+        input.T_cw_baseline = baseline->T_cw;
       }
       if (tasks.geometry) {
         // Stage A tracked the corners of the frame pushed before this one, which is the last frame here: every

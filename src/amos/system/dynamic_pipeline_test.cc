@@ -14,6 +14,7 @@
 #include "amos/segmentation/model_locator.h"
 #include "amos/segmentation/segmenter_factory.h"
 #include "amos/core/error.h"
+#include "amos/core/option_error.h"
 #include "amos/io/dataset.h"
 #include "amos/testing/shared_data.h"
 #include "amos/testing/test_camera.h"
@@ -127,15 +128,18 @@ TEST(DynamicPipeline, LookAheadGivesTheSameMasksAndPoses) {
 // The depth evidence keeps the depth of the last frames as its baseline (Dynamic.Depth.baselineFrames): geometry
 // mode with it processes every frame with the baseline off, shorter than the run and engaged, and gives the same
 // masks with and without look-ahead.
-TEST(DynamicPipeline, DepthEvidenceBaselineIsDeterministicAndMayBeOff) {
+TEST(DynamicPipeline, BaselineComparisonsAreDeterministicAndMayBeOff) {
+  // The depth evidence and the long-baseline tracks (each alone: the history is kept for either) compare with the
+  // frame `baseline` back, whatever the look-ahead.
   AMOS_REQUIRE_DATA("bonn_crowd_dev");
   const std::vector<io::RgbdFrame> frames = bonnFrames(8, 90);
   ASSERT_EQ(frames.size(), 8u);
-  auto run = [&](int baseline_frames, std::size_t ahead) {
+  auto run = [&](int baseline_frames, std::size_t ahead, bool depth, bool tracks) {
     SlamSystem slam(bonnOptions());
     dynamic::DynamicOptions options;
     options.mode = dynamic::DynamicMode::kGeometry;
-    options.depth.enabled = true;
+    options.depth.enabled = depth;
+    options.baseline_tracks.enabled = tracks;
     options.depth.baseline_frames = baseline_frames;
     DynamicPipeline pipeline(slam, options, nullptr);
     std::vector<cv::Mat> masks;
@@ -143,14 +147,23 @@ TEST(DynamicPipeline, DepthEvidenceBaselineIsDeterministicAndMayBeOff) {
     pipeline.finish();
     return masks;
   };
-  for (const int baseline : {0, 1, 3, 20}) EXPECT_EQ(run(baseline, 0).size(), frames.size()) << "baseline " << baseline;
-  const std::vector<cv::Mat> plain = run(3, 0), ahead = run(3, 1);
-  int marked = 0;
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    EXPECT_TRUE(sameMask(plain[k], ahead[k])) << "frame " << k;
-    marked += cv::countNonZero(plain[k]) > 0;
+  for (const int baseline : {0, 1, 3, 20})
+    EXPECT_EQ(run(baseline, 0, true, false).size(), frames.size()) << "baseline " << baseline;
+  for (const auto& [depth, tracks] : {std::pair{true, false}, {false, true}, {true, true}}) {
+    const std::vector<cv::Mat> plain = run(3, 0, depth, tracks), ahead = run(3, 1, depth, tracks);
+    int marked = 0;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      EXPECT_TRUE(sameMask(plain[k], ahead[k])) << "frame " << k << " depth " << depth << " tracks " << tracks;
+      marked += cv::countNonZero(plain[k]) > 0;
+    }
+    EXPECT_GE(marked, 1);  // people walk through these frames
   }
-  EXPECT_GE(marked, 1);  // people walk through these frames
+  // Without a history the long-baseline tracks cannot be on (DynamicOptions::check).
+  SlamSystem slam(bonnOptions());
+  dynamic::DynamicOptions no_history;
+  no_history.baseline_tracks.enabled = true;
+  no_history.depth.baseline_frames = 0;
+  EXPECT_THROW(DynamicPipeline(slam, no_history, nullptr), core::InvalidOption);
 }
 
 // A segmenter that records which frames (by the code in pixel (0, 0)) it has started, so a test can wait until a

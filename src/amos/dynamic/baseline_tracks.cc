@@ -1,0 +1,181 @@
+#include "amos/dynamic/baseline_tracks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/video/tracking.hpp>
+
+#include "amos/core/error.h"
+#include "amos/core/option_error.h"
+
+namespace amos::dynamic {
+
+void BaselineTrackOptions::check() const {
+  core::requirePositive(sigmas, "sigmas");
+  core::requireAtLeast(min_motion_px, "min_motion_px", 0.0);
+  core::requireAtLeast(min_votes, "min_votes", 1);
+  core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
+}
+
+namespace {
+
+int labelAtPixel(const cv::Mat& labels, cv::Point2f p) {
+  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
+  if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) return -1;
+  return labels.at<int>(y, x);
+}
+
+// Whether the LK window around p (radius px) holds a hole or a depth step of more than ratio of p's depth: at an
+// occlusion edge the far side shifts against the near one by the parallax of the whole baseline, which reads as
+// motion of the window.
+bool windowOnDepthEdge(const cv::Mat& depth, cv::Point2f p, int radius, double ratio) {
+  const int u = static_cast<int>(std::lround(p.x)), v = static_cast<int>(std::lround(p.y));
+  if (u < radius || v < radius || u >= depth.cols - radius || v >= depth.rows - radius) return true;
+  const float z = depth.at<float>(v, u);
+  const float tolerance = static_cast<float>(ratio) * z;
+  for (int dv = -radius; dv <= radius; ++dv) {
+    const float* row = depth.ptr<float>(v + dv);
+    for (int du = -radius; du <= radius; ++du) {
+      const float zn = row[u + du];
+      if (!(zn > 0.f) || std::abs(zn - z) > tolerance) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const cv::Mat& gray, const cv::Mat& depth,
+                              const core::SE3& T_cw, const cv::Mat& baseline_gray, const core::SE3& T_cw_baseline,
+                              const core::PinholeCamera& camera, const CornerTrackingOptions& lk,
+                              const ReprojectionOptions& reprojection, const BaselineTrackOptions& options) {
+  options.check();
+  core::require(gray.type() == CV_8UC1 && baseline_gray.type() == CV_8UC1 && gray.size() == baseline_gray.size(),
+                "baselineMotion: both images must be CV_8UC1 of one size");
+  core::require(depth.type() == CV_32F && depth.size() == gray.size(),
+                "baselineMotion: depth must be CV_32F metres of the image size");
+  BaselineMotion out;
+  // 1. The static world's prediction: lifted with the current depth, projected into the baseline frame.
+  std::vector<PointTrack> lifted(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) lifted[i].last = points[i];
+  const std::vector<std::optional<Eigen::Vector3d>> points_w =
+      backProjectTracks(lifted, depth, T_cw, camera, reprojection);
+  std::vector<cv::Point2f> from, predicted_undistorted;
+  std::vector<Eigen::Vector3d> world;
+  const int window_radius = lk.lk_window / 2;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!points_w[i] || windowOnDepthEdge(depth, points[i], window_radius, reprojection.depth_edge_ratio)) continue;
+    const Eigen::Vector3d p_b = T_cw_baseline * *points_w[i];
+    if (p_b.z() < 1e-6) continue;
+    const Eigen::Vector2d uv = camera.project(p_b);
+    predicted_undistorted.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()));
+    from.push_back(points[i]);
+    world.push_back(*points_w[i]);
+  }
+  if (from.empty()) return out;
+  const std::vector<cv::Point2f> predicted = camera.distort(predicted_undistorted);
+  // 2. LK into the baseline image from the prediction; back again from where it ended, with the same offset, so
+  // that only a point consistent both ways returns.
+  const float margin = static_cast<float>(lk.lk_window / 2 + 1);
+  const cv::Rect2f inside(margin, margin, static_cast<float>(gray.cols) - 2 * margin,
+                          static_cast<float>(gray.rows) - 2 * margin);
+  std::vector<cv::Point2f> start, guess;
+  std::vector<Eigen::Vector3d> start_world;
+  for (std::size_t k = 0; k < from.size(); ++k) {
+    if (!inside.contains(predicted[k])) continue;
+    start.push_back(from[k]);
+    guess.push_back(predicted[k]);
+    start_world.push_back(world[k]);
+  }
+  if (start.empty()) return out;
+  const ImagePyramid current_pyramid = buildPyramid(gray, lk), baseline_pyramid = buildPyramid(baseline_gray, lk);
+  const cv::Size window(lk.lk_window, lk.lk_window);
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, lk.lk_max_iterations, lk.lk_epsilon);
+  std::vector<cv::Point2f> found = guess;
+  std::vector<uchar> ok_forward, ok_backward;
+  std::vector<float> error;
+  cv::calcOpticalFlowPyrLK(current_pyramid, baseline_pyramid, start, found, ok_forward, error, window, lk.lk_levels,
+                           stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+  std::vector<cv::Point2f> back(found.size());
+  for (std::size_t k = 0; k < found.size(); ++k) back[k] = found[k] + (start[k] - guess[k]);
+  cv::calcOpticalFlowPyrLK(baseline_pyramid, current_pyramid, found, back, ok_backward, error, window, lk.lk_levels,
+                           stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+  const float fb2 = static_cast<float>(lk.forward_backward_px * lk.forward_backward_px);
+  const cv::Rect2f image(0.f, 0.f, static_cast<float>(gray.cols - 1), static_cast<float>(gray.rows - 1));
+  std::vector<PointTrack> tracks;  // current frame ("last") -> baseline frame ("current")
+  std::vector<std::optional<Eigen::Vector3d>> tracked_w;
+  for (std::size_t k = 0; k < start.size(); ++k) {
+    if (!ok_forward[k] || !ok_backward[k] || !image.contains(found[k])) continue;
+    const cv::Point2f d = back[k] - start[k];
+    if (d.dot(d) > fb2) continue;
+    tracks.push_back({start[k], found[k], static_cast<int>(k)});
+    tracked_w.push_back(start_world[k]);
+  }
+  // 3. What the two tracked poses' relative error does to every point alike: the median residual (a small rotation
+  // error shifts the image nearly uniformly, ~1 px per 0.1 deg), and the points' noise around it. Not a 6-DoF pose
+  // refit: where the scene is two planes (a door and its wall) a translation and a rotation together explain a
+  // mover's sideways shift exactly, and a refit would absorb it.
+  const std::vector<std::optional<Eigen::Vector2d>> residuals =
+      reprojectionResiduals(tracks, tracked_w, T_cw_baseline, camera);
+  std::vector<double> rx, ry;
+  for (const auto& r : residuals)
+    if (r) rx.push_back(r->x()), ry.push_back(r->y());
+  out.ok = static_cast<int>(rx.size()) >= reprojection.refit_min_points;
+  if (!out.ok) return out;
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  out.shift_px = Eigen::Vector2d(median(rx), median(ry));
+  std::vector<double> norms;
+  for (const auto& r : residuals)
+    if (r) norms.push_back((*r - out.shift_px).norm());
+  constexpr double kMedianToSigma = 1.0 / 1.1774;  // 2D Gaussian: median |r| = sqrt(2 ln 2) sigma
+  constexpr double kMinSigmaPx = 0.1;              // LK's floor on clean images, as refitPose
+  out.sigma_px = std::max(kMinSigmaPx, median(norms) * kMedianToSigma);
+  out.bar_px = std::max(options.min_motion_px, options.sigmas * out.sigma_px);
+  // 4. Moving: beyond the bar around the common shift.
+  out.points.reserve(tracks.size());
+  for (std::size_t k = 0; k < tracks.size(); ++k) {
+    if (!residuals[k]) continue;
+    BaselinePoint p;
+    p.current = tracks[k].last;
+    p.found = tracks[k].current;
+    p.residual_px = (*residuals[k] - out.shift_px).norm();
+    p.moving = p.residual_px > out.bar_px;
+    out.moving_points += p.moving;
+    out.points.push_back(p);
+  }
+  return out;
+}
+
+std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
+                                            const BaselineTrackOptions& options) {
+  core::require(labels.type() == CV_32S, "baselineMovingSuperpixels: labels must be CV_32S");
+  std::vector<int> moving(count, 0), still(count, 0);
+  for (const BaselinePoint& p : motion.points) {
+    const int s = labelAtPixel(labels, p.current);
+    if (s < 0 || s >= count) continue;
+    ++(p.moving ? moving : still)[s];
+  }
+  std::vector<bool> out(count, false);
+  for (int s = 0; s < count; ++s) out[s] = moving[s] >= options.min_votes && moving[s] > still[s];
+  return out;
+}
+
+std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,
+                                         const BaselineTrackOptions& options) {
+  core::require(decision_map.type() == CV_32S, "baselineMovingClusters: the decision map must be CV_32S");
+  std::vector<int> moving(num_clusters, 0), all(num_clusters, 0);
+  for (const BaselinePoint& p : motion.points) {
+    const int c = labelAtPixel(decision_map, p.current);
+    if (c < 0 || c >= num_clusters) continue;
+    ++all[c];
+    moving[c] += p.moving;
+  }
+  std::vector<bool> out(num_clusters, false);
+  for (int c = 0; c < num_clusters; ++c)
+    out[c] = moving[c] >= options.min_votes && moving[c] >= options.cluster_share * all[c];
+  return out;
+}
+
+}  // namespace amos::dynamic

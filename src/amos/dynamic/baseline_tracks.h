@@ -1,0 +1,89 @@
+#pragma once
+// Long-baseline tracks: the paper's reprojection test (Eq. 6: back-project with depth, reproject with the pose,
+// compare with where the point was tracked) between the current frame and the frame Dynamic.Depth.baselineFrames
+// back, for movers too slow for one frame (issue 16). A door swinging at 1 deg per frame moves its leaf by 0.5-2 px
+// per frame at 3 m, inside the one-frame bar (max(1 px, 5 sigma)); over 10 frames it moves 5-20 px while a static
+// point's error stays at LK's noise plus what the two poses' error does to all points alike, which is removed.
+//
+// Per current-frame point with a trusted depth (backProjectTracks' rules, and no depth edge in its whole LK window:
+// at an occlusion edge the far side shifts by the parallax of the whole baseline, which LK reads as motion):
+//   1. lift it with the current depth and pose, project it into the baseline frame: where the static world puts it;
+//   2. LK from the current image into the baseline image, started at that prediction (so that a static point
+//      converges at once and a mover is found up to LK's reach, ~40 px, from it), checked forward-backward;
+//   3. the median of the residuals (found - prediction) is removed from each: the two tracked poses' relative error,
+//      mostly rotation, shifts the image nearly uniformly (~1 px per 0.1 deg); sigma = the noise around it (from the
+//      median length, as refitPose). Not a 6-DoF refit: where the scene is two planes (a door and its wall) a
+//      translation and a rotation together explain a mover's sideways shift exactly, and a refit would absorb it;
+//   4. a point moves when its residual exceeds max(minMotion, sigmas * sigma).
+// Per superpixel: moving when at least minVotes of its points move and they outnumber its static ones; per decision
+// cluster: dynamic when at least minVotes of its points move and they make up clusterShare of them. A moving
+// superpixel seeds the mask even where the one-frame votes call it static (mask_building.h): over ten frames its
+// motion is measured, over one it is within the noise.
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "amos/core/camera.h"
+#include "amos/core/pose.h"
+#include "amos/dynamic/corner_tracking.h"
+#include "amos/dynamic/reprojection_scoring.h"
+
+namespace amos::dynamic {
+
+struct BaselineTrackOptions {
+  // Dynamic.BaselineTracks.enabled: the long-baseline test takes part in the decisions (geometry and full modes;
+  // needs Dynamic.Depth.baselineFrames > 1, the history it compares with).
+  bool enabled = false;
+  // Dynamic.BaselineTracks.sigmas: a point moves when its residual exceeds this many noise scales of the points
+  // (as Dynamic.Reprojection.confirmSigmas for one frame) ...
+  double sigmas = 5.0;
+  // Dynamic.BaselineTracks.minMotion: ... and this many pixels. Twice the one-frame floor (1 px): over ten frames
+  // the appearance of a surface changes more (perspective, lighting), and LK's error grows with it.
+  double min_motion_px = 2.0;
+  // Dynamic.BaselineTracks.minVotes: moving points a superpixel or a cluster needs: two independent points, as for
+  // an epipolar region (one may be an LK slip).
+  int min_votes = 2;
+  // Dynamic.BaselineTracks.clusterShare: share of a decision cluster's points that must move for the whole cluster
+  // to become dynamic (the mask then grows over it from the moving superpixels). A half: a cluster that straddles a
+  // mover and the static surface beside it (a door leaf in front of its wall) is dynamic when the mover holds most of
+  // its points.
+  double cluster_share = 0.5;
+  void check() const;
+};
+
+struct BaselinePoint {
+  cv::Point2f current;    // raw pixel in the current frame
+  cv::Point2f found;      // raw pixel where LK found it in the baseline frame
+  double residual_px = 0;  // |found - prediction - common shift| (undistorted pixels)
+  bool moving = false;
+};
+
+struct BaselineMotion {
+  std::vector<BaselinePoint> points;  // those with a trusted depth that LK followed both ways
+  bool ok = false;                    // enough points (Dynamic.Reprojection.refitMinPoints) to judge any
+  Eigen::Vector2d shift_px = Eigen::Vector2d::Zero();  // the median residual, removed from every point
+  double sigma_px = 0;                // the points' noise scale around it
+  double bar_px = 0;                  // max(min_motion_px, sigmas * sigma_px)
+  int moving_points = 0;
+};
+
+// Steps 1-4 above for `points` (raw current-frame pixels; the current frame's tracked corners). gray/depth/T_cw:
+// current frame (CV_8UC1, CV_32F metres, the judged pose); baseline_gray / T_cw_baseline: the baseline frame.
+// lk: window, levels, stop criteria and forward-backward threshold of LK; reprojection: depth trust rules and the
+// number of points needed (refitMinPoints).
+BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const cv::Mat& gray, const cv::Mat& depth,
+                              const core::SE3& T_cw, const cv::Mat& baseline_gray, const core::SE3& T_cw_baseline,
+                              const core::PinholeCamera& camera, const CornerTrackingOptions& lk,
+                              const ReprojectionOptions& reprojection, const BaselineTrackOptions& options);
+
+// Per superpixel (labels: CV_32S, count labels): whether at least options.min_votes of its points move and they
+// outnumber its static ones.
+std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
+                                            const BaselineTrackOptions& options);
+
+// Per cluster (decision_map: CV_32S, -1 = takes no part; num_clusters): whether at least options.min_votes of its
+// points move and they are at least options.cluster_share of its points.
+std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,
+                                         const BaselineTrackOptions& options);
+
+}  // namespace amos::dynamic

@@ -1,0 +1,199 @@
+#include "amos/dynamic/baseline_tracks.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "amos/core/option_error.h"
+#include "amos/dynamic/dynamic_options.h"
+#include "amos/testing/test_camera.h"
+
+namespace amos::dynamic {
+namespace {
+
+// A textured wall 3 m in front of the world origin (plane z = 3) and the textured front face of a box (a square of
+// 0.6 m on the plane z = 1.5, centred at x = box_x), its texture moving with it; cameras look along +z without
+// rotation, from `centre`. The texture is value noise (random values on a 1 cm grid, bilinear), which has no period
+// for LK to slip by.
+double texture(double x, double y) {
+  static const cv::Mat grid = [] {
+    cv::Mat g(400, 400, CV_32F);
+    cv::RNG rng(7);
+    rng.fill(g, cv::RNG::UNIFORM, 40, 215);
+    return g;
+  }();
+  const double gx = (x + 2.0) * 100, gy = (y + 2.0) * 100;  // 1 cm cells over [-2, 2) m
+  const int x0 = std::clamp(static_cast<int>(gx), 0, grid.cols - 2), y0 = std::clamp(static_cast<int>(gy), 0, grid.rows - 2);
+  const double ax = std::clamp(gx - x0, 0.0, 1.0), ay = std::clamp(gy - y0, 0.0, 1.0);
+  const auto at = [&](int r, int c) { return static_cast<double>(grid.at<float>(r, c)); };
+  return (1 - ay) * ((1 - ax) * at(y0, x0) + ax * at(y0, x0 + 1)) + ay * ((1 - ax) * at(y0 + 1, x0) + ax * at(y0 + 1, x0 + 1));
+}
+
+struct Frame {
+  cv::Mat gray, depth;
+};
+
+Frame render(const core::PinholeCamera& camera, const Eigen::Vector3d& centre, double box_x) {
+  Frame f{cv::Mat(camera.height(), camera.width(), CV_8U), cv::Mat(camera.height(), camera.width(), CV_32F)};
+  for (int v = 0; v < camera.height(); ++v)
+    for (int u = 0; u < camera.width(); ++u) {
+      const Eigen::Vector3d ray = camera.backProject(u, v, 1.0);
+      const double t_box = 1.5 - centre.z();
+      const Eigen::Vector3d hit = centre + t_box * ray;
+      const bool on_box = std::abs(hit.x() - box_x) <= 0.3 && std::abs(hit.y()) <= 0.3;
+      double value;
+      if (on_box) {
+        value = texture(hit.x() - box_x + 1.0, hit.y() + 1.0);  // its own pattern, moving with it
+        f.depth.at<float>(v, u) = static_cast<float>(t_box);
+      } else {
+        const double t_wall = 3.0 - centre.z();
+        const Eigen::Vector3d wall = centre + t_wall * ray;
+        value = texture(wall.x(), wall.y());
+        f.depth.at<float>(v, u) = static_cast<float>(t_wall);
+      }
+      f.gray.at<std::uint8_t>(v, u) = cv::saturate_cast<std::uint8_t>(value);
+    }
+  return f;
+}
+
+core::SE3 poseAt(const Eigen::Vector3d& centre) {
+  core::SE3 T_wc = core::SE3::Identity();
+  T_wc.translation() = centre;
+  return T_wc.inverse();
+}
+
+// Superpixels and clusters: 40 x 40 px blocks.
+constexpr int kBlock = 40;
+cv::Mat blockLabels(const core::PinholeCamera& camera, int& count) {
+  const int cols = (camera.width() + kBlock - 1) / kBlock, rows = (camera.height() + kBlock - 1) / kBlock;
+  count = cols * rows;
+  cv::Mat labels(camera.height(), camera.width(), CV_32S);
+  for (int v = 0; v < labels.rows; ++v)
+    for (int u = 0; u < labels.cols; ++u) labels.at<int>(v, u) = (v / kBlock) * cols + u / kBlock;
+  return labels;
+}
+
+// The box's pixels in the current view (its face, 0.05 m inside its edges so that LK windows stay on it).
+bool onBoxInside(const core::PinholeCamera& camera, const Eigen::Vector3d& centre, double box_x, cv::Point2f p) {
+  const Eigen::Vector3d hit = centre + (1.5 - centre.z()) * camera.backProject(p.x, p.y, 1.0);
+  return std::abs(hit.x() - box_x) <= 0.25 && std::abs(hit.y()) <= 0.25;
+}
+
+// The wall's pixels more than 0.1 m (at the box's depth) away from the box's edges.
+bool awayFromBox(const core::PinholeCamera& camera, const Eigen::Vector3d& centre, cv::Point2f p) {
+  const Eigen::Vector3d hit = centre + (1.5 - centre.z()) * camera.backProject(p.x, p.y, 1.0);
+  return std::abs(hit.x()) > 0.4 || std::abs(hit.y()) > 0.4;
+}
+
+struct Scene {
+  core::PinholeCamera camera = testing::testCamera();
+  DynamicOptions options;
+  // The baseline frame 10 frames back: the camera 4 cm to the left and 2 cm back; the box at x = box_before.
+  Eigen::Vector3d c_before{-0.04, 0.0, -0.02}, c_now{0.0, 0.0, 0.0};
+
+  BaselineMotion motion(double box_before, double box_now, const core::SE3& baseline_pose_error = core::SE3::Identity(),
+                        std::vector<cv::Point2f>* corners_out = nullptr) const {
+    const Frame before = render(camera, c_before, box_before), now = render(camera, c_now, box_now);
+    const std::vector<cv::Point2f> corners = detectCorners(now.gray, options.tracking);
+    if (corners_out) *corners_out = corners;
+    return baselineMotion(corners, now.gray, now.depth, poseAt(c_now), before.gray,
+                          baseline_pose_error * poseAt(c_before), camera, options.tracking, options.reprojection,
+                          options.baseline_tracks);
+  }
+};
+
+TEST(BaselineTracks, StaticSceneSeenFromAMovingCameraDoesNotMove) {
+  const Scene s;
+  const BaselineMotion m = s.motion(0.0, 0.0);
+  ASSERT_TRUE(m.ok);
+  EXPECT_GT(m.points.size(), 200u);
+  EXPECT_LT(m.shift_px.norm(), 0.1);
+  // Away from the box's edges every point stays within LK's noise; next to them (the coarse pyramid levels see the
+  // occlusion edge) one may slip, but never two in one superpixel.
+  for (const BaselinePoint& p : m.points) {
+    if (awayFromBox(s.camera, s.c_now, p.current)) {
+      EXPECT_LT(p.residual_px, 0.5) << p.current;
+    }
+  }
+  EXPECT_LE(m.moving_points, 2);
+  int count = 0;
+  const cv::Mat labels = blockLabels(s.camera, count);
+  const std::vector<bool> moving = baselineMovingSuperpixels(m, labels, count, s.options.baseline_tracks);
+  EXPECT_EQ(std::count(moving.begin(), moving.end(), true), 0);
+}
+
+TEST(BaselineTracks, ABoxTooSlowForOneFrameMovesOverTheBaseline) {
+  // 1.2 cm in 10 frames at 1.5 m: 0.4 px per frame (inside the one-frame bar of 1 px), 4.3 px over the baseline.
+  const Scene s;
+  const BaselineMotion m = s.motion(-0.012, 0.0);
+  ASSERT_TRUE(m.ok);
+  EXPECT_DOUBLE_EQ(m.bar_px, 2.0);  // clean images: the floor
+  int on_box = 0, on_box_moving = 0, off_box_moving = 0;
+  for (const BaselinePoint& p : m.points) {
+    if (onBoxInside(s.camera, s.c_now, 0.0, p.current)) {
+      ++on_box;
+      on_box_moving += p.moving;
+      EXPECT_NEAR(p.residual_px, 535.0 * 0.012 / 1.5, 0.5) << p.current;
+    } else if (awayFromBox(s.camera, s.c_now, p.current)) {
+      off_box_moving += p.moving;  // the wall, away from where the box's edges hid or revealed it
+    }
+  }
+  EXPECT_GT(on_box, 20);
+  EXPECT_EQ(on_box_moving, on_box);
+  EXPECT_EQ(off_box_moving, 0);
+
+  int count = 0;
+  const cv::Mat labels = blockLabels(s.camera, count);
+  const std::vector<bool> moving = baselineMovingSuperpixels(m, labels, count, s.options.baseline_tracks);
+  const std::vector<bool> clusters = baselineMovingClusters(m, labels, count, s.options.baseline_tracks);
+  EXPECT_EQ(moving, clusters);  // blocks as clusters: with the same points, a majority passes the half share
+  const int box_block = labels.at<int>(240, 320), wall_block = labels.at<int>(40, 40);
+  EXPECT_TRUE(moving[box_block]);
+  EXPECT_FALSE(moving[wall_block]);
+}
+
+TEST(BaselineTracks, TheCommonShiftOfAPoseErrorIsNotMotion) {
+  // 0.3 deg of yaw and 5 mm: ~3-4 px everywhere, which the static points alone would call motion.
+  const Scene s;
+  core::SE3 error = core::SE3::Identity();
+  error.linear() = Eigen::AngleAxisd(0.3 * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  error.translation() = Eigen::Vector3d(0.005, 0, 0);
+  const BaselineMotion still = s.motion(0.0, 0.0, error);
+  ASSERT_TRUE(still.ok);
+  EXPECT_GT(still.shift_px.norm(), 2.5);
+  EXPECT_LE(still.moving_points, 2);
+  const BaselineMotion slow = s.motion(-0.012, 0.0, error);
+  EXPECT_GT(slow.moving_points, 60);
+}
+
+TEST(BaselineTracks, WithoutEnoughPointsNothingMoves) {
+  Scene s;
+  std::vector<cv::Point2f> corners;
+  s.motion(-0.012, 0.0, core::SE3::Identity(), &corners);
+  corners.resize(10);  // below Dynamic.Reprojection.refitMinPoints (30)
+  const Frame before = render(s.camera, s.c_before, -0.012), now = render(s.camera, s.c_now, 0.0);
+  const BaselineMotion m = baselineMotion(corners, now.gray, now.depth, poseAt(s.c_now), before.gray,
+                                          poseAt(s.c_before), s.camera, s.options.tracking, s.options.reprojection,
+                                          s.options.baseline_tracks);
+  EXPECT_FALSE(m.ok);
+  EXPECT_EQ(m.moving_points, 0);
+}
+
+TEST(BaselineTracks, OptionsAreChecked) {
+  BaselineTrackOptions o;
+  o.min_votes = 0;
+  EXPECT_THROW(o.check(), core::InvalidOption);
+  o = {};
+  o.cluster_share = 0;
+  EXPECT_THROW(o.check(), core::InvalidOption);
+  DynamicOptions d;
+  d.baseline_tracks.enabled = true;
+  d.depth.baseline_frames = 1;
+  EXPECT_THROW(d.check(), core::InvalidOption);
+  d.depth.baseline_frames = 10;
+  EXPECT_NO_THROW(d.check());
+}
+
+}  // namespace
+}  // namespace amos::dynamic
