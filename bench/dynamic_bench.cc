@@ -186,6 +186,26 @@ void BM_DepthEvidence(benchmark::State& state) {
 }
 BENCHMARK(BM_DepthEvidence)->Unit(benchmark::kMillisecond);
 
+// The long-baseline tracks (baseline_tracks.h) of one Bonn frame's tracked points, as the front end runs them with
+// Dynamic.BaselineTracks.enabled (both pyramids built inside, as there), here against the last frame, whose pose
+// (identity) is known: the frame 10 back would cost the same.
+void BM_BaselineTracks(benchmark::State& state) {
+  const BenchData& d = data();
+  const DynamicOptions options;
+  std::vector<cv::Point2f> points;
+  for (const PointTrack& t : d.tracks) points.push_back(t.current);
+  BaselineMotion m;
+  for (auto _ : state) {
+    m = baselineMotion(points, d.current.gray, d.current.depth, d.T_cw_initial, d.last.gray,
+                       core::SE3::Identity(), d.camera, options.tracking, options.reprojection,
+                       options.baseline_tracks);
+    benchmark::DoNotOptimize(m.moving_points);
+  }
+  state.counters["points"] = static_cast<double>(points.size());
+  state.counters["followed"] = static_cast<double>(m.points.size());
+}
+BENCHMARK(BM_BaselineTracks)->Unit(benchmark::kMillisecond);
+
 void BM_CornerTracking(benchmark::State& state) {
   const BenchData& d = data();
   const CornerTrackingOptions options;
