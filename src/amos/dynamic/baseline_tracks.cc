@@ -18,6 +18,8 @@ void BaselineTrackOptions::check() const {
 
 namespace {
 
+constexpr int kBaselineLevels = 2;
+
 int labelAtPixel(const cv::Mat& labels, cv::Point2f p) {
   const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
   if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) return -1;
@@ -87,17 +89,23 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const cv::
     start_world.push_back(world[k]);
   }
   if (start.empty()) return out;
-  const ImagePyramid current_pyramid = buildPyramid(gray, lk), baseline_pyramid = buildPyramid(baseline_gray, lk);
+  // Two pyramid levels above the image, not Dynamic.LK.pyramidLevels: a static point starts at its prediction
+  // (within the poses' error, a few pixels) and the movers this test is for move up to ~2 px per frame, 20 px over
+  // the baseline, which an 11 px window reaches from level 2 (5 * 2^2 px); faster ones are the one-frame test's.
+  // LK's cost per point grows with the levels it iterates on.
+  CornerTrackingOptions reach = lk;
+  reach.lk_levels = std::min(lk.lk_levels, kBaselineLevels);
+  const ImagePyramid current_pyramid = buildPyramid(gray, reach), baseline_pyramid = buildPyramid(baseline_gray, reach);
   const cv::Size window(lk.lk_window, lk.lk_window);
   const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, lk.lk_max_iterations, lk.lk_epsilon);
   std::vector<cv::Point2f> found = guess;
   std::vector<uchar> ok_forward, ok_backward;
   std::vector<float> error;
-  cv::calcOpticalFlowPyrLK(current_pyramid, baseline_pyramid, start, found, ok_forward, error, window, lk.lk_levels,
+  cv::calcOpticalFlowPyrLK(current_pyramid, baseline_pyramid, start, found, ok_forward, error, window, reach.lk_levels,
                            stop, cv::OPTFLOW_USE_INITIAL_FLOW);
   std::vector<cv::Point2f> back(found.size());
   for (std::size_t k = 0; k < found.size(); ++k) back[k] = found[k] + (start[k] - guess[k]);
-  cv::calcOpticalFlowPyrLK(baseline_pyramid, current_pyramid, found, back, ok_backward, error, window, lk.lk_levels,
+  cv::calcOpticalFlowPyrLK(baseline_pyramid, current_pyramid, found, back, ok_backward, error, window, reach.lk_levels,
                            stop, cv::OPTFLOW_USE_INITIAL_FLOW);
   const float fb2 = static_cast<float>(lk.forward_backward_px * lk.forward_backward_px);
   const cv::Rect2f image(0.f, 0.f, static_cast<float>(gray.cols - 1), static_cast<float>(gray.rows - 1));
