@@ -75,6 +75,13 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const cv::
                               const core::SE3& T_cw, const cv::Mat& baseline_gray, const core::SE3& T_cw_baseline,
                               const core::PinholeCamera& camera, const CornerTrackingOptions& lk,
                               const ReprojectionOptions& reprojection, const BaselineTrackOptions& options);
+// The same on the two frames' LK pyramids built beforehand (buildPyramid with lk: the same result), which a pipeline
+// has anyway.
+BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
+                              const cv::Mat& depth, const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,
+                              const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
+                              const CornerTrackingOptions& lk, const ReprojectionOptions& reprojection,
+                              const BaselineTrackOptions& options);
 
 // Per superpixel (labels: CV_32S, count labels): whether at least options.min_votes of its points move and they
 // outnumber its static ones.

@@ -180,6 +180,22 @@ TEST(BaselineTracks, WithoutEnoughPointsNothingMoves) {
   EXPECT_EQ(m.moving_points, 0);
 }
 
+TEST(BaselineTracks, PyramidsBuiltBeforehandGiveTheSameResult) {
+  // A pipeline passes the pyramids it built for the corner tracks.
+  const Scene s;
+  std::vector<cv::Point2f> corners;
+  const BaselineMotion from_gray = s.motion(-0.012, 0.0, core::SE3::Identity(), &corners);
+  const Frame before = render(s.camera, s.c_before, -0.012), now = render(s.camera, s.c_now, 0.0);
+  const BaselineMotion from_pyramids = baselineMotion(
+      corners, buildPyramid(now.gray, s.options.tracking), now.depth, poseAt(s.c_now),
+      buildPyramid(before.gray, s.options.tracking), poseAt(s.c_before), s.camera, s.options.tracking,
+      s.options.reprojection, s.options.baseline_tracks);
+  ASSERT_EQ(from_gray.points.size(), from_pyramids.points.size());
+  EXPECT_EQ(from_gray.moving_points, from_pyramids.moving_points);
+  for (std::size_t i = 0; i < from_gray.points.size(); ++i)
+    EXPECT_EQ(from_gray.points[i].found, from_pyramids.points[i].found) << i;
+}
+
 TEST(BaselineTracks, OptionsAreChecked) {
   BaselineTrackOptions o;
   o.min_votes = 0;

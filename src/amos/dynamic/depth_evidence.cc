@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
@@ -257,9 +258,9 @@ int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmen
   return added;
 }
 
-void DepthBaselineHistory::add(const cv::Mat& depth, const cv::Mat& gray, const core::SE3& T_cw) {
+void DepthBaselineHistory::add(BaselineFrame frame) {
   if (frames_ == 0) return;
-  frames_back_.push_back({depth, gray, T_cw});
+  frames_back_.push_back(std::move(frame));
   if (frames_back_.size() > frames_) frames_back_.pop_front();
 }
 

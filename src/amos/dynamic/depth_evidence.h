@@ -26,6 +26,7 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
+#include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/reprojection_scoring.h"
 
@@ -183,10 +184,12 @@ int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmen
                            const DepthEvidenceOptions& options, std::vector<bool>& dynamic_cluster);
 
 // A frame kept for the comparisons with the frame Dynamic.Depth.baselineFrames back: its depth (this file), its grey
-// image (the long-baseline tracks, baseline_tracks.h; may be empty when those are off) and its pose.
+// image and, when it was built anyway, its LK pyramid (the long-baseline tracks, baseline_tracks.h; both may be empty
+// when those are off) and its pose.
 struct BaselineFrame {
   cv::Mat depth;
   cv::Mat gray;
+  ImagePyramid pyramid;
   core::SE3 T_cw = core::SE3::Identity();
 };
 
@@ -197,7 +200,7 @@ class DepthBaselineHistory {
  public:
   explicit DepthBaselineHistory(int frames = 0) : frames_(frames > 1 ? static_cast<std::size_t>(frames) : 0) {}
   // A frame processed with its pose (the oldest beyond `frames` is dropped). The images are shared, not copied.
-  void add(const cv::Mat& depth, const cv::Mat& gray, const core::SE3& T_cw);
+  void add(BaselineFrame frame);
   // After a lost frame: its pose would poison the comparison, so the history starts again.
   void clear() { frames_back_.clear(); }
   // The frame `frames` back from the next one, once that many were added; else null.

@@ -147,8 +147,13 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     std::vector<cv::Point2f> points;
     points.reserve(out.tracks.size());
     for (const PointTrack& t : out.tracks) points.push_back(t.current);
-    baseline = baselineMotion(points, in.gray, in.depth, confirmation.refit.T_cw, in.baseline_gray, in.T_cw_baseline,
-                              camera_, options_.tracking, options_.reprojection, options_.baseline_tracks);
+    baseline = !in.pyramid.empty() && !in.baseline_pyramid.empty()
+                   ? baselineMotion(points, in.pyramid, in.depth, confirmation.refit.T_cw, in.baseline_pyramid,
+                                    in.T_cw_baseline, camera_, options_.tracking, options_.reprojection,
+                                    options_.baseline_tracks)
+                   : baselineMotion(points, in.gray, in.depth, confirmation.refit.T_cw, in.baseline_gray,
+                                    in.T_cw_baseline, camera_, options_.tracking, options_.reprojection,
+                                    options_.baseline_tracks);
     diag.baseline_points = static_cast<int>(baseline.points.size());
     diag.baseline_moving_points = baseline.moving_points;
     baseline_moving = baselineMovingSuperpixels(baseline, partition.segmentation.labels,

@@ -59,6 +59,9 @@ struct DynamicFrameInput {
   cv::Mat baseline_depth;
   // That frame's grey image (CV_8UC1), for the long-baseline tracks (baseline_tracks.h); empty when unknown.
   cv::Mat baseline_gray;
+  // Optional: the LK pyramids of this frame and of that one (buildPyramid with Dynamic.LK.*), built beforehand; when
+  // either is empty the long-baseline tracks build them from gray and baseline_gray.
+  ImagePyramid pyramid, baseline_pyramid;
   core::SE3 T_cw_baseline = core::SE3::Identity();
   // Optional: last->current corner tracks already computed (e.g. for the initial pose model 2); when null the
   // front end detects and tracks corners itself. Non-owning.

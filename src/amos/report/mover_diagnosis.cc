@@ -103,7 +103,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
     }
     if (!last_gray.empty()) T_cw_before = T_cw_last, have_before = true;
     last_gray = gray, last_depth = frame->depth, T_cw_last = T_cw;
-    depth_history.add(frame->depth, gray, T_cw);
+    depth_history.add({frame->depth, gray, {}, T_cw});
     if ((k + 1) % 50 == 0) spdlog::info("diagnose-movers: frame {}", k + 1);
   }
   out << "\nid name frames recall causes\n";

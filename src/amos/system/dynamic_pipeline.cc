@@ -201,7 +201,10 @@ void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput m
     state_.depth_history.clear();
     return;
   }
-  state_.depth_history.add(out.frame.depth, motion.gray, result.T_cw);
+  // The long-baseline tracks read the frame's grey image and pyramid ten frames on (shared, not copied).
+  const bool tracks = options_.baseline_tracks.enabled;
+  state_.depth_history.add({out.frame.depth, tracks ? motion.gray : cv::Mat(),
+                            tracks ? motion.pyramid : dynamic::ImagePyramid(), result.T_cw});
   const bool geometry = scheduler_.tasks().geometry;
   if (geometry && (result.new_keyframe || result.initialized_map)) {
     state_.keyframe_pyramids.emplace_back(slam_.tracker().referenceKeyFrameView().id, motion.pyramid);
@@ -246,6 +249,8 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       if (const auto* baseline = state_.depth_history.baseline()) {
         input.baseline_depth = baseline->depth;
         input.baseline_gray = baseline->gray;
+        input.baseline_pyramid = baseline->pyramid;
+        input.pyramid = motion.pyramid;
         input.T_cw_baseline = baseline->T_cw;
       }
       if (tasks.geometry) {
