@@ -22,11 +22,15 @@
 //   confirmation = confirmUnderRefittedPose(candidates);       // pose_confirmation.h, III-C Eq. 5
 //   epipolar = fitEpipolarEvidence(confirmation.fit_tracks);   // epipolar_evidence.h, III-C Eq. 7-8
 //   depth = superpixelDepthEvidence(depth, last_depth);       // depth_evidence.h (Dynamic.Depth.enabled)
+//   baseline = baselineMotion(tracks, baseline_gray);          // baseline_tracks.h, Eq. 6 over ten frames
+//                                                              //   (Dynamic.BaselineTracks.enabled)
 //   voting = voteClusters(epipolar.violators, candidates, confirmation);  // cluster_voting.h, III-C
+//                                                              //   (+ the depth's and the baseline's clusters)
 //   mask |= buildDynamicMask(candidates, confirmation, epipolar, voting); // mask_building.h, III-C boundaries
 //
-// State: none. The caller keeps the last frame (gray, depth, pose) and passes it in with the current frame, so
-// one DynamicFrontEnd can be shared, tested and benchmarked frame pair by frame pair. process() is const and
+// State: none. The caller keeps the last frame (gray, depth, pose) and the baseline frame (depth_evidence.h's
+// DepthBaselineHistory) and passes them in with the current frame, so one DynamicFrontEnd can be shared, tested and
+// benchmarked frame pair by frame pair. process() is const and
 // thread-compatible (no mutable members).
 #include <opencv2/core.hpp>
 #include <optional>
