@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
@@ -256,16 +255,6 @@ int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmen
     }
   }
   return added;
-}
-
-void DepthBaselineHistory::add(BaselineFrame frame) {
-  if (frames_ == 0) return;
-  frames_back_.push_back(std::move(frame));
-  if (frames_back_.size() > frames_) frames_back_.pop_front();
-}
-
-const BaselineFrame* DepthBaselineHistory::baseline() const {
-  return frames_ > 0 && frames_back_.size() == frames_ ? &frames_back_.front() : nullptr;
 }
 
 }  // namespace amos::dynamic

@@ -20,13 +20,11 @@
 // (depthMovingClusters). Measured on issue 16's objects_xyz (geometry, seeds 5-7): the plain chair's recall
 // 0.20 -> ~0.8; on TUM fr2/desk (static, real Kinect) the marked share rises from 2.1 to 2.3 %.
 #include <opencv2/core.hpp>
-#include <deque>
 #include <utility>
 #include <vector>
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
-#include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/reprojection_scoring.h"
 
@@ -182,33 +180,5 @@ DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, co
 int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
                            const std::vector<ClusterScore>& cluster_scores, int min_points,
                            const DepthEvidenceOptions& options, std::vector<bool>& dynamic_cluster);
-
-// A frame kept for the comparisons with the frame Dynamic.Depth.baselineFrames back: its depth (this file), its grey
-// image and, when it was built anyway, its LK pyramid (the long-baseline tracks, baseline_tracks.h; both may be empty
-// when those are off) and its pose.
-struct BaselineFrame {
-  cv::Mat depth;
-  cv::Mat gray;
-  ImagePyramid pyramid;
-  core::SE3 T_cw = core::SE3::Identity();
-};
-
-// The last frames, for the comparisons with the frame Dynamic.Depth.baselineFrames back
-// (DynamicFrameInput::baseline_depth, baseline_gray). Keeps nothing when that is 0 or 1 (the last frame is
-// compared anyway).
-class DepthBaselineHistory {
- public:
-  explicit DepthBaselineHistory(int frames = 0) : frames_(frames > 1 ? static_cast<std::size_t>(frames) : 0) {}
-  // A frame processed with its pose (the oldest beyond `frames` is dropped). The images are shared, not copied.
-  void add(BaselineFrame frame);
-  // After a lost frame: its pose would poison the comparison, so the history starts again.
-  void clear() { frames_back_.clear(); }
-  // The frame `frames` back from the next one, once that many were added; else null.
-  const BaselineFrame* baseline() const;
-
- private:
-  std::size_t frames_;
-  std::deque<BaselineFrame> frames_back_;  // oldest first
-};
 
 }  // namespace amos::dynamic

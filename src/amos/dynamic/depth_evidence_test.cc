@@ -178,27 +178,6 @@ TEST(DepthEvidence, ClustersFollowTheirSampleShareOrTheirMovingSuperpixelsWhenUn
   EXPECT_TRUE(moving_unscored[1]);  // two moving superpixels and no tracks to say otherwise
 }
 
-TEST(DepthEvidence, BaselineHistoryGivesTheFrameThatManyBackAndStartsAgainAfterALoss) {
-  auto pose = [](double x) { return poseAt({x, 0, 0}); };
-  const cv::Mat depth(2, 2, CV_32F, cv::Scalar(1));
-  for (const int off : {0, 1}) {
-    DepthBaselineHistory none(off);
-    for (int k = 0; k < 3; ++k) none.add({depth, cv::Mat(), {}, pose(k)});
-    EXPECT_EQ(none.baseline(), nullptr) << off;
-  }
-  DepthBaselineHistory history(3);
-  history.add({depth, cv::Mat(), {}, pose(0)});
-  history.add({depth, cv::Mat(), {}, pose(1)});
-  EXPECT_EQ(history.baseline(), nullptr);
-  history.add({depth, cv::Mat(), {}, pose(2)});
-  ASSERT_NE(history.baseline(), nullptr);
-  EXPECT_TRUE(history.baseline()->T_cw.isApprox(pose(0)));
-  history.add({depth, cv::Mat(), {}, pose(3)});
-  EXPECT_TRUE(history.baseline()->T_cw.isApprox(pose(1)));
-  history.clear();
-  EXPECT_EQ(history.baseline(), nullptr);
-}
-
 TEST(DepthEvidence, OptionsAreChecked) {
   DepthEvidenceOptions o;
   EXPECT_NO_THROW(o.check());

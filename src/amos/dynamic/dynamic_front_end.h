@@ -28,10 +28,9 @@
 //                                                              //   (+ the depth's and the baseline's clusters)
 //   mask |= buildDynamicMask(candidates, confirmation, epipolar, voting); // mask_building.h, III-C boundaries
 //
-// State: none. The caller keeps the last frame (gray, depth, pose) and the baseline frame (depth_evidence.h's
-// DepthBaselineHistory) and passes them in with the current frame, so one DynamicFrontEnd can be shared, tested and
-// benchmarked frame pair by frame pair. process() is const and
-// thread-compatible (no mutable members).
+// State: none. The caller keeps the last frame (gray, depth, pose) and the baseline frame (baseline_history.h) and
+// passes them in with the current frame, so one DynamicFrontEnd can be shared, tested and benchmarked frame pair by
+// frame pair. process() is const and thread-compatible (no mutable members).
 #include <opencv2/core.hpp>
 #include <optional>
 #include <string>

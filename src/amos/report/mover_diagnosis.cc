@@ -8,6 +8,7 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/error.h"
+#include "amos/dynamic/baseline_history.h"
 #include "amos/dynamic/dynamic_front_end.h"
 #include "amos/dynamic/mover_diagnostics.h"
 #include "amos/eval/ground_truth_masks.h"
@@ -50,7 +51,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
            "c<id>:<mover share of cluster>/<share of mover> n<tracks> i<initial px>[C] r<refit px>[K] [D]\n";
   cv::Mat last_gray, last_depth, last_mask;
   core::SE3 T_cw_last, T_cw_before;
-  dynamic::DepthBaselineHistory depth_history(dyn.depth.baseline_frames);  // as the pipeline keeps it
+  dynamic::BaselineHistory baseline_history(dyn.depth.baseline_frames);  // as the pipeline keeps it
   bool have_before = false;
   while (auto frame = reader.next()) {
     const int k = static_cast<int>(frame->index);
@@ -63,7 +64,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
       in.gray = gray, in.bgr = frame->bgr, in.depth = frame->depth;
       in.last_gray = last_gray, in.last_depth = last_depth, in.last_mask = last_mask;
       in.T_cw_last = T_cw_last;
-      if (const auto* baseline = depth_history.baseline()) {
+      if (const auto* baseline = baseline_history.baseline()) {
         in.baseline_depth = baseline->depth;
         in.baseline_gray = baseline->gray;
         in.T_cw_baseline = baseline->T_cw;
@@ -103,7 +104,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
     }
     if (!last_gray.empty()) T_cw_before = T_cw_last, have_before = true;
     last_gray = gray, last_depth = frame->depth, T_cw_last = T_cw;
-    depth_history.add({frame->depth, gray, {}, T_cw});
+    baseline_history.add({frame->depth, gray, {}, T_cw});
     if ((k + 1) % 50 == 0) spdlog::info("diagnose-movers: frame {}", k + 1);
   }
   out << "\nid name frames recall causes\n";

@@ -48,7 +48,7 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
   if (scheduler_.tasks().segmentation)
     state_.person_masks.emplace(scheduler_.segmentation()->dilation(), options_.prior);
   if (options_.depth.enabled || options_.baseline_tracks.enabled)
-    state_.depth_history = dynamic::DepthBaselineHistory(options_.depth.baseline_frames);
+    state_.baseline_history = dynamic::BaselineHistory(options_.depth.baseline_frames);
 }
 
 DynamicPipeline::~DynamicPipeline() = default;
@@ -198,12 +198,12 @@ void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput m
   const tracking::TrackResult& result = out.slam.track;
   if (result.state != tracking::TrackingState::kOk) {
     state_.last.reset();  // a lost frame's pose would poison the reprojection test of the next one
-    state_.depth_history.clear();
+    state_.baseline_history.clear();
     return;
   }
   // The long-baseline tracks read the frame's grey image and pyramid ten frames on (shared, not copied).
   const bool tracks = options_.baseline_tracks.enabled;
-  state_.depth_history.add({out.frame.depth, tracks ? motion.gray : cv::Mat(),
+  state_.baseline_history.add({out.frame.depth, tracks ? motion.gray : cv::Mat(),
                             tracks ? motion.pyramid : dynamic::ImagePyramid(), result.T_cw});
   const bool geometry = scheduler_.tasks().geometry;
   if (geometry && (result.new_keyframe || result.initialized_map)) {
@@ -246,7 +246,7 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       input.T_cw_last = last.T_cw;
       input.last_mask = last.dynamic_mask;
       input.T_cw_initial = last.T_cw;
-      if (const auto* baseline = state_.depth_history.baseline()) {
+      if (const auto* baseline = state_.baseline_history.baseline()) {
         input.baseline_depth = baseline->depth;
         input.baseline_gray = baseline->gray;
         input.baseline_pyramid = baseline->pyramid;

@@ -55,6 +55,7 @@
 #include <vector>
 
 #include "amos/core/stage_timer.h"
+#include "amos/dynamic/baseline_history.h"
 #include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/dynamic_front_end.h"
 #include "amos/segmentation/segmentation_worker.h"
@@ -135,7 +136,7 @@ class DynamicPipeline {
     std::optional<PersonMaskCarrier> person_masks;  // modes prior and full
     // Depth and pose of the last tracked frames, the depth evidence's baseline (emptied when a frame is lost, like
     // `last`).
-    dynamic::DepthBaselineHistory depth_history;
+    dynamic::BaselineHistory baseline_history;  // the frames the longer comparisons need
   };
 
   // The steps of stage B (see the header comment), in order.

@@ -1,0 +1,37 @@
+#include "amos/dynamic/baseline_history.h"
+
+#include <gtest/gtest.h>
+
+namespace amos::dynamic {
+namespace {
+
+core::SE3 poseAt(const Eigen::Vector3d& centre) {
+  core::SE3 T_wc = core::SE3::Identity();
+  T_wc.translation() = centre;
+  return T_wc.inverse();
+}
+
+TEST(BaselineHistory, GivesTheFrameThatManyBackAndStartsAgainAfterALoss) {
+  auto pose = [](double x) { return poseAt({x, 0, 0}); };
+  const cv::Mat depth(2, 2, CV_32F, cv::Scalar(1));
+  for (const int off : {0, 1}) {
+    BaselineHistory none(off);
+    for (int k = 0; k < 3; ++k) none.add({depth, cv::Mat(), {}, pose(k)});
+    EXPECT_EQ(none.baseline(), nullptr) << off;
+  }
+  BaselineHistory history(3);
+  history.add({depth, cv::Mat(), {}, pose(0)});
+  history.add({depth, cv::Mat(), {}, pose(1)});
+  EXPECT_EQ(history.baseline(), nullptr);
+  history.add({depth, cv::Mat(), {}, pose(2)});
+  ASSERT_NE(history.baseline(), nullptr);
+  EXPECT_TRUE(history.baseline()->T_cw.isApprox(pose(0)));
+  history.add({depth, cv::Mat(), {}, pose(3)});
+  EXPECT_TRUE(history.baseline()->T_cw.isApprox(pose(1)));
+  history.clear();
+  EXPECT_EQ(history.baseline(), nullptr);
+}
+
+
+}  // namespace
+}  // namespace amos::dynamic
