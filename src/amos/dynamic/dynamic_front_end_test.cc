@@ -447,5 +447,37 @@ TEST(DynamicFrontEnd, DepthEvidenceFindsATexturelessMover) {
   EXPECT_LT(spill, 0.01);
 }
 
+// Dynamic.BaselineTracks (baseline_tracks.h): the box rises 1.5 mm per frame (~0.4 px, inside the one-frame bar of
+// max(1 px, 5 sigma)) while the camera slides 2 mm per frame; the frame 10 back sees it 15 mm lower.
+TEST(DynamicFrontEnd, BaselineTracksFindAMoverTooSlowForOneFrame) {
+  auto pose = [](double x) {
+    core::Vector6d xi;
+    xi << -x, 0.0, 0.0, 0.0, 0.0, 0.0;
+    return core::expSE3(xi);
+  };
+  const Rendered baseline = render(pose(0.0), Eigen::Vector3d::Zero());
+  const Rendered last = render(pose(0.018), Eigen::Vector3d(0.0, -0.0135, 0.0));
+  const Rendered current = render(pose(0.020), Eigen::Vector3d(0.0, -0.015, 0.0));
+  DynamicFrameInput in;
+  in.gray = current.gray, in.bgr = current.bgr, in.depth = current.depth;
+  in.last_gray = last.gray, in.last_depth = last.depth;
+  in.T_cw_last = pose(0.018);
+  in.T_cw_initial = pose(0.020);
+  in.baseline_gray = baseline.gray, in.baseline_depth = baseline.depth;
+  in.T_cw_baseline = pose(0.0);
+  DynamicOptions options;
+  options.mode = DynamicMode::kGeometry;
+  const DynamicFrameOutput without = DynamicFrontEnd(testCamera(), options).process(in);
+  options.baseline_tracks.enabled = true;
+  const DynamicFrameOutput with = DynamicFrontEnd(testCamera(), options).process(in);
+  cv::Mat wall;
+  cv::bitwise_not(current.box_mask, wall);
+  EXPECT_LT(coverage(without.mask, current.box_mask), 0.2);
+  EXPECT_GT(with.diagnostics.baseline_moving_points, 10);
+  // 31 of its points move over the baseline: their superpixels and three clusters; in one frame none does.
+  EXPECT_GT(coverage(with.mask, current.box_mask), 0.4);
+  EXPECT_LT(coverage(with.mask, wall), 0.02);
+}
+
 }  // namespace
 }  // namespace amos::dynamic
