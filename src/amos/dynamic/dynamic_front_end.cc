@@ -197,6 +197,8 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   out.T_cw_judged = confirmation.refit.T_cw;
   out.dynamic_cluster = std::move(voting.dynamic_cluster);
   out.epipolar_distance_px = std::move(epipolar.distance_px);
+  out.baseline_bar_px = baseline.bar_px;
+  out.baseline_points = std::move(baseline.points);
   out.timings_ms.emplace_back("total", total.elapsedMs());
   return out;
 }

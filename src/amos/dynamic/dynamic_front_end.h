@@ -118,6 +118,8 @@ struct DynamicFrameOutput {
   std::vector<std::optional<double>> reprojection_error_px;  // per track (Eq. 5's ||e||), empty without depth
   std::vector<std::optional<double>> judged_error_px;        // per track under T_cw_judged (points, else intervals)
   std::vector<double> epipolar_distance_px;                  // per track (infinity when there was no F)
+  std::vector<BaselinePoint> baseline_points;                // followed into the baseline frame (baseline_tracks.h)
+  double baseline_bar_px = 0;                                // what their residual had to exceed
 };
 
 class DynamicFrontEnd {

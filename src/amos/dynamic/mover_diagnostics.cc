@@ -62,11 +62,23 @@ std::vector<MoverFrameDiagnosis> diagnoseMovers(const DynamicFrameOutput& out, c
         std::isfinite(out.epipolar_distance_px[i]))
       ++d.epipolar_violators;
   }
+  std::map<std::uint16_t, std::vector<double>> over_baseline;
+  for (const BaselinePoint& b : out.baseline_points) {
+    const int x = static_cast<int>(std::lround(b.current.x)), y = static_cast<int>(std::lround(b.current.y));
+    if (x < 0 || y < 0 || x >= instances.cols || y >= instances.rows) continue;
+    const std::uint16_t id = instances.at<std::uint16_t>(y, x);
+    if (!isMoving(id)) continue;
+    MoverFrameDiagnosis& d = per_id[id];
+    ++d.baseline_points;
+    d.baseline_moving += b.moving;
+    over_baseline[id].push_back(b.residual_px);
+  }
   std::vector<MoverFrameDiagnosis> result;
   for (auto& [id, d] : per_id) {
     d.id = id;
     d.median_initial_px = median(initial[id]);
     d.median_judged_px = median(judged[id]);
+    d.median_baseline_px = median(over_baseline[id]);
     for (int c = 0; c < clusters && overlap.count(id); ++c) {
       if (overlap[id][c] == 0) continue;
       MoverClusterView v;

@@ -31,6 +31,9 @@ struct MoverFrameDiagnosis {
   int tracks_scored = 0;     // of which with a reprojection error (a depth or an interval)
   double median_initial_px = 0, median_judged_px = 0;  // their errors under the initial / judged pose (0 if none)
   int epipolar_violators = 0;                          // of them beyond Dynamic.Epipolar.threshold
+  int baseline_points = 0;         // points on the mover followed into the baseline frame (baseline_tracks.h)
+  int baseline_moving = 0;         // of which beyond the bar
+  double median_baseline_px = 0;   // their median residual over the baseline (0 if none)
   std::vector<MoverClusterView> clusters;              // by overlap, largest first
   // The first stage that lost the mover: "found" (>= half marked), "no-tracks", "mixed-cluster" (its main cluster
   // is mostly static surface), "below-threshold" (its clusters neither candidate nor confirmed), "no-decision"

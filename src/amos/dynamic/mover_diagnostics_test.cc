@@ -50,6 +50,20 @@ TEST(MoverDiagnostics, FoundMoverReportsItsTracksAndCluster) {
   EXPECT_EQ(d[0].cause, "found");
 }
 
+TEST(MoverDiagnostics, BaselinePointsOnTheMoverAreCounted) {
+  std::vector<bool> moving(8, false);
+  moving[7] = true;
+  DynamicFrameOutput out = frame(true, 3);
+  // Two points on the mover (one beyond the bar), one on the static right half.
+  out.baseline_points = {{{5.f, 5.f}, {9.f, 5.f}, 4.0, true}, {{8.f, 8.f}, {8.5f, 8.f}, 0.5, false},
+                         {{30.f, 5.f}, {30.f, 5.f}, 0.1, false}};
+  const auto d = diagnoseMovers(out, moverIds(), moving, DynamicOptions{});
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].baseline_points, 2);
+  EXPECT_EQ(d[0].baseline_moving, 1);
+  EXPECT_DOUBLE_EQ(d[0].median_baseline_px, 4.0);  // the upper median of two, as for the other medians
+}
+
 TEST(MoverDiagnostics, CausesOfAMiss) {
   std::vector<bool> moving(8, false);
   moving[7] = true;

@@ -47,7 +47,8 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
   const dynamic::DynamicFrontEnd front_end(core::PinholeCamera(settings.camera), dyn);
   io::SequenceReader reader(std::move(index), settings.readerOptions());
   if (options.per_frame)
-    out << "frame id name pixels marked tracks scored init_px judged_px epi_viol cause | clusters: "
+    out << "frame id name pixels marked tracks scored init_px judged_px epi_viol base_moving/base_points base_px "
+           "cause | clusters: "
            "c<id>:<mover share of cluster>/<share of mover> n<tracks> i<initial px>[C] r<refit px>[K] [D]\n";
   cv::Mat last_gray, last_depth, last_mask;
   core::SE3 T_cw_last, T_cw_before;
@@ -85,9 +86,10 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
           s.marked += d.marked;
           ++s.causes[d.cause];
           if (!options.per_frame) continue;
-          out << fmt::format("{} {} {} {} {} {} {} {:.2f} {:.2f} {} {} |", k, d.id, s.name, d.pixels, d.marked,
-                             d.tracks, d.tracks_scored, d.median_initial_px, d.median_judged_px,
-                             d.epipolar_violators, d.cause);
+          out << fmt::format("{} {} {} {} {} {} {} {:.2f} {:.2f} {} {}/{} {:.2f} {} |", k, d.id, s.name, d.pixels,
+                             d.marked, d.tracks, d.tracks_scored, d.median_initial_px, d.median_judged_px,
+                             d.epipolar_violators, d.baseline_moving, d.baseline_points, d.median_baseline_px,
+                             d.cause);
           for (std::size_t i = 0; i < d.clusters.size() && i < 4; ++i) {
             const auto& c = d.clusters[i];
             out << fmt::format(" c{}:{:.2f}/{:.2f} n{} i{:.1f}{} r{:.1f}{}{}", c.cluster,
@@ -95,8 +97,9 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
                                d.pixels ? double(c.overlap_px) / d.pixels : 0.0, c.tracks, c.initial_px,
                                c.candidate ? "C" : "", c.confirm_px, c.confirmed ? "K" : "", c.dynamic ? " D" : "");
           }
-          out << fmt::format("  [refit {} sigma {:.2f} thr {:.2f}]\n", result.diagnostics.pose_refit_ok ? "ok" : "no",
-                             result.diagnostics.pose_refit_sigma_px, result.diagnostics.confirm_threshold_px);
+          out << fmt::format("  [refit {} sigma {:.2f} thr {:.2f} baseline bar {:.2f}]\n",
+                             result.diagnostics.pose_refit_ok ? "ok" : "no", result.diagnostics.pose_refit_sigma_px,
+                             result.diagnostics.confirm_threshold_px, result.baseline_bar_px);
         }
       }
     } else {
