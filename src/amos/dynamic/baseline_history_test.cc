@@ -2,14 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include "amos/dynamic/test_scenes.h"
+
 namespace amos::dynamic {
 namespace {
-
-core::SE3 poseAt(const Eigen::Vector3d& centre) {
-  core::SE3 T_wc = core::SE3::Identity();
-  T_wc.translation() = centre;
-  return T_wc.inverse();
-}
 
 TEST(BaselineHistory, GivesTheFrameThatManyBackAndStartsAgainAfterALoss) {
   auto pose = [](double x) { return poseAt({x, 0, 0}); };

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <opencv2/video/tracking.hpp>
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
+#include "amos/dynamic/frame_regions.h"
+#include "amos/dynamic/robust_scale.h"
 
 namespace amos::dynamic {
 
@@ -18,11 +21,19 @@ void BaselineTrackOptions::check() const {
 
 namespace {
 
-
-int labelAtPixel(const cv::Mat& labels, cv::Point2f p) {
-  const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
-  if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) return -1;
-  return labels.at<int>(y, x);
+// Per label of a CV_32S map (count labels), the points that lie on it and those of them that move.
+struct LabelVotes {
+  std::vector<int> moving, all;
+};
+LabelVotes votesPerLabel(const BaselineMotion& motion, const cv::Mat& labels, int count) {
+  LabelVotes votes{std::vector<int>(count, 0), std::vector<int>(count, 0)};
+  for (const BaselinePoint& p : motion.points) {
+    const int label = labelAt(labels, p.current);
+    if (label < 0 || label >= count) continue;
+    ++votes.all[label];
+    votes.moving[label] += p.moving;
+  }
+  return votes;
 }
 
 // Whether the LK window around p (radius px) holds a hole or a depth step of more than ratio of p's depth: at an
@@ -102,18 +113,17 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
   if (start.empty()) return out;
   // All of Dynamic.LK.pyramidLevels: with two (20 px of reach from the prediction) walking_rpy seed 4 went from
   // 1.41x to 1.66x its static twin (a walker the pose half followed moves more than that over ten frames).
-  const int levels = lk.lk_levels;
   const cv::Size window(lk.lk_window, lk.lk_window);
   const cv::TermCriteria stop(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, lk.lk_max_iterations, lk.lk_epsilon);
   std::vector<cv::Point2f> found = guess;
   std::vector<uchar> ok_forward, ok_backward;
   std::vector<float> error;
-  cv::calcOpticalFlowPyrLK(pyramid, baseline_pyramid, start, found, ok_forward, error, window, levels,
-                           stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+  cv::calcOpticalFlowPyrLK(pyramid, baseline_pyramid, start, found, ok_forward, error, window, lk.lk_levels, stop,
+                           cv::OPTFLOW_USE_INITIAL_FLOW);
   std::vector<cv::Point2f> back(found.size());
   for (std::size_t k = 0; k < found.size(); ++k) back[k] = found[k] + (start[k] - guess[k]);
-  cv::calcOpticalFlowPyrLK(baseline_pyramid, pyramid, found, back, ok_backward, error, window, levels,
-                           stop, cv::OPTFLOW_USE_INITIAL_FLOW);
+  cv::calcOpticalFlowPyrLK(baseline_pyramid, pyramid, found, back, ok_backward, error, window, lk.lk_levels, stop,
+                           cv::OPTFLOW_USE_INITIAL_FLOW);
   const float fb2 = static_cast<float>(lk.forward_backward_px * lk.forward_backward_px);
   const cv::Rect2f image(0.f, 0.f, static_cast<float>(gray.cols - 1), static_cast<float>(gray.rows - 1));
   std::vector<PointTrack> tracks;  // current frame ("last") -> baseline frame ("current")
@@ -136,17 +146,11 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
     if (r) rx.push_back(r->x()), ry.push_back(r->y());
   out.ok = static_cast<int>(rx.size()) >= reprojection.refit_min_points;
   if (!out.ok) return out;
-  const auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
-  out.shift_px = Eigen::Vector2d(median(rx), median(ry));
+  out.shift_px = Eigen::Vector2d(upperMedian(std::move(rx)), upperMedian(std::move(ry)));
   std::vector<double> norms;
   for (const auto& r : residuals)
     if (r) norms.push_back((*r - out.shift_px).norm());
-  constexpr double kMedianToSigma = 1.0 / 1.1774;  // 2D Gaussian: median |r| = sqrt(2 ln 2) sigma
-  constexpr double kMinSigmaPx = 0.1;              // LK's floor on clean images, as refitPose
-  out.sigma_px = std::max(kMinSigmaPx, median(norms) * kMedianToSigma);
+  out.sigma_px = pixelNoiseScale(std::move(norms));  // as refitPose
   out.bar_px = std::max(options.min_motion_px, options.sigmas * out.sigma_px);
   // 4. Moving: beyond the bar around the common shift.
   out.points.reserve(tracks.size());
@@ -166,30 +170,22 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
 std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
                                             const BaselineTrackOptions& options) {
   core::require(labels.type() == CV_32S, "baselineMovingSuperpixels: labels must be CV_32S");
-  std::vector<int> moving(count, 0), still(count, 0);
-  for (const BaselinePoint& p : motion.points) {
-    const int s = labelAtPixel(labels, p.current);
-    if (s < 0 || s >= count) continue;
-    ++(p.moving ? moving : still)[s];
-  }
+  const LabelVotes votes = votesPerLabel(motion, labels, count);
   std::vector<bool> out(count, false);
-  for (int s = 0; s < count; ++s) out[s] = moving[s] >= options.min_votes && moving[s] > still[s];
+  for (int s = 0; s < count; ++s) {
+    const int moving = votes.moving[s], still = votes.all[s] - moving;
+    out[s] = moving >= options.min_votes && moving > still;
+  }
   return out;
 }
 
 std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,
                                          const BaselineTrackOptions& options) {
   core::require(decision_map.type() == CV_32S, "baselineMovingClusters: the decision map must be CV_32S");
-  std::vector<int> moving(num_clusters, 0), all(num_clusters, 0);
-  for (const BaselinePoint& p : motion.points) {
-    const int c = labelAtPixel(decision_map, p.current);
-    if (c < 0 || c >= num_clusters) continue;
-    ++all[c];
-    moving[c] += p.moving;
-  }
+  const LabelVotes votes = votesPerLabel(motion, decision_map, num_clusters);
   std::vector<bool> out(num_clusters, false);
   for (int c = 0; c < num_clusters; ++c)
-    out[c] = moving[c] >= options.min_votes && moving[c] >= options.cluster_share * all[c];
+    out[c] = votes.moving[c] >= options.min_votes && votes.moving[c] >= options.cluster_share * votes.all[c];
   return out;
 }
 

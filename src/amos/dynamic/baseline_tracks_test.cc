@@ -7,6 +7,7 @@
 
 #include "amos/core/option_error.h"
 #include "amos/dynamic/dynamic_options.h"
+#include "amos/dynamic/test_scenes.h"
 #include "amos/testing/test_camera.h"
 
 namespace amos::dynamic {
@@ -57,22 +58,7 @@ Frame render(const core::PinholeCamera& camera, const Eigen::Vector3d& centre, d
   return f;
 }
 
-core::SE3 poseAt(const Eigen::Vector3d& centre) {
-  core::SE3 T_wc = core::SE3::Identity();
-  T_wc.translation() = centre;
-  return T_wc.inverse();
-}
-
-// Superpixels and clusters: 40 x 40 px blocks.
-constexpr int kBlock = 40;
-cv::Mat blockLabels(const core::PinholeCamera& camera, int& count) {
-  const int cols = (camera.width() + kBlock - 1) / kBlock, rows = (camera.height() + kBlock - 1) / kBlock;
-  count = cols * rows;
-  cv::Mat labels(camera.height(), camera.width(), CV_32S);
-  for (int v = 0; v < labels.rows; ++v)
-    for (int u = 0; u < labels.cols; ++u) labels.at<int>(v, u) = (v / kBlock) * cols + u / kBlock;
-  return labels;
-}
+// Superpixels and clusters: 40 x 40 px blocks (test_scenes.h: blockLabels).
 
 // The box's pixels in the current view (its face, 0.05 m inside its edges so that LK windows stay on it).
 bool onBoxInside(const core::PinholeCamera& camera, const Eigen::Vector3d& centre, double box_x, cv::Point2f p) {

@@ -6,9 +6,11 @@
 #include <cmath>
 #include <queue>
 #include <tuple>
+#include <utility>
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
+#include "amos/dynamic/robust_scale.h"
 
 namespace amos::dynamic {
 
@@ -308,13 +310,9 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
     ry[c].push_back(t.residual->y());
   }
   std::vector<std::optional<Eigen::Vector2d>> motion(clusters);
-  auto median = [](std::vector<double>& v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
   for (int c = 0; c < clusters; ++c) {
     if (rx[c].empty()) continue;
-    const Eigen::Vector2d m(median(rx[c]), median(ry[c]));
+    const Eigen::Vector2d m(upperMedian(std::move(rx[c])), upperMedian(std::move(ry[c])));
     if (m.norm() >= static_px) motion[c] = m;
   }
   std::vector<int> dynamic_votes(n, 0), static_votes(n, 0);

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "amos/core/option_error.h"
+#include "amos/dynamic/test_scenes.h"
 #include "amos/testing/test_camera.h"
 
 namespace amos::dynamic {
@@ -34,25 +35,7 @@ cv::Mat renderDepth(const core::PinholeCamera& camera, const Eigen::Vector3d& ce
   return depth;
 }
 
-core::SE3 poseAt(const Eigen::Vector3d& centre) {
-  core::SE3 T_wc = core::SE3::Identity();
-  T_wc.translation() = centre;
-  return T_wc.inverse();
-}
-
-// Superpixels: 40 x 40 px blocks.
-constexpr int kBlock = 40;
-cv::Mat blockLabels(const core::PinholeCamera& camera, int& count) {
-  const int cols = (camera.width() + kBlock - 1) / kBlock, rows = (camera.height() + kBlock - 1) / kBlock;
-  count = cols * rows;
-  cv::Mat labels(camera.height(), camera.width(), CV_32S);
-  for (int v = 0; v < labels.rows; ++v)
-    for (int u = 0; u < labels.cols; ++u) labels.at<int>(v, u) = (v / kBlock) * cols + u / kBlock;
-  return labels;
-}
-int blockAt(const core::PinholeCamera& camera, int u, int v) {
-  return (v / kBlock) * ((camera.width() + kBlock - 1) / kBlock) + u / kBlock;
-}
+// Superpixels: 40 x 40 px blocks (test_scenes.h: blockLabels, blockAt).
 
 struct Scene {
   core::PinholeCamera camera = testing::testCamera();

@@ -3,18 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include "amos/core/error.h"
 #include "amos/dynamic/frame_regions.h"
+#include "amos/dynamic/robust_scale.h"
 
 namespace amos::dynamic {
 
 namespace {
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
+double median(std::vector<double> v) { return v.empty() ? 0 : upperMedian(std::move(v)); }
 }  // namespace
 
 std::vector<MoverFrameDiagnosis> diagnoseMovers(const DynamicFrameOutput& out, const cv::Mat& instances,
@@ -22,6 +20,13 @@ std::vector<MoverFrameDiagnosis> diagnoseMovers(const DynamicFrameOutput& out, c
   core::require(instances.type() == CV_16UC1 && instances.size() == out.mask.size(),
                 "diagnoseMovers: instances must be CV_16U of the mask's size");
   auto isMoving = [&](std::uint16_t id) { return id != 0 && id < moving.size() && moving[id]; };
+  // The moving instance at the pixel nearest p, else 0.
+  auto movingIdAt = [&](cv::Point2f p) -> std::uint16_t {
+    const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
+    if (x < 0 || y < 0 || x >= instances.cols || y >= instances.rows) return 0;
+    const std::uint16_t id = instances.at<std::uint16_t>(y, x);
+    return isMoving(id) ? id : 0;
+  };
   const bool geometry = !out.cluster_map.empty();
   const int clusters = static_cast<int>(out.cluster_scores.size());
   std::vector<int> cluster_px(clusters, 0);
@@ -46,11 +51,8 @@ std::vector<MoverFrameDiagnosis> diagnoseMovers(const DynamicFrameOutput& out, c
   }
   std::map<std::uint16_t, std::vector<double>> initial, judged;
   for (std::size_t i = 0; i < out.tracks.size(); ++i) {
-    const cv::Point2f p = out.tracks[i].current;
-    const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
-    if (x < 0 || y < 0 || x >= instances.cols || y >= instances.rows) continue;
-    const std::uint16_t id = instances.at<std::uint16_t>(y, x);
-    if (!isMoving(id)) continue;
+    const std::uint16_t id = movingIdAt(out.tracks[i].current);
+    if (id == 0) continue;
     MoverFrameDiagnosis& d = per_id[id];
     ++d.tracks;
     if (i < out.reprojection_error_px.size() && out.reprojection_error_px[i]) {
@@ -64,10 +66,8 @@ std::vector<MoverFrameDiagnosis> diagnoseMovers(const DynamicFrameOutput& out, c
   }
   std::map<std::uint16_t, std::vector<double>> over_baseline;
   for (const BaselinePoint& b : out.baseline_points) {
-    const int x = static_cast<int>(std::lround(b.current.x)), y = static_cast<int>(std::lround(b.current.y));
-    if (x < 0 || y < 0 || x >= instances.cols || y >= instances.rows) continue;
-    const std::uint16_t id = instances.at<std::uint16_t>(y, x);
-    if (!isMoving(id)) continue;
+    const std::uint16_t id = movingIdAt(b.current);
+    if (id == 0) continue;
     MoverFrameDiagnosis& d = per_id[id];
     ++d.baseline_points;
     d.baseline_moving += b.moving;

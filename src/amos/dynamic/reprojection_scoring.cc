@@ -8,6 +8,7 @@
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
+#include "amos/dynamic/robust_scale.h"
 
 namespace amos::dynamic {
 
@@ -197,9 +198,7 @@ PoseRefit refitPose(const std::vector<PointTrack>& tracks, const std::vector<std
   }
   geometry::StereoProjection projection;
   projection.fx = camera.fx(), projection.fy = camera.fy(), projection.cx = camera.cx(), projection.cy = camera.cy();
-  // sigma from the median residual (2D Gaussian: median |r| = sqrt(2 ln 2) sigma), then a robust refit with it.
-  constexpr double kMedianToSigma = 1.0 / 1.1774;
-  constexpr double kMinSigmaPx = 0.1;
+  // sigma from the median residual (robust_scale.h), then a robust refit with it.
   constexpr int kRounds = 3;
   core::SE3 T = T_cw_initial;
   geometry::PoseOptimizerResult result;
@@ -210,8 +209,7 @@ PoseRefit refitPose(const std::vector<PointTrack>& tracks, const std::vector<std
       norms[k] = p_c.z() > 1e-6 ? (observations[k].pixel - camera.project(p_c)).norm()
                                 : std::numeric_limits<double>::max();
     }
-    std::nth_element(norms.begin(), norms.begin() + norms.size() / 2, norms.end());
-    refit.sigma_px = std::max(kMinSigmaPx, norms[norms.size() / 2] * kMedianToSigma);
+    refit.sigma_px = pixelNoiseScale(norms);
     for (auto& o : observations) o.inv_sigma2 = 1.0 / (refit.sigma_px * refit.sigma_px);
     result = geometry::optimizePose(observations, T, projection, geometry::PoseOptimizerOptions{});
     T = result.T_cw;

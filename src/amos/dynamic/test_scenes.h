@@ -3,6 +3,7 @@
 #include <opencv2/core.hpp>
 
 #include "amos/core/camera.h"
+#include "amos/core/pose.h"
 #include "amos/dynamic/dynamic_front_end.h"
 #include "amos/testing/test_camera.h"
 
@@ -20,6 +21,30 @@ inline DynamicFrameInput wallFramePair(cv::Size size, float depth_m) {
   in.depth = cv::Mat(size, CV_32F, cv::Scalar(depth_m));
   in.last_depth = in.depth.clone();
   return in;
+}
+
+// T_cw of a camera at `centre` (world frame) looking along +z without rotation.
+inline core::SE3 poseAt(const Eigen::Vector3d& centre) {
+  core::SE3 T_wc = core::SE3::Identity();
+  T_wc.translation() = centre;
+  return T_wc.inverse();
+}
+
+// Superpixels (or clusters) as kTestBlock x kTestBlock pixel blocks over the camera's image, numbered row by row;
+// count receives their number.
+inline constexpr int kTestBlock = 40;
+inline cv::Mat blockLabels(const core::PinholeCamera& camera, int& count) {
+  const int cols = (camera.width() + kTestBlock - 1) / kTestBlock;
+  const int rows = (camera.height() + kTestBlock - 1) / kTestBlock;
+  count = cols * rows;
+  cv::Mat labels(camera.height(), camera.width(), CV_32S);
+  for (int v = 0; v < labels.rows; ++v)
+    for (int u = 0; u < labels.cols; ++u) labels.at<int>(v, u) = (v / kTestBlock) * cols + u / kTestBlock;
+  return labels;
+}
+// The block of pixel (u, v) in blockLabels.
+inline int blockAt(const core::PinholeCamera& camera, int u, int v) {
+  return (v / kTestBlock) * ((camera.width() + kTestBlock - 1) / kTestBlock) + u / kTestBlock;
 }
 
 }  // namespace amos::dynamic
