@@ -154,6 +154,11 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "moving points a superpixel or a cluster needs to move");
   s.add("Dynamic.BaselineTracks.clusterShare", &o.baseline_tracks.cluster_share,
         "a cluster is dynamic when this share of its points moves");
+  s.add("Dynamic.BaselineTracks.poolNeighbours", &o.baseline_tracks.pool_neighbours,
+        "a superpixel's vote also counts the points of its neighbours on the same surface (no occlusion edge "
+        "between them), unless its own points are mostly static");
+  s.add("Dynamic.BaselineTracks.pooledVotes", &o.baseline_tracks.pooled_votes,
+        "moving points such a pooled count needs (and more than its static ones)");
 
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
         "1 = of the initial-pose hypotheses and models with at least half the most inliers, the one whose inliers "

@@ -17,6 +17,7 @@ void BaselineTrackOptions::check() const {
   core::requireAtLeast(min_motion_px, "min_motion_px", 0.0);
   core::requireAtLeast(min_votes, "min_votes", 1);
   core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
+  core::requireAtLeast(pooled_votes, "pooled_votes", 1);
 }
 
 namespace {
@@ -168,13 +169,28 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
 }
 
 std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
-                                            const BaselineTrackOptions& options) {
+                                            const BaselineTrackOptions& options, const SuperpixelGraph* graph) {
   core::require(labels.type() == CV_32S, "baselineMovingSuperpixels: labels must be CV_32S");
+  const bool pool = options.pool_neighbours && graph != nullptr;
+  core::require(!pool || (static_cast<int>(graph->neighbours.size()) == count &&
+                          static_cast<int>(graph->occlusion_edges.size()) == count),
+                "baselineMovingSuperpixels: the graph must be of these superpixels");
   const LabelVotes votes = votesPerLabel(motion, labels, count);
   std::vector<bool> out(count, false);
   for (int s = 0; s < count; ++s) {
-    const int moving = votes.moving[s], still = votes.all[s] - moving;
-    out[s] = moving >= options.min_votes && moving > still;
+    const int own_moving = votes.moving[s], own_still = votes.all[s] - own_moving;
+    int moving = own_moving, still = own_still;
+    if (pool) {
+      if (own_still > own_moving) continue;  // its own points say static: the neighbours do not overrule them
+      const std::vector<int>& neighbours = graph->neighbours[s];
+      for (std::size_t k = 0; k < neighbours.size(); ++k) {
+        if (graph->occlusion_edges[s][k]) continue;  // another surface
+        const int n = neighbours[k];
+        moving += votes.moving[n];
+        still += votes.all[n] - votes.moving[n];
+      }
+    }
+    out[s] = moving >= (pool ? options.pooled_votes : options.min_votes) && moving > still;
   }
   return out;
 }

@@ -15,8 +15,9 @@
 //      median length, as refitPose). Not a 6-DoF refit: where the scene is two planes (a door and its wall) a
 //      translation and a rotation together explain a mover's sideways shift exactly, and a refit would absorb it;
 //   4. a point moves when its residual exceeds max(minMotion, sigmas * sigma).
-// Per superpixel: moving when at least minVotes of its points move and they outnumber its static ones; per decision
-// cluster: dynamic when at least minVotes of its points move and they make up clusterShare of them. A moving
+// Per superpixel: moving when at least minVotes of its points move and they outnumber its static ones, the points
+// counted over the superpixel and its neighbours on the same surface (Dynamic.BaselineTracks.poolNeighbours); per
+// decision cluster: dynamic when at least minVotes of its points move and they make up clusterShare of them. A moving
 // superpixel seeds the mask even where the one-frame votes call it static (mask_building.h): over ten frames its
 // motion is measured, over one it is within the noise.
 #include <Eigen/Core>
@@ -25,6 +26,7 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
+#include "amos/dynamic/boundary_assignment.h"
 #include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/reprojection_scoring.h"
 
@@ -48,6 +50,16 @@ struct BaselineTrackOptions {
   // mover and the static surface beside it (a door leaf in front of its wall) is dynamic when the mover holds most of
   // its points.
   double cluster_share = 0.5;
+  // Dynamic.BaselineTracks.poolNeighbours: a superpixel's vote also counts the points of its neighbours across
+  // borders that are not occlusion edges (the superpixel graph, boundary_assignment.h), and a superpixel whose own
+  // points are mostly static never moves. The points that survive ten frames are sparse: on a door leaf ~1 per
+  // superpixel (objects_xyz, diagnose-movers: 26-36 moving points on a 40000 px door that spans ~40 superpixels),
+  // so two votes on one superpixel are rare even where every point of the surface moves.
+  bool pool_neighbours = true;
+  // Dynamic.BaselineTracks.pooledVotes: moving points such a pooled count needs (and more than its static ones):
+  // one more than minVotes, as it draws on ~6 superpixels instead of one (on the first 50 frames of TUM fr2/desk,
+  // static, 2 gave 3.2 % of the pixels marked against 2.6 % without pooling, 3 gave 2.8 %).
+  int pooled_votes = 3;
   void check() const;
 };
 
@@ -84,9 +96,11 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
                               const BaselineTrackOptions& options);
 
 // Per superpixel (labels: CV_32S, count labels): whether at least options.min_votes of its points move and they
-// outnumber its static ones.
+// outnumber its static ones. With options.pool_neighbours and a graph of these superpixels, the points of its
+// neighbours across non-occlusion borders count too, unless its own points are mostly static.
 std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
-                                            const BaselineTrackOptions& options);
+                                            const BaselineTrackOptions& options,
+                                            const SuperpixelGraph* graph = nullptr);
 
 // Per cluster (decision_map: CV_32S, -1 = takes no part; num_clusters): whether at least options.min_votes of its
 // points move and they are at least options.cluster_share of its points.

@@ -182,12 +182,67 @@ TEST(BaselineTracks, PyramidsBuiltBeforehandGiveTheSameResult) {
     EXPECT_EQ(from_gray.points[i].found, from_pyramids.points[i].found) << i;
 }
 
+// A row of four superpixels (10 px wide, labels 0-3), neighbours in a chain; the border between 2 and 3 is an
+// occlusion edge.
+struct Strip {
+  cv::Mat labels = cv::Mat(10, 40, CV_32S);
+  SuperpixelGraph graph;
+  Strip() {
+    for (int x = 0; x < 40; ++x) labels.col(x).setTo(x / 10);
+    graph.neighbours = {{1}, {0, 2}, {1, 3}, {2}};
+    graph.occlusion_edges = {{false}, {false, false}, {false, true}, {true}};
+  }
+  static BaselinePoint point(float x, bool moving) {
+    BaselinePoint p;
+    p.current = cv::Point2f(x, 5.f);
+    p.moving = moving;
+    return p;
+  }
+};
+
+TEST(BaselineTracks, SparseMovingPointsAreCountedOverTheSurfaceTheySpan) {
+  // One moving point on each of superpixels 0-2 (a door leaf with ~1 surviving point per superpixel): none has the
+  // two votes of its own, but pooled over its same-surface neighbours they have 2-3.
+  const Strip strip;
+  BaselineMotion m;
+  m.points = {Strip::point(5, true), Strip::point(15, true), Strip::point(25, true), Strip::point(35, true)};
+  BaselineTrackOptions o;
+  o.pooled_votes = 3;
+  EXPECT_EQ(baselineMovingSuperpixels(m, strip.labels, 4, o), std::vector<bool>(4, false));  // no graph: alone
+  // Superpixel 1 pools 3 (0, 1, 2); 0 pools 2 (0, 1); 2 pools 2 (1, 2: not 3, behind an occlusion edge); 3 pools
+  // its own 1.
+  EXPECT_EQ(baselineMovingSuperpixels(m, strip.labels, 4, o, &strip.graph),
+            (std::vector<bool>{false, true, false, false}));
+  o.pooled_votes = 2;
+  EXPECT_EQ(baselineMovingSuperpixels(m, strip.labels, 4, o, &strip.graph),
+            (std::vector<bool>{true, true, true, false}));
+  o.pool_neighbours = false;
+  EXPECT_EQ(baselineMovingSuperpixels(m, strip.labels, 4, o, &strip.graph), std::vector<bool>(4, false));
+}
+
+TEST(BaselineTracks, ASuperpixelWhosePointsStayIsNotMovedByItsNeighbours) {
+  const Strip strip;
+  BaselineMotion m;
+  m.points = {Strip::point(3, true),  Strip::point(6, true),  Strip::point(9, true),  // 0: three moving
+              Strip::point(14, false), Strip::point(16, false),                         // 1: two static ...
+              Strip::point(18, true),                                                   // ... one moving
+              Strip::point(25, true)};                                                  // 2: one moving
+  BaselineTrackOptions o;
+  o.pooled_votes = 3;
+  // 1 pools 5 moving against 2 static but its own points say static; 2 pools 2 moving against 2 static.
+  EXPECT_EQ(baselineMovingSuperpixels(m, strip.labels, 4, o, &strip.graph),
+            (std::vector<bool>{true, false, false, false}));
+}
+
 TEST(BaselineTracks, OptionsAreChecked) {
   BaselineTrackOptions o;
   o.min_votes = 0;
   EXPECT_THROW(o.check(), core::InvalidOption);
   o = {};
   o.cluster_share = 0;
+  EXPECT_THROW(o.check(), core::InvalidOption);
+  o = {};
+  o.pooled_votes = 0;
   EXPECT_THROW(o.check(), core::InvalidOption);
   DynamicOptions d;
   d.baseline_tracks.enabled = true;
