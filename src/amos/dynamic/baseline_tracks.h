@@ -54,8 +54,11 @@ struct BaselineTrackOptions {
   // borders that are not occlusion edges (the superpixel graph, boundary_assignment.h), and a superpixel whose own
   // points are mostly static never moves. The points that survive ten frames are sparse: on a door leaf ~1 per
   // superpixel (objects_xyz, diagnose-movers: 26-36 moving points on a 40000 px door that spans ~40 superpixels),
-  // so two votes on one superpixel are rare even where every point of the surface moves.
-  bool pool_neighbours = true;
+  // so two votes on one superpixel are rare even where every point of the surface moves. Off by default: it is a
+  // trade, not a gain (session 17, README "Movers no detector knows"): door recall 0.44 -> 0.56 on objects_xyz
+  // seeds 5-7, but the floor beside a pushed box pools the box's points (box_push seed 4 precision 0.83 -> 0.79)
+  // and walking_rpy seed 4 / walking_static seed 3 go from 1.41x / 1.49x to 1.96x / 1.59x their static twins.
+  bool pool_neighbours = false;
   // Dynamic.BaselineTracks.pooledVotes: moving points such a pooled count needs (and more than its static ones):
   // one more than minVotes, as it draws on ~6 superpixels instead of one (on the first 50 frames of TUM fr2/desk,
   // static, 2 gave 3.2 % of the pixels marked against 2.6 % without pooling, 3 gave 2.8 %).

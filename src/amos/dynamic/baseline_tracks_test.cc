@@ -207,6 +207,7 @@ TEST(BaselineTracks, SparseMovingPointsAreCountedOverTheSurfaceTheySpan) {
   BaselineMotion m;
   m.points = {Strip::point(5, true), Strip::point(15, true), Strip::point(25, true), Strip::point(35, true)};
   BaselineTrackOptions o;
+  o.pool_neighbours = true;
   o.pooled_votes = 3;
   EXPECT_EQ(baselineMovingSuperpixels(m, strip.labels, 4, o), std::vector<bool>(4, false));  // no graph: alone
   // Superpixel 1 pools 3 (0, 1, 2); 0 pools 2 (0, 1); 2 pools 2 (1, 2: not 3, behind an occlusion edge); 3 pools
@@ -228,6 +229,7 @@ TEST(BaselineTracks, ASuperpixelWhosePointsStayIsNotMovedByItsNeighbours) {
               Strip::point(18, true),                                                   // ... one moving
               Strip::point(25, true)};                                                  // 2: one moving
   BaselineTrackOptions o;
+  o.pool_neighbours = true;
   o.pooled_votes = 3;
   // 1 pools 5 moving against 2 static but its own points say static; 2 pools 2 moving against 2 static.
   EXPECT_EQ(baselineMovingSuperpixels(m, strip.labels, 4, o, &strip.graph),
