@@ -81,10 +81,8 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   // Stage 1a (III-B): superpixels and geometric clusters of the current frame; border blocks take no part in the
   // decisions (III-C).
   GeometricPartition computed;
-  if (in.partition == nullptr) {
+  if (in.partition == nullptr)
     computed = computeGeometricPartition(in.bgr, in.depth, options_.superpixel, options_.cluster);
-    computed.graph = superpixelGraph(computed.segmentation, in.depth, options_.reprojection.depth_edge_ratio);
-  }
   const GeometricPartition& partition = in.partition ? *in.partition : computed;
   out.timings_ms.emplace_back("superpixels", partition.superpixel_ms);
   stage.restart();
@@ -158,7 +156,9 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
                                     options_.baseline_tracks);
     diag.baseline_points = static_cast<int>(baseline.points.size());
     diag.baseline_moving_points = baseline.moving_points;
-    std::optional<SuperpixelGraph> own_graph;  // only when the partition came without one (tests)
+    // The pipeline's stage A computes the graph with the partition; otherwise it is computed here only when the
+    // vote pools over it (mask building computes its own when it needs one).
+    std::optional<SuperpixelGraph> own_graph;
     if (!partition.graph && options_.baseline_tracks.pool_neighbours)
       own_graph = superpixelGraph(partition.segmentation, in.depth, options_.reprojection.depth_edge_ratio);
     baseline_moving = baselineMovingSuperpixels(baseline, partition.segmentation.labels,
