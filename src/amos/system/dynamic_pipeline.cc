@@ -259,22 +259,23 @@ DynamicFrameOutput DynamicPipeline::processNext() {
         core::require(corner_tracks.made, "DynamicPipeline: frame " + std::to_string(slot.number) +
                                               " has no corner tracks from the frame before it");
         tracks = std::move(corner_tracks.tracks);
-        std::optional<dynamic::PoseModel> model;
-        extras.initial_T_cw = initialPose(motion.pyramid, tracks, model);  // 3
-        out.initial_pose_model = model;
-        if (extras.initial_T_cw) input.T_cw_initial = *extras.initial_T_cw;
         input.tracks = &tracks;
       }
-    } else if (tasks.geometry) {
-      std::optional<dynamic::PoseModel> model;
-      extras.initial_T_cw = initialPose(motion.pyramid, tracks, model);  // 3, the reference keyframe's model alone
-      out.initial_pose_model = model;
     }
+    // The person masks (4) need only the corner tracks, so they are made before the initial pose (3), which does
+    // not read them: the next frame's masked extraction in stage A waits for this hand-off.
     if (tasks.segmentation) {
-      PersonMaskCarrier::Masks masks = personMasks(slot, tracks);  // 4
+      PersonMaskCarrier::Masks masks = personMasks(slot, tracks);  // 3
       slot.dilated_prior_mask.set_value(masks.dilated);            // hand-off to stage A of the next frame
       input.prior_mask = std::move(masks.dilated);
       out.prior_mask = std::move(masks.mask);
+    }
+    if (tasks.geometry) {
+      // After a lost frame (no last frame) the reference keyframe's model stands alone.
+      std::optional<dynamic::PoseModel> model;
+      extras.initial_T_cw = initialPose(motion.pyramid, tracks, model);  // 4
+      out.initial_pose_model = model;
+      if (extras.initial_T_cw && state_.last) input.T_cw_initial = *extras.initial_T_cw;
     }
     std::optional<FramePartition> partition;
     if (tasks.geometry) {

@@ -12,19 +12,21 @@
 //   1. takeMotion          wait for the slot's motion input (grey image, LK pyramid, corners)
 //   2. takeCornerTracks    LK tracks of the last frame's corners into this one, made in   (geometry)
 //                          stage A beside stage B of the last frame (frame_scheduler.h)
-//   3. initialPose         three models (Sec. III-D): reference-keyframe LK + EPnP,       (geometry)
+//   3. personMasks         this frame's segmentation, or an earlier one carried here by    (prior)
+//                          the corner tracks
+//                          -> hand-off: the dilated mask, for stage A of the next frame (made before the
+//                          initial pose, which does not need it, so that the next frame's extraction waits less)
+//   4. initialPose         three models (Sec. III-D): reference-keyframe LK + EPnP,       (geometry)
 //                          last-frame corners + EPnP, constant velocity; most inliers wins; after a lost
 //                          frame the keyframe model alone (the tracker's recovery searches around its pose)
-//   4. personMasks         this frame's segmentation, or an earlier one carried here       (prior)
-//                          -> hand-off: the dilated mask, for stage A of the next frame
 //   5. judge               the dynamic mask (DynamicFrontEnd, Sec. III-B/C), once the     (not in none)
 //                          slot's superpixel partition is there
 //   6. track               tracking without the dynamic keypoints, with the initial pose, once the slot's ORB
 //                          features are there
 //                          -> hand-off: whether a map exists, for stage A two frames on
 //   7. remember            what the next frame needs from this one (StageBState)
-// A mode is the set of stage-A tasks scheduled and the stage-B steps that run: none = 1, 6, 7; prior adds 4-5;
-// geometry adds 2, 3, 5; full all.
+// A mode is the set of stage-A tasks scheduled and the stage-B steps that run: none = 1, 6, 7; prior adds 3 and 5;
+// geometry adds 2, 4, 5; full all.
 //
 // Determinism: stage A reads nothing of stage B but the declared hand-offs, each named by its frame number and
 // waited for through a future, and stage B runs in frame order in one thread; so in deterministic mode the
