@@ -159,6 +159,18 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "between them), unless its own points are mostly static");
   s.add("Dynamic.BaselineTracks.pooledVotes", &o.baseline_tracks.pooled_votes,
         "moving points such a pooled count needs (and more than its static ones)");
+  s.add("Dynamic.BaselineTracks.densifyPoints", &o.baseline_tracks.densify_points,
+        "where a point moved, up to this many more points are followed in its superpixel and its neighbours on "
+        "the same surface (0 = off)");
+  s.add("Dynamic.BaselineTracks.densifyGrid", &o.baseline_tracks.densify_grid_px,
+        "grid step of those points' candidate pixels [px]");
+  s.add("Dynamic.BaselineTracks.densifyMinGradient", &o.baseline_tracks.densify_min_gradient,
+        "RMS intensity gradient such a candidate needs in its weakest direction [grey levels per px]");
+  s.add("Dynamic.BaselineTracks.growOverSurface", &o.baseline_tracks.grow_over_surface,
+        "the mask may grow from superpixels whose long-baseline points move over unmeasured superpixels of the same "
+        "surface, outside the dynamic clusters too");
+  s.add("Dynamic.BaselineTracks.growDissimilarity", &o.baseline_tracks.grow_dissimilarity,
+        "largest Eq. 1 dissimilarity (no position term) of one step of that growth");
 
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
         "1 = of the initial-pose hypotheses and models with at least half the most inliers, the one whose inliers "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 #include <opencv2/video/tracking.hpp>
 
@@ -18,6 +19,10 @@ void BaselineTrackOptions::check() const {
   core::requireAtLeast(min_votes, "min_votes", 1);
   core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
   core::requireAtLeast(pooled_votes, "pooled_votes", 1);
+  core::requireAtLeast(densify_points, "densify_points", 0);
+  core::requireAtLeast(densify_grid_px, "densify_grid_px", 1);
+  core::requireAtLeast(densify_min_gradient, "densify_min_gradient", 0.0);
+  core::requireAtLeast(grow_dissimilarity, "grow_dissimilarity", 0.0);
 }
 
 namespace {
@@ -67,18 +72,23 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const cv::
                         camera, lk, reprojection, options);
 }
 
-BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
-                              const cv::Mat& depth, const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,
-                              const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
-                              const CornerTrackingOptions& lk, const ReprojectionOptions& reprojection,
-                              const BaselineTrackOptions& options) {
-  options.check();
-  core::require(!pyramid.empty() && !baseline_pyramid.empty() && pyramid.front().size() == baseline_pyramid.front().size(),
-                "baselineMotion: both pyramids must be built, from images of one size");
+namespace {
+
+// A point followed from the current frame into the baseline frame, with its residual against the static world's
+// prediction (undistorted pixels), before the common shift is removed.
+struct FollowedPoint {
+  cv::Point2f current, found;
+  Eigen::Vector2d residual;
+};
+
+// Steps 1 and 2 of the header for `points`, and their residuals.
+std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
+                                              const cv::Mat& depth, const core::SE3& T_cw,
+                                              const ImagePyramid& baseline_pyramid, const core::SE3& T_cw_baseline,
+                                              const core::PinholeCamera& camera, const CornerTrackingOptions& lk,
+                                              const ReprojectionOptions& reprojection) {
   const cv::Mat& gray = pyramid.front();
-  core::require(depth.type() == CV_32F && depth.size() == gray.size(),
-                "baselineMotion: depth must be CV_32F metres of the image size");
-  BaselineMotion out;
+  std::vector<FollowedPoint> out;
   // 1. The static world's prediction: lifted with the current depth, projected into the baseline frame.
   std::vector<PointTrack> lifted(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) lifted[i].last = points[i];
@@ -136,36 +146,148 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
     tracks.push_back({start[k], found[k], static_cast<int>(k)});
     tracked_w.push_back(start_world[k]);
   }
+  const std::vector<std::optional<Eigen::Vector2d>> residuals =
+      reprojectionResiduals(tracks, tracked_w, T_cw_baseline, camera);
+  for (std::size_t k = 0; k < tracks.size(); ++k)
+    if (residuals[k]) out.push_back({tracks[k].last, tracks[k].current, *residuals[k]});
+  return out;
+}
+
+// Step 4 for followed points, against the common shift and bar of `motion`, appended to it.
+void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& motion) {
+  motion.points.reserve(motion.points.size() + followed.size());
+  for (const FollowedPoint& f : followed) {
+    BaselinePoint p;
+    p.current = f.current;
+    p.found = f.found;
+    p.residual_px = (f.residual - motion.shift_px).norm();
+    p.moving = p.residual_px > motion.bar_px;
+    motion.moving_points += p.moving;
+    motion.points.push_back(p);
+  }
+}
+
+// The weakest direction's mean squared intensity gradient (grey levels^2 per px^2) over the 7x7 window around
+// (u, v): the smaller eigenvalue of the window's structure tensor, what LK's precision there depends on (Shi and
+// Tomasi's "good features to track"). (u, v) must lie at least 4 px inside the image.
+double windowTexture(const cv::Mat& gray, int u, int v) {
+  double xx = 0, xy = 0, yy = 0;
+  for (int dv = -3; dv <= 3; ++dv) {
+    const std::uint8_t* row = gray.ptr<std::uint8_t>(v + dv);
+    const std::uint8_t* up = gray.ptr<std::uint8_t>(v + dv - 1);
+    const std::uint8_t* down = gray.ptr<std::uint8_t>(v + dv + 1);
+    for (int du = -3; du <= 3; ++du) {
+      const int x = u + du;
+      const double gx = 0.5 * (row[x + 1] - row[x - 1]), gy = 0.5 * (down[x] - up[x]);
+      xx += gx * gx, xy += gx * gy, yy += gy * gy;
+    }
+  }
+  xx /= 49, xy /= 49, yy /= 49;
+  return 0.5 * (xx + yy) - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
+}
+
+}  // namespace
+
+BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
+                              const cv::Mat& depth, const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,
+                              const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
+                              const CornerTrackingOptions& lk, const ReprojectionOptions& reprojection,
+                              const BaselineTrackOptions& options) {
+  options.check();
+  core::require(!pyramid.empty() && !baseline_pyramid.empty() && pyramid.front().size() == baseline_pyramid.front().size(),
+                "baselineMotion: both pyramids must be built, from images of one size");
+  core::require(depth.type() == CV_32F && depth.size() == pyramid.front().size(),
+                "baselineMotion: depth must be CV_32F metres of the image size");
+  BaselineMotion out;
+  const std::vector<FollowedPoint> followed = followIntoBaseline(points, pyramid, depth, T_cw, baseline_pyramid,
+                                                                 T_cw_baseline, camera, lk, reprojection);
   // 3. What the two tracked poses' relative error does to every point alike: the median residual (a small rotation
   // error shifts the image nearly uniformly, ~1 px per 0.1 deg), and the points' noise around it. Not a 6-DoF pose
   // refit: where the scene is two planes (a door and its wall) a translation and a rotation together explain a
   // mover's sideways shift exactly, and a refit would absorb it.
-  const std::vector<std::optional<Eigen::Vector2d>> residuals =
-      reprojectionResiduals(tracks, tracked_w, T_cw_baseline, camera);
-  std::vector<double> rx, ry;
-  for (const auto& r : residuals)
-    if (r) rx.push_back(r->x()), ry.push_back(r->y());
-  out.ok = static_cast<int>(rx.size()) >= reprojection.refit_min_points;
+  out.ok = static_cast<int>(followed.size()) >= reprojection.refit_min_points;
   if (!out.ok) return out;
+  std::vector<double> rx, ry;
+  for (const FollowedPoint& f : followed) rx.push_back(f.residual.x()), ry.push_back(f.residual.y());
   out.shift_px = Eigen::Vector2d(upperMedian(std::move(rx)), upperMedian(std::move(ry)));
   std::vector<double> norms;
-  for (const auto& r : residuals)
-    if (r) norms.push_back((*r - out.shift_px).norm());
+  for (const FollowedPoint& f : followed) norms.push_back((f.residual - out.shift_px).norm());
   out.sigma_px = pixelNoiseScale(std::move(norms));  // as refitPose
   out.bar_px = std::max(options.min_motion_px, options.sigmas * out.sigma_px);
   // 4. Moving: beyond the bar around the common shift.
-  out.points.reserve(tracks.size());
-  for (std::size_t k = 0; k < tracks.size(); ++k) {
-    if (!residuals[k]) continue;
-    BaselinePoint p;
-    p.current = tracks[k].last;
-    p.found = tracks[k].current;
-    p.residual_px = (*residuals[k] - out.shift_px).norm();
-    p.moving = p.residual_px > out.bar_px;
-    out.moving_points += p.moving;
-    out.points.push_back(p);
-  }
+  classifyInto(followed, out);
   return out;
+}
+
+int densifyBaselineMotion(BaselineMotion& motion, const ImagePyramid& pyramid, const cv::Mat& depth,
+                          const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,
+                          const core::SE3& T_cw_baseline, const core::PinholeCamera& camera, const cv::Mat& labels,
+                          int count, const SuperpixelGraph* graph, const CornerTrackingOptions& lk,
+                          const ReprojectionOptions& reprojection, const BaselineTrackOptions& options) {
+  core::require(labels.type() == CV_32S && !pyramid.empty() && labels.size() == pyramid.front().size(),
+                "densifyBaselineMotion: labels must be CV_32S of the image size");
+  core::require(graph == nullptr || static_cast<int>(graph->neighbours.size()) == count,
+                "densifyBaselineMotion: the graph must be of these superpixels");
+  if (!motion.ok || motion.moving_points == 0 || options.densify_points <= 0) return 0;
+  // The superpixels to measure: those holding a moving point, and their neighbours on the same surface.
+  std::vector<bool> target(count, false);
+  std::vector<std::vector<cv::Point2f>> taken(count);  // points already followed there
+  for (const BaselinePoint& p : motion.points) {
+    const int s = labelAt(labels, p.current);
+    if (s < 0 || s >= count) continue;
+    taken[s].push_back(p.current);
+    if (!p.moving || target[s]) continue;
+    target[s] = true;
+  }
+  if (graph != nullptr) {
+    const std::vector<bool> seeds = target;
+    for (int s = 0; s < count; ++s) {
+      if (!seeds[s]) continue;
+      const std::vector<int>& neighbours = graph->neighbours[s];
+      for (std::size_t k = 0; k < neighbours.size(); ++k)
+        if (!graph->occlusion_edges[s][k]) target[neighbours[k]] = true;
+    }
+  }
+  // Candidates on a grid, the best textured first, per target superpixel.
+  const cv::Mat& gray = pyramid.front();
+  const double min_texture = options.densify_min_gradient * options.densify_min_gradient;
+  const int margin = lk.lk_window / 2 + 4;
+  std::vector<std::vector<std::pair<double, cv::Point2f>>> candidates(count);
+  for (int v = margin; v < gray.rows - margin; v += options.densify_grid_px) {
+    const int* row = labels.ptr<int>(v);
+    for (int u = margin; u < gray.cols - margin; u += options.densify_grid_px) {
+      const int s = row[u];
+      if (s < 0 || s >= count || !target[s]) continue;
+      const double texture = windowTexture(gray, u, v);
+      if (texture >= min_texture) candidates[s].emplace_back(texture, cv::Point2f(static_cast<float>(u), static_cast<float>(v)));
+    }
+  }
+  // Up to densify_points per superpixel, apart from each other and from the points already there by the LK
+  // window's radius, so that each is an independent measurement.
+  const float spacing2 = static_cast<float>((lk.lk_window / 2) * (lk.lk_window / 2));
+  std::vector<cv::Point2f> extra;
+  for (int s = 0; s < count; ++s) {
+    if (candidates[s].empty()) continue;
+    std::sort(candidates[s].begin(), candidates[s].end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    int added = 0;
+    for (const auto& [texture, p] : candidates[s]) {
+      if (added >= options.densify_points) break;
+      const bool near = std::any_of(taken[s].begin(), taken[s].end(), [&](const cv::Point2f& q) {
+        const cv::Point2f d = p - q;
+        return d.dot(d) < spacing2;
+      });
+      if (near) continue;
+      taken[s].push_back(p);
+      extra.push_back(p);
+      ++added;
+    }
+  }
+  if (extra.empty()) return 0;
+  const std::vector<FollowedPoint> followed = followIntoBaseline(extra, pyramid, depth, T_cw, baseline_pyramid,
+                                                                 T_cw_baseline, camera, lk, reprojection);
+  classifyInto(followed, motion);
+  return static_cast<int>(followed.size());
 }
 
 std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
@@ -193,6 +315,11 @@ std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const 
     out[s] = moving >= (pool ? options.pooled_votes : options.min_votes) && moving > still;
   }
   return out;
+}
+
+std::vector<int> baselinePointsPerSuperpixel(const BaselineMotion& motion, const cv::Mat& labels, int count) {
+  core::require(labels.type() == CV_32S, "baselinePointsPerSuperpixel: labels must be CV_32S");
+  return votesPerLabel(motion, labels, count).all;
 }
 
 std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,

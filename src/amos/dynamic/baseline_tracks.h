@@ -63,6 +63,28 @@ struct BaselineTrackOptions {
   // one more than minVotes, as it draws on ~6 superpixels instead of one (on the first 50 frames of TUM fr2/desk,
   // static, 2 gave 3.2 % of the pixels marked against 2.6 % without pooling, 3 gave 2.8 %).
   int pooled_votes = 3;
+  // Dynamic.BaselineTracks.densifyPoints: where a point moved, more points are followed: in the superpixel of every
+  // moving point and in its neighbours on the same surface (no occlusion edge between them), up to this many each,
+  // the best textured first (densifyBaselineMotion). The corners are ~1 per superpixel on a door leaf, too sparse
+  // for two votes; pooling the neighbours' votes instead (poolNeighbours) lent a mover's points to the static floor
+  // beside it, whereas a measured floor superpixel votes with its own points. 0 = off.
+  int densify_points = 0;
+  // Dynamic.BaselineTracks.densifyGrid: candidate pixels lie on a grid of this step [px].
+  int densify_grid_px = 4;
+  // Dynamic.BaselineTracks.densifyMinGradient: a candidate needs at least this RMS intensity gradient [grey levels
+  // per px] in its weakest direction over 7x7 px (Shi-Tomasi's smaller eigenvalue, square-rooted): at 4 the image
+  // noise of a few grey levels moves LK by well under the 2 px bar over an 11x11 window; flat or edge-only patches
+  // (the aperture problem) are left out.
+  double densify_min_gradient = 4.0;
+  // Dynamic.BaselineTracks.growOverSurface: the mask may grow from a superpixel the long-baseline points move over
+  // the superpixels of the same surface that nothing measured (no track vote, no long-baseline point), through
+  // borders that are not occlusion edges and between superpixels at most growDissimilarity apart, even outside
+  // the dynamic clusters (mask_building.h). The plain panel of a door gives no point to follow and shares its
+  // decision clusters with the wall it swings in front of, so only its sign and edges were marked.
+  bool grow_over_surface = false;
+  // Dynamic.BaselineTracks.growDissimilarity: Eq. 1 without the position term (superpixelDissimilarity); 1 = a colour
+  // difference of colourScale Lab units, or a depth step of depthScale (10 cm), the unit of SLIC's own distance.
+  double grow_dissimilarity = 1.0;
   void check() const;
 };
 
@@ -98,12 +120,26 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
                               const CornerTrackingOptions& lk, const ReprojectionOptions& reprojection,
                               const BaselineTrackOptions& options);
 
+// Where `motion` found moving points, more points: in each superpixel (labels: CV_32S, count labels) holding a moving
+// point and its neighbours across non-occlusion borders (graph; null: the superpixel alone), up to
+// options.densify_points grid pixels of enough texture, apart from the points there by LK's window radius; followed
+// into the baseline frame as in baselineMotion and judged against its shift and bar (not re-estimated: the first
+// points are spread over the image, these are not). Appended to motion.points; returns how many were followed.
+int densifyBaselineMotion(BaselineMotion& motion, const ImagePyramid& pyramid, const cv::Mat& depth,
+                          const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,
+                          const core::SE3& T_cw_baseline, const core::PinholeCamera& camera, const cv::Mat& labels,
+                          int count, const SuperpixelGraph* graph, const CornerTrackingOptions& lk,
+                          const ReprojectionOptions& reprojection, const BaselineTrackOptions& options);
+
 // Per superpixel (labels: CV_32S, count labels): whether at least options.min_votes of its points move and they
 // outnumber its static ones. With options.pool_neighbours and a graph of these superpixels, the points of its
 // neighbours across non-occlusion borders count too, unless its own points are mostly static.
 std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
                                             const BaselineTrackOptions& options,
                                             const SuperpixelGraph* graph = nullptr);
+
+// Per superpixel (labels: CV_32S, count labels): how many of motion's points lie on it.
+std::vector<int> baselinePointsPerSuperpixel(const BaselineMotion& motion, const cv::Mat& labels, int count);
 
 // Per cluster (decision_map: CV_32S, -1 = takes no part; num_clusters): whether at least options.min_votes of its
 // points move and they are at least options.cluster_share of its points.

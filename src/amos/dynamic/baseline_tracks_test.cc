@@ -236,6 +236,79 @@ TEST(BaselineTracks, ASuperpixelWhosePointsStayIsNotMovedByItsNeighbours) {
             (std::vector<bool>{true, false, false, false}));
 }
 
+TEST(BaselineTracks, WhereAPointMovedMorePointsAreFollowed) {
+  // Of the box's corners only one is followed (a door leaf's plain panel: ~1 point per superpixel survives ten
+  // frames): its block has one moving vote, not the two it needs. Densifying follows up to four more points in
+  // that block and its neighbours: the box's blocks then move on votes of their own, the wall's stay.
+  Scene s;
+  std::vector<cv::Point2f> corners;
+  s.motion(-0.012, 0.0, core::SE3::Identity(), &corners);
+  std::vector<cv::Point2f> sparse;
+  bool kept_one = false;
+  const cv::Point2f centre(320.f, 240.f);
+  cv::Point2f kept;
+  for (const cv::Point2f& c : corners) {
+    if (!onBoxInside(s.camera, s.c_now, 0.0, c)) {
+      if (awayFromBox(s.camera, s.c_now, c)) sparse.push_back(c);
+    } else if (!kept_one && cv::norm(c - centre) < 20) {
+      sparse.push_back(c);
+      kept = c;
+      kept_one = true;
+    }
+  }
+  ASSERT_TRUE(kept_one);
+  const Frame before = render(s.camera, s.c_before, -0.012), now = render(s.camera, s.c_now, 0.0);
+  const ImagePyramid pyramid = buildPyramid(now.gray, s.options.tracking),
+                     baseline_pyramid = buildPyramid(before.gray, s.options.tracking);
+  BaselineMotion m = baselineMotion(sparse, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid,
+                                    poseAt(s.c_before), s.camera, s.options.tracking, s.options.reprojection,
+                                    s.options.baseline_tracks);
+  ASSERT_TRUE(m.ok);
+  ASSERT_EQ(m.moving_points, 1);
+  int count = 0;
+  const cv::Mat labels = blockLabels(s.camera, count);
+  SuperpixelGraph graph;
+  graph.neighbours = superpixelNeighbours(labels, count);
+  for (const auto& n : graph.neighbours) graph.occlusion_edges.emplace_back(n.size(), false);
+  // The block of the one moving point (not necessarily the block whose corner is the image centre).
+  const int centre_block = labels.at<int>(cvRound(kept.y), cvRound(kept.x)), wall_block = labels.at<int>(40, 40);
+  BaselineTrackOptions o = s.options.baseline_tracks;
+  EXPECT_FALSE(baselineMovingSuperpixels(m, labels, count, o)[centre_block]);
+  // Off (the default): nothing added.
+  BaselineMotion unchanged = m;
+  EXPECT_EQ(densifyBaselineMotion(unchanged, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid,
+                                  poseAt(s.c_before), s.camera, labels, count, &graph, s.options.tracking,
+                                  s.options.reprojection, o),
+            0);
+  o.densify_points = 4;
+  const std::size_t before_count = m.points.size();
+  const int added = densifyBaselineMotion(m, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid,
+                                          poseAt(s.c_before), s.camera, labels, count, &graph, s.options.tracking,
+                                          s.options.reprojection, o);
+  EXPECT_GT(added, 12);                        // the block and its eight-ish neighbours, up to four each
+  EXPECT_LE(added, 4 * 5);                     // 4-connected: itself and four neighbours
+  EXPECT_EQ(m.points.size(), before_count + static_cast<std::size_t>(added));
+  const std::vector<bool> moving = baselineMovingSuperpixels(m, labels, count, o);
+  EXPECT_TRUE(moving[centre_block]);
+  EXPECT_FALSE(moving[wall_block]);
+  for (std::size_t i = before_count; i < m.points.size(); ++i) {
+    const BaselinePoint& p = m.points[i];
+    if (onBoxInside(s.camera, s.c_now, 0.0, p.current)) {
+      EXPECT_TRUE(p.moving) << p.current;
+    }
+    if (awayFromBox(s.camera, s.c_now, p.current)) {
+      EXPECT_FALSE(p.moving) << p.current;
+    }
+  }
+  // Nothing moved, nothing to densify.
+  BaselineMotion still = baselineMotion(sparse, pyramid, now.depth, poseAt(s.c_now), pyramid, poseAt(s.c_now),
+                                        s.camera, s.options.tracking, s.options.reprojection, o);
+  ASSERT_TRUE(still.ok);
+  EXPECT_EQ(densifyBaselineMotion(still, pyramid, now.depth, poseAt(s.c_now), pyramid, poseAt(s.c_now), s.camera,
+                                  labels, count, &graph, s.options.tracking, s.options.reprojection, o),
+            0);
+}
+
 TEST(BaselineTracks, OptionsAreChecked) {
   BaselineTrackOptions o;
   o.min_votes = 0;
@@ -245,6 +318,15 @@ TEST(BaselineTracks, OptionsAreChecked) {
   EXPECT_THROW(o.check(), core::InvalidOption);
   o = {};
   o.pooled_votes = 0;
+  EXPECT_THROW(o.check(), core::InvalidOption);
+  o = {};
+  o.densify_points = -1;
+  EXPECT_THROW(o.check(), core::InvalidOption);
+  o = {};
+  o.densify_grid_px = 0;
+  EXPECT_THROW(o.check(), core::InvalidOption);
+  o = {};
+  o.grow_dissimilarity = -1;
   EXPECT_THROW(o.check(), core::InvalidOption);
   DynamicOptions d;
   d.baseline_tracks.enabled = true;

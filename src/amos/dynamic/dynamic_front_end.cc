@@ -143,28 +143,36 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   // back, for movers too slow for one frame.
   BaselineMotion baseline;
   std::vector<bool> baseline_moving;
+  std::vector<int> baseline_points;  // per superpixel, for growOverSurface
   if (options_.baseline_tracks.enabled && !in.baseline_gray.empty()) {
     std::vector<cv::Point2f> points;
     points.reserve(out.tracks.size());
     for (const PointTrack& t : out.tracks) points.push_back(t.current);
-    baseline = !in.pyramid.empty() && !in.baseline_pyramid.empty()
-                   ? baselineMotion(points, in.pyramid, in.depth, confirmation.refit.T_cw, in.baseline_pyramid,
-                                    in.T_cw_baseline, camera_, options_.tracking, options_.reprojection,
-                                    options_.baseline_tracks)
-                   : baselineMotion(points, in.gray, in.depth, confirmation.refit.T_cw, in.baseline_gray,
-                                    in.T_cw_baseline, camera_, options_.tracking, options_.reprojection,
-                                    options_.baseline_tracks);
+    // The pipeline's stage A builds the pyramids; otherwise they are built here.
+    const bool have_pyramids = !in.pyramid.empty() && !in.baseline_pyramid.empty();
+    const ImagePyramid pyramid = have_pyramids ? in.pyramid : buildPyramid(in.gray, options_.tracking);
+    const ImagePyramid baseline_pyramid =
+        have_pyramids ? in.baseline_pyramid : buildPyramid(in.baseline_gray, options_.tracking);
+    baseline = baselineMotion(points, pyramid, in.depth, confirmation.refit.T_cw, baseline_pyramid, in.T_cw_baseline,
+                              camera_, options_.tracking, options_.reprojection, options_.baseline_tracks);
+    // The pipeline's stage A computes the graph with the partition; otherwise it is computed here only when the
+    // vote pools over it or moving points are densified (mask building computes its own when it needs one).
+    const int superpixels = static_cast<int>(partition.segmentation.superpixels.size());
+    std::optional<SuperpixelGraph> own_graph;
+    const bool densify = options_.baseline_tracks.densify_points > 0 && baseline.ok && baseline.moving_points > 0;
+    if (!partition.graph && (options_.baseline_tracks.pool_neighbours || densify))
+      own_graph = superpixelGraph(partition.segmentation, in.depth, options_.reprojection.depth_edge_ratio);
+    const SuperpixelGraph* graph = partition.graph ? &*partition.graph : own_graph ? &*own_graph : nullptr;
+    diag.baseline_dense_points =
+        densifyBaselineMotion(baseline, pyramid, in.depth, confirmation.refit.T_cw, baseline_pyramid,
+                              in.T_cw_baseline, camera_, partition.segmentation.labels, superpixels, graph,
+                              options_.tracking, options_.reprojection, options_.baseline_tracks);
     diag.baseline_points = static_cast<int>(baseline.points.size());
     diag.baseline_moving_points = baseline.moving_points;
-    // The pipeline's stage A computes the graph with the partition; otherwise it is computed here only when the
-    // vote pools over it (mask building computes its own when it needs one).
-    std::optional<SuperpixelGraph> own_graph;
-    if (!partition.graph && options_.baseline_tracks.pool_neighbours)
-      own_graph = superpixelGraph(partition.segmentation, in.depth, options_.reprojection.depth_edge_ratio);
-    baseline_moving = baselineMovingSuperpixels(baseline, partition.segmentation.labels,
-                                                static_cast<int>(partition.segmentation.superpixels.size()),
-                                                options_.baseline_tracks,
-                                                partition.graph ? &*partition.graph : own_graph ? &*own_graph : nullptr);
+    baseline_moving = baselineMovingSuperpixels(baseline, partition.segmentation.labels, superpixels,
+                                                options_.baseline_tracks, graph);
+    if (options_.baseline_tracks.grow_over_surface)
+      baseline_points = baselinePointsPerSuperpixel(baseline, partition.segmentation.labels, superpixels);
     lap("baseline_tracks");
   }
 
@@ -190,7 +198,8 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
       }
   }
   const DynamicMask mask = buildDynamicMask(in, out.tracks, partition, regions, candidates, confirmation, epipolar,
-                                            voting, judged_prior, depth_moving, options_, diag, baseline_moving);
+                                            voting, judged_prior, depth_moving, options_, diag, baseline_moving,
+                                            baseline_points);
   cv::bitwise_or(out.mask, mask.mask, out.mask);
   lap("decision");
 

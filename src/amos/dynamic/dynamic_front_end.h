@@ -98,6 +98,7 @@ struct DynamicDiagnostics {
   int depth_dynamic_clusters = 0;    // clusters made dynamic by the depth evidence alone
   int baseline_points = 0;              // points followed into the baseline frame (baseline_tracks.h; 0 when off)
   int baseline_moving_points = 0;       // of which moving
+  int baseline_dense_points = 0;        // of those, followed where points moved (densifyBaselineMotion)
   int baseline_dynamic_clusters = 0;    // clusters made dynamic by the long-baseline tracks alone
   int prior_regions = 0;          // connected components of the prior mask
   int dynamic_prior_regions = 0;  // of which kept in the mask

@@ -1,5 +1,7 @@
 #include "amos/dynamic/mask_building.h"
 
+#include "amos/core/error.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -94,7 +96,8 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
                                      bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
                                      const SuperpixelGraph* graph, const std::vector<bool>& depth_moving,
-                                     const std::vector<bool>& baseline_moving) {
+                                     const std::vector<bool>& baseline_moving,
+                                     const std::vector<int>& baseline_points) {
   const int count = static_cast<int>(segmentation.superpixels.size());
   SuperpixelGraph computed;
   if (graph == nullptr) computed = superpixelGraph(segmentation, depth, options.reprojection.depth_edge_ratio);
@@ -112,6 +115,12 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   std::vector<bool> may_be_dynamic(count);
   for (int s = 0; s < count; ++s)
     may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
+  if (options.baseline_tracks.grow_over_surface && !baseline_moving.empty()) {
+    const std::vector<bool> surface = surfaceFromMovingSeeds(
+        segmentation.superpixels, g, seeds, border, baseline_moving, baseline_points,
+        options.superpixel.colour_scale, options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity);
+    for (int s = 0; s < count; ++s) may_be_dynamic[s] = may_be_dynamic[s] || surface[s];
+  }
   const std::vector<RegionLabel> labels =
       growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,
                   options.superpixel.depth_scale_m, g.occlusion_edges);
@@ -120,13 +129,45 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   return dynamic;
 }
 
+std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
+                                         const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
+                                         const std::vector<bool>& baseline_moving,
+                                         const std::vector<int>& baseline_points, double colour_scale,
+                                         double depth_scale_m, double max_dissimilarity) {
+  const std::size_t count = superpixels.size();
+  core::require(graph.neighbours.size() == count && seeds.size() == count,
+                "surfaceFromMovingSeeds: the graph and the seeds must be of these superpixels");
+  auto flag = [](const std::vector<bool>& v, std::size_t s) { return s < v.size() && v[s]; };
+  std::vector<bool> reached(count, false);
+  std::vector<int> queue;
+  for (std::size_t s = 0; s < count; ++s)
+    if (flag(baseline_moving, s) && !flag(border, s)) reached[s] = true, queue.push_back(static_cast<int>(s));
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const int s = queue[head];
+    const std::vector<int>& neighbours = graph.neighbours[s];
+    for (std::size_t k = 0; k < neighbours.size(); ++k) {
+      const int n = neighbours[k];
+      if (reached[n] || graph.occlusion_edges[s][k] || flag(border, n)) continue;
+      // Measured superpixels speak for themselves: a track's vote or a long-baseline point that did not move.
+      if (seeds[n] != RegionLabel::kUnlabelled) continue;
+      if (n < static_cast<int>(baseline_points.size()) && baseline_points[n] > 0) continue;
+      if (superpixelDissimilarity(superpixels[s], superpixels[n], colour_scale, depth_scale_m) > max_dissimilarity)
+        continue;
+      reached[n] = true;
+      queue.push_back(n);
+    }
+  }
+  return reached;
+}
+
 DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<PointTrack>& tracks,
                              const GeometricPartition& partition, const DecisionRegions& regions,
                              const CandidateScoring& candidates, const PoseConfirmation& confirmation,
                              const EpipolarEvidence& epipolar, const ClusterVoting& voting,
                              const PriorRegions& judged_prior, const std::vector<bool>& depth_moving,
                              const DynamicOptions& options, DynamicDiagnostics& diag,
-                             const std::vector<bool>& baseline_moving) {
+                             const std::vector<bool>& baseline_moving,
+                             const std::vector<int>& baseline_points) {
   DynamicMask out;
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
   const SuperpixelSegmentation& segmentation = partition.segmentation;
@@ -147,7 +188,7 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
     out.dynamic_superpixel =
         dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
                            seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr,
-                           depth_moving, baseline_moving);
+                           depth_moving, baseline_moving, baseline_points);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);

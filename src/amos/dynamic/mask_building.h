@@ -42,13 +42,27 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 // superpixel that the tracks leave unlabelled is a dynamic seed (border superpixels excepted).
 // `baseline_moving`: per superpixel, whether its points moved over the long baseline (baseline_tracks.h; empty =
 // none): such a superpixel is a dynamic seed whatever its one-frame votes say (border superpixels excepted).
+// `baseline_points`: per superpixel, how many long-baseline points lie on it (empty = none); with
+// Dynamic.BaselineTracks.growOverSurface the dynamic label may also enter, outside the dynamic clusters, the
+// superpixels that neither a track nor a long-baseline point measured and that are reached from a baseline-moving
+// seed through non-occlusion borders, each step between superpixels at most growDissimilarity apart
+// (surfaceFromMovingSeeds).
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
                                      bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
                                      const SuperpixelGraph* graph = nullptr,
                                      const std::vector<bool>& depth_moving = {},
-                                     const std::vector<bool>& baseline_moving = {});
+                                     const std::vector<bool>& baseline_moving = {},
+                                     const std::vector<int>& baseline_points = {});
+
+// The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
+// dynamicSuperpixels): breadth-first from the baseline-moving seeds over unmeasured, non-border superpixels.
+std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
+                                         const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
+                                         const std::vector<bool>& baseline_moving,
+                                         const std::vector<int>& baseline_points, double colour_scale,
+                                         double depth_scale_m, double max_dissimilarity);
 
 struct DynamicMask {
   cv::Mat mask;                          // CV_8U, 255 = dynamic
@@ -64,6 +78,7 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
                              const EpipolarEvidence& epipolar, const ClusterVoting& voting,
                              const PriorRegions& judged_prior, const std::vector<bool>& depth_moving,
                              const DynamicOptions& options, DynamicDiagnostics& diag,
-                             const std::vector<bool>& baseline_moving = {});
+                             const std::vector<bool>& baseline_moving = {},
+                             const std::vector<int>& baseline_points = {});
 
 }  // namespace amos::dynamic

@@ -93,6 +93,53 @@ TEST(MaskBuilding, ADynamicSeedGrowsOverItsClusterAndAStaticOneHoldsTheOther) {
             std::vector<bool>(16, false));
 }
 
+TEST(MaskBuilding, LongBaselineMotionGrowsOverTheUnmeasuredSurfaceAroundIt) {
+  // No dynamic cluster; the long-baseline points of superpixel 5 (dark cluster 0) moved. Superpixel 9 below it, as
+  // dark and unmeasured (a door's plain panel), may take the dynamic label with growOverSurface; superpixel 6 (bright
+  // cluster 1) is another surface.
+  const GeometricPartition partition = blockPartition();
+  const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);  // all but 5, 6, 9, 10
+  const cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
+  std::vector<bool> baseline_moving(16, false);
+  baseline_moving[5] = true;
+  std::vector<int> baseline_points(16, 0);
+  baseline_points[5] = 3;
+  DynamicOptions options;
+  std::vector<bool> only_5(16, false);
+  only_5[5] = true;
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+                               nullptr, {}, baseline_moving, baseline_points),
+            only_5);
+  options.baseline_tracks.grow_over_surface = true;
+  std::vector<bool> five_and_nine = only_5;
+  five_and_nine[9] = true;
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+                               nullptr, {}, baseline_moving, baseline_points),
+            five_and_nine);
+  // A long-baseline point that stayed on 9 measures it: the growth does not enter it.
+  baseline_points[9] = 1;
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+                               nullptr, {}, baseline_moving, baseline_points),
+            only_5);
+  // Nor across an occlusion edge, nor into a track-seeded superpixel, nor a step too unlike.
+  baseline_points[9] = 0;
+  SuperpixelGraph graph = superpixelGraph(partition.segmentation, depth, options.reprojection.depth_edge_ratio);
+  const std::vector<RegionLabel> unseeded(16, RegionLabel::kUnlabelled);
+  auto surface = [&](const SuperpixelGraph& g, const std::vector<RegionLabel>& seeds, double max_step) {
+    return surfaceFromMovingSeeds(partition.segmentation.superpixels, g, seeds, border, baseline_moving,
+                                  baseline_points, options.superpixel.colour_scale, options.superpixel.depth_scale_m,
+                                  max_step);
+  };
+  EXPECT_EQ(surface(graph, unseeded, 1.0), five_and_nine);
+  EXPECT_EQ(surface(graph, unseeded, 10.0)[6], true);  // L 20 -> 80: 6 units of colourScale
+  std::vector<RegionLabel> static_9 = unseeded;
+  static_9[9] = RegionLabel::kStatic;
+  EXPECT_EQ(surface(graph, static_9, 1.0), only_5);
+  for (std::size_t k = 0; k < graph.neighbours[5].size(); ++k)
+    if (graph.neighbours[5][k] == 9) graph.occlusion_edges[5][k] = true;
+  EXPECT_EQ(surface(graph, unseeded, 1.0), only_5);
+}
+
 TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
   const DynamicFrameInput in = wallFramePair({40, 40}, 2.f);
   const GeometricPartition partition = blockPartition();
