@@ -31,9 +31,10 @@ namespace {
 struct LabelVotes {
   std::vector<int> moving, all;
 };
-LabelVotes votesPerLabel(const BaselineMotion& motion, const cv::Mat& labels, int count) {
+LabelVotes votesPerLabel(const BaselineMotion& motion, const cv::Mat& labels, int count, bool with_densified = true) {
   LabelVotes votes{std::vector<int>(count, 0), std::vector<int>(count, 0)};
   for (const BaselinePoint& p : motion.points) {
+    if (p.densified && !with_densified) continue;
     const int label = labelAt(labels, p.current);
     if (label < 0 || label >= count) continue;
     ++votes.all[label];
@@ -81,12 +82,24 @@ struct FollowedPoint {
   Eigen::Vector2d residual;
 };
 
-// Steps 1 and 2 of the header for `points`, and their residuals.
+// Whether the baseline frame saw the point predicted at `at` with depth `z` there: its measured depth is not nearer
+// by more than max(2 cm, 4 % of z) (the depth evidence's free-space floor over the baseline, depth_evidence.h), i.e.
+// nothing stood in front of it (a walker who has since uncovered it), and it is measured at all.
+bool visibleInBaseline(const cv::Mat& baseline_depth, cv::Point2f at, double z) {
+  const int u = cvRound(at.x), v = cvRound(at.y);
+  if (u < 0 || v < 0 || u >= baseline_depth.cols || v >= baseline_depth.rows) return false;
+  const float measured = baseline_depth.at<float>(v, u);
+  return measured > 0 && measured >= z - std::max(0.02, 0.04 * z);
+}
+
+// Steps 1 and 2 of the header for `points`, and their residuals. With baseline_depth (CV_32F metres), only points
+// that the baseline frame saw (visibleInBaseline) are followed.
 std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
                                               const cv::Mat& depth, const core::SE3& T_cw,
                                               const ImagePyramid& baseline_pyramid, const core::SE3& T_cw_baseline,
                                               const core::PinholeCamera& camera, const CornerTrackingOptions& lk,
-                                              const ReprojectionOptions& reprojection) {
+                                              const ReprojectionOptions& reprojection,
+                                              const cv::Mat& baseline_depth = cv::Mat()) {
   const cv::Mat& gray = pyramid.front();
   std::vector<FollowedPoint> out;
   // 1. The static world's prediction: lifted with the current depth, projected into the baseline frame.
@@ -96,6 +109,7 @@ std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& po
       backProjectTracks(lifted, depth, T_cw, camera, reprojection);
   std::vector<cv::Point2f> from, predicted_undistorted;
   std::vector<Eigen::Vector3d> world;
+  std::vector<double> predicted_z;  // depth in the baseline frame
   const int window_radius = lk.lk_window / 2;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!points_w[i] || windowOnDepthEdge(depth, points[i], window_radius, reprojection.depth_edge_ratio)) continue;
@@ -105,6 +119,7 @@ std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& po
     predicted_undistorted.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()));
     from.push_back(points[i]);
     world.push_back(*points_w[i]);
+    predicted_z.push_back(p_b.z());
   }
   if (from.empty()) return out;
   const std::vector<cv::Point2f> predicted = camera.distort(predicted_undistorted);
@@ -117,6 +132,7 @@ std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& po
   std::vector<Eigen::Vector3d> start_world;
   for (std::size_t k = 0; k < from.size(); ++k) {
     if (!inside.contains(predicted[k])) continue;
+    if (!baseline_depth.empty() && !visibleInBaseline(baseline_depth, predicted[k], predicted_z[k])) continue;
     start.push_back(from[k]);
     guess.push_back(predicted[k]);
     start_world.push_back(world[k]);
@@ -154,7 +170,7 @@ std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& po
 }
 
 // Step 4 for followed points, against the common shift and bar of `motion`, appended to it.
-void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& motion) {
+void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& motion, bool densified = false) {
   motion.points.reserve(motion.points.size() + followed.size());
   for (const FollowedPoint& f : followed) {
     BaselinePoint p;
@@ -162,6 +178,7 @@ void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& mo
     p.found = f.found;
     p.residual_px = (f.residual - motion.shift_px).norm();
     p.moving = p.residual_px > motion.bar_px;
+    p.densified = densified;
     motion.moving_points += p.moving;
     motion.points.push_back(p);
   }
@@ -220,12 +237,14 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
 }
 
 int densifyBaselineMotion(BaselineMotion& motion, const ImagePyramid& pyramid, const cv::Mat& depth,
-                          const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,
+                          const core::SE3& T_cw, const ImagePyramid& baseline_pyramid, const cv::Mat& baseline_depth,
                           const core::SE3& T_cw_baseline, const core::PinholeCamera& camera, const cv::Mat& labels,
                           int count, const SuperpixelGraph* graph, const CornerTrackingOptions& lk,
                           const ReprojectionOptions& reprojection, const BaselineTrackOptions& options) {
   core::require(labels.type() == CV_32S && !pyramid.empty() && labels.size() == pyramid.front().size(),
                 "densifyBaselineMotion: labels must be CV_32S of the image size");
+  core::require(baseline_depth.empty() || (baseline_depth.type() == CV_32F && baseline_depth.size() == labels.size()),
+                "densifyBaselineMotion: baseline_depth must be empty or CV_32F metres of the image size");
   core::require(graph == nullptr || static_cast<int>(graph->neighbours.size()) == count,
                 "densifyBaselineMotion: the graph must be of these superpixels");
   if (!motion.ok || motion.moving_points == 0 || options.densify_points <= 0) return 0;
@@ -285,8 +304,9 @@ int densifyBaselineMotion(BaselineMotion& motion, const ImagePyramid& pyramid, c
   }
   if (extra.empty()) return 0;
   const std::vector<FollowedPoint> followed = followIntoBaseline(extra, pyramid, depth, T_cw, baseline_pyramid,
-                                                                 T_cw_baseline, camera, lk, reprojection);
-  classifyInto(followed, motion);
+                                                                 T_cw_baseline, camera, lk, reprojection,
+                                                                 baseline_depth);
+  classifyInto(followed, motion, /*densified=*/true);
   return static_cast<int>(followed.size());
 }
 
@@ -297,22 +317,31 @@ std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const 
   core::require(!pool || (static_cast<int>(graph->neighbours.size()) == count &&
                           static_cast<int>(graph->occlusion_edges.size()) == count),
                 "baselineMovingSuperpixels: the graph must be of these superpixels");
-  const LabelVotes votes = votesPerLabel(motion, labels, count);
-  std::vector<bool> out(count, false);
-  for (int s = 0; s < count; ++s) {
-    const int own_moving = votes.moving[s], own_still = votes.all[s] - own_moving;
-    int moving = own_moving, still = own_still;
-    if (pool) {
-      if (own_still > own_moving) continue;  // its own points say static: the neighbours do not overrule them
-      const std::vector<int>& neighbours = graph->neighbours[s];
-      for (std::size_t k = 0; k < neighbours.size(); ++k) {
-        if (graph->occlusion_edges[s][k]) continue;  // another surface
-        const int n = neighbours[k];
-        moving += votes.moving[n];
-        still += votes.all[n] - votes.moving[n];
+  const auto decide = [&](const LabelVotes& votes) {
+    std::vector<bool> out(count, false);
+    for (int s = 0; s < count; ++s) {
+      const int own_moving = votes.moving[s], own_still = votes.all[s] - own_moving;
+      int moving = own_moving, still = own_still;
+      if (pool) {
+        if (own_still > own_moving) continue;  // its own points say static: the neighbours do not overrule them
+        const std::vector<int>& neighbours = graph->neighbours[s];
+        for (std::size_t k = 0; k < neighbours.size(); ++k) {
+          if (graph->occlusion_edges[s][k]) continue;  // another surface
+          const int n = neighbours[k];
+          moving += votes.moving[n];
+          still += votes.all[n] - votes.moving[n];
+        }
       }
+      out[s] = moving >= (pool ? options.pooled_votes : options.min_votes) && moving > still;
     }
-    out[s] = moving >= (pool ? options.pooled_votes : options.min_votes) && moving > still;
+    return out;
+  };
+  std::vector<bool> out = decide(votesPerLabel(motion, labels, count, /*with_densified=*/false));
+  // Densified points only add moving superpixels: where the corners alone move a superpixel, static densified
+  // points (its textured static part, or a mover the tracked pose half follows) do not outvote them.
+  if (std::any_of(motion.points.begin(), motion.points.end(), [](const BaselinePoint& p) { return p.densified; })) {
+    const std::vector<bool> dense = decide(votesPerLabel(motion, labels, count));
+    for (int s = 0; s < count; ++s) out[s] = out[s] || dense[s];
   }
   return out;
 }
@@ -325,7 +354,7 @@ std::vector<int> baselinePointsPerSuperpixel(const BaselineMotion& motion, const
 std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,
                                          const BaselineTrackOptions& options) {
   core::require(decision_map.type() == CV_32S, "baselineMovingClusters: the decision map must be CV_32S");
-  const LabelVotes votes = votesPerLabel(motion, decision_map, num_clusters);
+  const LabelVotes votes = votesPerLabel(motion, decision_map, num_clusters, /*with_densified=*/false);
   std::vector<bool> out(num_clusters, false);
   for (int c = 0; c < num_clusters; ++c)
     out[c] = votes.moving[c] >= options.min_votes && votes.moving[c] >= options.cluster_share * votes.all[c];

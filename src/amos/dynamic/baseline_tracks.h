@@ -93,6 +93,9 @@ struct BaselinePoint {
   cv::Point2f found;      // raw pixel where LK found it in the baseline frame
   double residual_px = 0;  // |found - prediction - common shift| (undistorted pixels)
   bool moving = false;
+  // Added by densifyBaselineMotion: chosen where motion was already found, so not a fair sample of a cluster (they
+  // vote per superpixel, not in baselineMovingClusters' share).
+  bool densified = false;
 };
 
 struct BaselineMotion {
@@ -124,16 +127,21 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
 // point and its neighbours across non-occlusion borders (graph; null: the superpixel alone), up to
 // options.densify_points grid pixels of enough texture, apart from the points there by LK's window radius; followed
 // into the baseline frame as in baselineMotion and judged against its shift and bar (not re-estimated: the first
-// points are spread over the image, these are not). Appended to motion.points; returns how many were followed.
+// points are spread over the image, these are not). With baseline_depth (CV_32F metres; empty: no check) only points
+// the baseline frame saw are followed: its depth where the point is predicted is not nearer by more than max(2 cm,
+// 4 %) (a walker stood in front of the floor he has since uncovered; LK would follow him and call the floor moving).
+// Appended to motion.points; returns how many were followed.
 int densifyBaselineMotion(BaselineMotion& motion, const ImagePyramid& pyramid, const cv::Mat& depth,
-                          const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,
+                          const core::SE3& T_cw, const ImagePyramid& baseline_pyramid, const cv::Mat& baseline_depth,
                           const core::SE3& T_cw_baseline, const core::PinholeCamera& camera, const cv::Mat& labels,
                           int count, const SuperpixelGraph* graph, const CornerTrackingOptions& lk,
                           const ReprojectionOptions& reprojection, const BaselineTrackOptions& options);
 
 // Per superpixel (labels: CV_32S, count labels): whether at least options.min_votes of its points move and they
-// outnumber its static ones. With options.pool_neighbours and a graph of these superpixels, the points of its
-// neighbours across non-occlusion borders count too, unless its own points are mostly static.
+// outnumber its static ones, counting the densified points or not (a superpixel is moving either way: they add
+// evidence of motion, they do not outvote the corners). With options.pool_neighbours and a graph of these
+// superpixels, the points of its neighbours across non-occlusion borders count too, unless its own points are
+// mostly static.
 std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
                                             const BaselineTrackOptions& options,
                                             const SuperpixelGraph* graph = nullptr);
@@ -142,7 +150,8 @@ std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const 
 std::vector<int> baselinePointsPerSuperpixel(const BaselineMotion& motion, const cv::Mat& labels, int count);
 
 // Per cluster (decision_map: CV_32S, -1 = takes no part; num_clusters): whether at least options.min_votes of its
-// points move and they are at least options.cluster_share of its points.
+// points move and they are at least options.cluster_share of its points. Densified points do not count: the share
+// is of the corners, spread over the cluster independently of where it moves.
 std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,
                                          const BaselineTrackOptions& options);
 

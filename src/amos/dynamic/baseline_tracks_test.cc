@@ -276,13 +276,13 @@ TEST(BaselineTracks, WhereAPointMovedMorePointsAreFollowed) {
   EXPECT_FALSE(baselineMovingSuperpixels(m, labels, count, o)[centre_block]);
   // Off (the default): nothing added.
   BaselineMotion unchanged = m;
-  EXPECT_EQ(densifyBaselineMotion(unchanged, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid,
+  EXPECT_EQ(densifyBaselineMotion(unchanged, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid, cv::Mat(),
                                   poseAt(s.c_before), s.camera, labels, count, &graph, s.options.tracking,
                                   s.options.reprojection, o),
             0);
   o.densify_points = 4;
   const std::size_t before_count = m.points.size();
-  const int added = densifyBaselineMotion(m, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid,
+  const int added = densifyBaselineMotion(m, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid, cv::Mat(),
                                           poseAt(s.c_before), s.camera, labels, count, &graph, s.options.tracking,
                                           s.options.reprojection, o);
   EXPECT_GT(added, 12);                        // the block and its eight-ish neighbours, up to four each
@@ -300,12 +300,26 @@ TEST(BaselineTracks, WhereAPointMovedMorePointsAreFollowed) {
       EXPECT_FALSE(p.moving) << p.current;
     }
   }
+  // With the baseline's own depth every densified point was seen there: the same points are followed. Where
+  // something stood 30 cm in front of the scene when the baseline was taken, none is (LK would follow the occluder).
+  BaselineMotion seen = baselineMotion(sparse, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid,
+                                       poseAt(s.c_before), s.camera, s.options.tracking, s.options.reprojection, o);
+  BaselineMotion hidden = seen;
+  EXPECT_EQ(densifyBaselineMotion(seen, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid, before.depth,
+                                  poseAt(s.c_before), s.camera, labels, count, &graph, s.options.tracking,
+                                  s.options.reprojection, o),
+            added);
+  const cv::Mat occluder_depth = before.depth - 0.3;
+  EXPECT_EQ(densifyBaselineMotion(hidden, pyramid, now.depth, poseAt(s.c_now), baseline_pyramid, occluder_depth,
+                                  poseAt(s.c_before), s.camera, labels, count, &graph, s.options.tracking,
+                                  s.options.reprojection, o),
+            0);
   // Nothing moved, nothing to densify.
   BaselineMotion still = baselineMotion(sparse, pyramid, now.depth, poseAt(s.c_now), pyramid, poseAt(s.c_now),
                                         s.camera, s.options.tracking, s.options.reprojection, o);
   ASSERT_TRUE(still.ok);
-  EXPECT_EQ(densifyBaselineMotion(still, pyramid, now.depth, poseAt(s.c_now), pyramid, poseAt(s.c_now), s.camera,
-                                  labels, count, &graph, s.options.tracking, s.options.reprojection, o),
+  EXPECT_EQ(densifyBaselineMotion(still, pyramid, now.depth, poseAt(s.c_now), pyramid, cv::Mat(), poseAt(s.c_now),
+                                  s.camera, labels, count, &graph, s.options.tracking, s.options.reprojection, o),
             0);
 }
 

@@ -165,8 +165,8 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     const SuperpixelGraph* graph = partition.graph ? &*partition.graph : own_graph ? &*own_graph : nullptr;
     diag.baseline_dense_points =
         densifyBaselineMotion(baseline, pyramid, in.depth, confirmation.refit.T_cw, baseline_pyramid,
-                              in.T_cw_baseline, camera_, partition.segmentation.labels, superpixels, graph,
-                              options_.tracking, options_.reprojection, options_.baseline_tracks);
+                              in.baseline_depth, in.T_cw_baseline, camera_, partition.segmentation.labels, superpixels,
+                              graph, options_.tracking, options_.reprojection, options_.baseline_tracks);
     diag.baseline_points = static_cast<int>(baseline.points.size());
     diag.baseline_moving_points = baseline.moving_points;
     baseline_moving = baselineMovingSuperpixels(baseline, partition.segmentation.labels, superpixels,
