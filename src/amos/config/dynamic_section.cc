@@ -118,6 +118,11 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.Temporal.excludeFromFits", &o.temporal.exclude_last_mask_from_fits,
         "tracks starting in the last frame's mask take no part in the last-frame initial-pose model, the pose refit "
         "and the F fit");
+  s.add("Dynamic.Temporal.holdFrames", &o.temporal.hold_frames,
+        "0 = off; else a surface found moving in n frames stays dynamic for the n - 1 frames after it was last found, "
+        "at most this many");
+  s.add("Dynamic.Temporal.holdMinFrames", &o.temporal.hold_min_frames,
+        "only a surface found moving in at least this many frames is held (for n - this + 1 frames after n)");
   s.add("Dynamic.Depth.enabled", &o.depth.enabled,
         "superpixels whose depth moved against the last frame's (under the judged pose) are dynamic evidence too");
   s.add("Dynamic.Depth.sampleStep", &o.depth.sample_step_px, "every step-th pixel in x and y is a depth sample");

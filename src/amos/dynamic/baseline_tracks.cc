@@ -351,6 +351,18 @@ std::vector<int> baselinePointsPerSuperpixel(const BaselineMotion& motion, const
   return votesPerLabel(motion, labels, count).all;
 }
 
+std::vector<bool> baselineStaticSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
+                                           const BaselineTrackOptions& options) {
+  core::require(labels.type() == CV_32S, "baselineStaticSuperpixels: labels must be CV_32S");
+  const LabelVotes votes = votesPerLabel(motion, labels, count, /*with_densified=*/false);
+  std::vector<bool> out(static_cast<std::size_t>(std::max(count, 0)), false);
+  for (int s = 0; s < count; ++s) {
+    const int still = votes.all[s] - votes.moving[s];
+    out[static_cast<std::size_t>(s)] = still >= options.min_votes && still > votes.moving[s];
+  }
+  return out;
+}
+
 std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,
                                          const BaselineTrackOptions& options) {
   core::require(decision_map.type() == CV_32S, "baselineMovingClusters: the decision map must be CV_32S");

@@ -146,6 +146,12 @@ std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const 
                                             const BaselineTrackOptions& options,
                                             const SuperpixelGraph* graph = nullptr);
 
+// Per superpixel (labels: CV_32S, count labels): whether at least options.min_votes of its points (the corners'
+// own, not densified ones) stayed where the static world puts them over the baseline and they outnumber its moving
+// ones: positive evidence that it is static (the temporal hold releases such a superpixel, motion_hold.h).
+std::vector<bool> baselineStaticSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
+                                            const BaselineTrackOptions& options);
+
 // Per superpixel (labels: CV_32S, count labels): how many of motion's points lie on it.
 std::vector<int> baselinePointsPerSuperpixel(const BaselineMotion& motion, const cv::Mat& labels, int count);
 

@@ -236,6 +236,19 @@ TEST(BaselineTracks, ASuperpixelWhosePointsStayIsNotMovedByItsNeighbours) {
             (std::vector<bool>{true, false, false, false}));
 }
 
+TEST(BaselineTracks, ASuperpixelIsStaticWhenMostOfItsPointsStayed) {
+  const Strip strip;
+  BaselineMotion m;
+  m.points = {Strip::point(3, true),  Strip::point(6, false), Strip::point(9, false),  // 0: two static, one moving
+              Strip::point(14, false), Strip::point(16, true),                         // 1: one each
+              Strip::point(25, false), Strip::point(27, false)};                       // 2: two static
+  m.points.push_back(Strip::point(35, false));                                         // 3: two static, but one
+  m.points.push_back(Strip::point(37, false));                                         //    densified
+  m.points.back().densified = true;
+  EXPECT_EQ(baselineStaticSuperpixels(m, strip.labels, 4, BaselineTrackOptions{}),
+            (std::vector<bool>{true, false, true, false}));
+}
+
 TEST(BaselineTracks, WhereAPointMovedMorePointsAreFollowed) {
   // Of the box's corners only one is followed (a door leaf's plain panel: ~1 point per superpixel survives ten
   // frames): its block has one moving vote, not the two it needs. Densifying follows up to four more points in

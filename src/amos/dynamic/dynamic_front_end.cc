@@ -1,6 +1,7 @@
 #include "amos/dynamic/dynamic_front_end.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <utility>
 
@@ -12,6 +13,7 @@
 #include "amos/dynamic/epipolar_evidence.h"
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/mask_building.h"
+#include "amos/dynamic/motion_hold.h"
 #include "amos/dynamic/pose_confirmation.h"
 
 namespace amos::dynamic {
@@ -20,6 +22,8 @@ DynamicFrontEnd::DynamicFrontEnd(const core::PinholeCamera& camera, const Dynami
     : camera_(camera), options_(options) {
   options_.check();
   if (options_.depth.enabled) depth_grid_ = DepthSampleGrid(camera_, options_.depth.sample_step_px);
+  // Every 4th pixel: a superpixel of a few hundred pixels gets tens of samples for its median.
+  if (options_.temporal.hold_frames > 0) hold_grid_ = DepthSampleGrid(camera_, 4);
 }
 
 namespace {
@@ -202,6 +206,50 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
                                             baseline_points);
   cv::bitwise_or(out.mask, mask.mask, out.mask);
   lap("decision");
+
+  // Temporal hold (motion_hold.h): what this frame's tests found moving, carried over the frames where a mover
+  // that slows down falls below them.
+  if (options_.temporal.hold_frames > 0) {
+    MotionHoldInput hold_in;
+    hold_in.evidence_mask = &mask.mask;
+    hold_in.labels = &partition.segmentation.labels;
+    hold_in.count = static_cast<int>(partition.segmentation.superpixels.size());
+    hold_in.depth = &in.depth;
+    hold_in.T_cw = confirmation.refit.T_cw;
+    hold_in.last_score = &in.last_hold_score;
+    hold_in.last_depth = &in.last_depth;
+    hold_in.T_cw_last = in.T_cw_last;
+    // Static evidence at this frame's noise level ends a hold (motion_hold.h).
+    std::vector<bool> seen_static(static_cast<std::size_t>(hold_in.count), false);
+    if (confirmation.refit.ok) {
+      seen_static = stillSuperpixels(out.tracks, residualNorms(confirmation.residuals), partition.segmentation.labels,
+                                     hold_in.count, confirmation.refit.sigma_px);
+    }
+    if (baseline.ok) {
+      const std::vector<bool> stayed = baselineStaticSuperpixels(baseline, partition.segmentation.labels,
+                                                                 hold_in.count, options_.baseline_tracks);
+      for (std::size_t s = 0; s < stayed.size() && s < seen_static.size(); ++s)
+        seen_static[s] = seen_static[s] || stayed[s];
+    }
+    hold_in.seen_static = &seen_static;
+    MotionHold hold =
+        holdMotion(hold_in, camera_, hold_grid_, options_.depth, options_.temporal.hold_frames,
+                   options_.temporal.hold_min_frames);
+    diag.held_superpixels = hold.held_superpixels;
+    if (hold.held_superpixels > 0) {
+      const cv::Mat& labels = partition.segmentation.labels;
+      for (int y = 0; y < labels.rows; ++y) {
+        const int* l = labels.ptr<int>(y);
+        std::uint8_t* m = out.mask.ptr<std::uint8_t>(y);
+        for (int x = 0; x < labels.cols; ++x) {
+          const auto label = static_cast<std::size_t>(l[x]);
+          if (l[x] >= 0 && label < hold.held.size() && hold.held[label]) m[x] = 255;
+        }
+      }
+    }
+    out.hold_score = std::move(hold.score);
+    lap("hold");
+  }
 
   out.superpixel_labels = partition.segmentation.labels;
   out.cluster_map = partition.cluster_map;

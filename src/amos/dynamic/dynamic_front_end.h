@@ -27,6 +27,7 @@
 //   voting = voteClusters(epipolar.violators, candidates, confirmation);  // cluster_voting.h, III-C
 //                                                              //   (+ the depth's and the baseline's clusters)
 //   mask |= buildDynamicMask(candidates, confirmation, epipolar, voting); // mask_building.h, III-C boundaries
+//   mask |= holdMotion(mask, last_hold_score);                 // motion_hold.h (Dynamic.Temporal.holdFrames)
 //
 // State: none. The caller keeps the last frame (gray, depth, pose) and the baseline frame (baseline_history.h) and
 // passes them in with the current frame, so one DynamicFrontEnd can be shared, tested and benchmarked frame pair by
@@ -57,6 +58,9 @@ struct DynamicFrameInput {
   // The last frame's final dynamic mask (CV_8U, 255 = dynamic), in the last frame's pixels; empty when unknown
   // (first frame, after a lost frame, mode none). Temporal evidence: movers rarely stop between two frames.
   cv::Mat last_mask;
+  // The last frame's hold scores (DynamicFrameOutput::hold_score, with Dynamic.Temporal.holdFrames); empty when
+  // unknown.
+  cv::Mat last_hold_score;
   // The depth and pose of the frame Dynamic.Depth.baselineFrames back (depth_evidence.h), for slow movers; empty
   // when unknown (the depth evidence then compares with the last frame only).
   cv::Mat baseline_depth;
@@ -100,6 +104,7 @@ struct DynamicDiagnostics {
   int baseline_moving_points = 0;       // of which moving
   int baseline_dense_points = 0;        // of those, followed where points moved (densifyBaselineMotion)
   int baseline_dynamic_clusters = 0;    // clusters made dynamic by the long-baseline tracks alone
+  int held_superpixels = 0;       // superpixels dynamic by the temporal hold alone (motion_hold.h; 0 when off)
   int prior_regions = 0;          // connected components of the prior mask
   int dynamic_prior_regions = 0;  // of which kept in the mask
 };
@@ -107,6 +112,7 @@ struct DynamicDiagnostics {
 struct DynamicFrameOutput {
   cv::Mat mask;  // CV_8U, 255 = dynamic (features there must not be used), 0 = static; image size
   DynamicDiagnostics diagnostics;
+  cv::Mat hold_score;  // CV_8U, the temporal hold's scores (motion_hold.h: per sample) for the next frame; empty: off
   std::vector<std::pair<std::string, double>> timings_ms;  // stage name -> wall time, in execution order
   // Geometric detail for visualisation and tests (empty when the geometric stage did not run):
   cv::Mat superpixel_labels;                                 // CV_32S depth-SLIC superpixel of every pixel
@@ -139,6 +145,7 @@ class DynamicFrontEnd {
   core::PinholeCamera camera_;
   DynamicOptions options_;
   DepthSampleGrid depth_grid_;  // with Dynamic.Depth.enabled
+  DepthSampleGrid hold_grid_;   // with Dynamic.Temporal.holdFrames
 };
 
 }  // namespace amos::dynamic

@@ -33,6 +33,13 @@ struct TemporalOptions {
   // still take part in every decision). Keeps a mover that the detector and the candidate stage miss in this frame
   // from biasing the pose the movers are judged against.
   bool exclude_last_mask_from_fits = true;
+  // Dynamic.Temporal.holdFrames (H, 0 = off): a surface found moving in n frames stays dynamic for the n - 1 frames
+  // after it was last found, at most H (motion_hold.h): a mover easing into a stop moves below every test's bar
+  // before it stops. At most 254.
+  int hold_frames = 0;
+  // Dynamic.Temporal.holdMinFrames (m >= 2): only a surface found moving in at least m frames is held, for n - m + 1
+  // frames after n (at most holdFrames). A static surface's false positives flicker for a frame or two.
+  int hold_min_frames = 2;
 };
 
 struct DynamicOptions {

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "amos/core/error.h"
@@ -174,14 +175,14 @@ PersonMaskCarrier::Masks DynamicPipeline::personMasks(FrameSlot& slot,
   return masks;
 }
 
-cv::Mat DynamicPipeline::judge(dynamic::DynamicFrameInput input) {
+std::pair<cv::Mat, cv::Mat> DynamicPipeline::judge(dynamic::DynamicFrameInput input) {
   core::Stopwatch watch;
   const double cpu = threadCpuMs();
-  const dynamic::DynamicFrameOutput judged = front_end_.process(input);
+  dynamic::DynamicFrameOutput judged = front_end_.process(input);
   times_.add("dynamic.front_end", watch.elapsedMs());
   times_.add("cpu.front_end", threadCpuMs() - cpu);
   for (const auto& [stage, ms] : judged.timings_ms) times_.add("dynamic." + stage, ms);
-  return judged.mask;
+  return {std::move(judged.mask), std::move(judged.hold_score)};
 }
 
 void DynamicPipeline::track(const FrameSlot& slot, const ExtractedFeatures& features, const FrameExtras& extras,
@@ -194,7 +195,7 @@ void DynamicPipeline::track(const FrameSlot& slot, const ExtractedFeatures& feat
   removed_fractions_.push_back(out.removed_fraction);
 }
 
-void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput motion) {
+void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput motion, cv::Mat hold_score) {
   const tracking::TrackResult& result = out.slam.track;
   if (result.state != tracking::TrackingState::kOk) {
     state_.last.reset();  // a lost frame's pose would poison the reprojection test of the next one
@@ -210,8 +211,9 @@ void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput m
     state_.keyframe_pyramids.emplace_back(slam_.tracker().referenceKeyFrameView().id, motion.pyramid);
     if (state_.keyframe_pyramids.size() > kKeyFrameImages) state_.keyframe_pyramids.pop_front();
   }
-  state_.last = LastFrame{std::move(motion.gray), out.frame.depth, out.dynamic_mask, std::move(motion.pyramid),
-                          std::move(motion.corners), result.T_cw};
+  state_.last = LastFrame{std::move(motion.gray),    out.frame.depth,           out.dynamic_mask,
+                          std::move(hold_score),     std::move(motion.pyramid), std::move(motion.corners),
+                          result.T_cw};
 }
 
 FrameNumber DynamicPipeline::firstSlotNeeded() const {
@@ -233,6 +235,7 @@ DynamicFrameOutput DynamicPipeline::processNext() {
   FrameCornerTracks corner_tracks;
   if (scheduler_.tasks().geometry) corner_tracks = takeCornerTracks(slot);  // 2
   FrameExtras extras;
+  cv::Mat hold_score;
   if (options_.mode != dynamic::DynamicMode::kNone) {
     dynamic::DynamicFrameInput input;
     input.gray = motion.gray;
@@ -245,6 +248,7 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       input.last_depth = last.depth;
       input.T_cw_last = last.T_cw;
       input.last_mask = last.dynamic_mask;
+      input.last_hold_score = last.hold_score;
       input.T_cw_initial = last.T_cw;
       if (const auto* baseline = state_.baseline_history.baseline()) {
         input.baseline_depth = baseline->depth;
@@ -285,7 +289,7 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       stage_a_cpu += partition->cpu_ms;
       input.partition = &partition->partition;
     }
-    extras.dynamic_mask = judge(std::move(input));  // 5
+    std::tie(extras.dynamic_mask, hold_score) = judge(std::move(input));  // 5
     out.dynamic_mask = extras.dynamic_mask;
   }
   core::Stopwatch wait;
@@ -298,7 +302,7 @@ DynamicFrameOutput DynamicPipeline::processNext() {
   times_.add("cpu.prepare", stage_a_cpu);
   track(slot, features.features, extras, out);  // 6
   slot.map_ready.set_value(slam_.tracker().state() != tracking::TrackingState::kNotInitialized);
-  remember(out, std::move(motion));  // 7
+  remember(out, std::move(motion), std::move(hold_score));  // 7
   ++state_.processed;
   processed_.store(state_.processed);
   scheduler_.release(firstSlotNeeded());
