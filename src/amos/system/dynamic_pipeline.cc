@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <string>
-#include <tuple>
 #include <utility>
 
 #include "amos/core/error.h"
@@ -175,7 +174,7 @@ PersonMaskCarrier::Masks DynamicPipeline::personMasks(FrameSlot& slot,
   return masks;
 }
 
-std::pair<cv::Mat, cv::Mat> DynamicPipeline::judge(dynamic::DynamicFrameInput input) {
+DynamicPipeline::Judgement DynamicPipeline::judge(dynamic::DynamicFrameInput input) {
   core::Stopwatch watch;
   const double cpu = threadCpuMs();
   dynamic::DynamicFrameOutput judged = front_end_.process(input);
@@ -289,7 +288,9 @@ DynamicFrameOutput DynamicPipeline::processNext() {
       stage_a_cpu += partition->cpu_ms;
       input.partition = &partition->partition;
     }
-    std::tie(extras.dynamic_mask, hold_score) = judge(std::move(input));  // 5
+    Judgement judgement = judge(std::move(input));  // 5
+    extras.dynamic_mask = judgement.mask;
+    hold_score = std::move(judgement.hold_score);
     out.dynamic_mask = extras.dynamic_mask;
   }
   core::Stopwatch wait;

@@ -149,8 +149,11 @@ class DynamicPipeline {
                                        const std::vector<dynamic::PointTrack>& tracks,
                                        std::optional<dynamic::PoseModel>& model);
   PersonMaskCarrier::Masks personMasks(FrameSlot& slot, const std::vector<dynamic::PointTrack>& tracks);
-  // The dynamic mask and the temporal hold's scores for the next frame.
-  std::pair<cv::Mat, cv::Mat> judge(dynamic::DynamicFrameInput input);
+  // What the judgement passes on: the dynamic mask, and the temporal hold's scores for the next frame.
+  struct Judgement {
+    cv::Mat mask, hold_score;
+  };
+  Judgement judge(dynamic::DynamicFrameInput input);
   void track(const FrameSlot& slot, const ExtractedFeatures& features, const FrameExtras& extras,
              DynamicFrameOutput& out);
   void remember(const DynamicFrameOutput& out, FrameMotionInput motion, cv::Mat hold_score);
