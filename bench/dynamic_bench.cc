@@ -7,6 +7,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <opencv2/core/utility.hpp>
@@ -20,6 +21,7 @@
 
 #include "amos/config/settings.h"
 #include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/motion_hold.h"
 #include "amos/segmentation/model_locator.h"
 #include "amos/segmentation/segmenter_factory.h"
 #include "amos/dynamic/superpixel_metrics.h"
@@ -185,6 +187,38 @@ void BM_DepthEvidence(benchmark::State& state) {
   state.counters["moving_superpixels"] = e.moving_superpixels;
 }
 BENCHMARK(BM_DepthEvidence)->Unit(benchmark::kMillisecond);
+
+// The temporal hold (motion_hold.h) of one Bonn frame pair, as the front end runs it with Dynamic.Temporal.holdFrames:
+// the last frame's scores carried into the current frame under the initial pose. Evidence on every third superpixel
+// and a score of 5 everywhere in the last frame, so that raising, carrying and holding all have work.
+void BM_MotionHold(benchmark::State& state) {
+  const BenchData& d = data();
+  const SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
+  const int count = static_cast<int>(seg.superpixels.size());
+  cv::Mat evidence(seg.labels.size(), CV_8U, cv::Scalar(0));
+  for (int y = 0; y < seg.labels.rows; ++y)
+    for (int x = 0; x < seg.labels.cols; ++x)
+      if (seg.labels.at<int>(y, x) % 3 == 0) evidence.at<std::uint8_t>(y, x) = 255;
+  const DepthSampleGrid grid(d.camera, 4);
+  MotionHoldInput in;
+  in.evidence_mask = &evidence;
+  in.labels = &seg.labels;
+  in.count = count;
+  in.depth = &d.current.depth;
+  in.T_cw = d.T_cw_initial;
+  const MotionHold first = holdMotion(in, d.camera, grid, DepthEvidenceOptions{}, 30, 3);
+  const cv::Mat last_score(first.score.size(), CV_8U, cv::Scalar(5));
+  in.last_score = &last_score;
+  in.last_depth = &d.last.depth;
+  MotionHold h;
+  for (auto _ : state) {
+    h = holdMotion(in, d.camera, grid, DepthEvidenceOptions{}, 30, 3);
+    benchmark::DoNotOptimize(h.held_superpixels);
+  }
+  state.counters["superpixels"] = count;
+  state.counters["held"] = h.held_superpixels;
+}
+BENCHMARK(BM_MotionHold)->Unit(benchmark::kMillisecond);
 
 // The long-baseline tracks (baseline_tracks.h) of one Bonn frame's tracked points, as the front end runs them with
 // Dynamic.BaselineTracks.enabled (both pyramids built inside, as there), here against the last frame, whose pose
