@@ -178,6 +178,9 @@ TEST(SettingsKeys, ARuleRelatingTwoKeysNamesBoth) {
   const std::pair<std::string, std::string> cases[] = {
       {"Dynamic.Prior.lag: 5\n", "t.yaml:5: Dynamic.Prior.lag (5) must not exceed Dynamic.Prior.interval (3)"},
       {"Dynamic.Prior.interval: 1\n", "t.yaml:5: Dynamic.Prior.lag (2) must not exceed Dynamic.Prior.interval (1)"},
+      {"Dynamic.Temporal.holdFrames: 250\nDynamic.Temporal.holdMinFrames: 10\n",
+       "t.yaml:6: Dynamic.Temporal.holdMinFrames must be >= 2 and at most 256 - holdFrames (250), got 10 (see "
+       "Dynamic.Temporal.holdFrames at t.yaml:5)"},
       {"Tracking.localMinInliers: 60\n",
        "t.yaml:5: Tracking.relocMinInliers must be >= Tracking.localMinInliers = 60, got 50"},
       {"Camera.width: 300\n",
