@@ -30,6 +30,10 @@ void addDiagnoseMoversCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--last", args->options.last_frame, "Last frame judged (-1 = to the end)")->capture_default_str();
   cmd->add_flag("--exact-initial", args->options.exact_initial,
                 "Initial pose = the true pose (default: constant velocity from the last two true poses)");
+  cmd->add_option("--images", args->options.images_dir,
+                  "Also write a picture of each frame's decision there (<frame>.png: green mover marked, red static "
+                  "world marked, blue mover missed, white outlines the dynamic clusters, dots the tracks by their "
+                  "error under the judged pose: green below the confirmation threshold, yellow below 3x, red beyond)");
   cmd->add_flag("--summary", args->summary_only, "Print the per-instance summary only");
   cmd->callback([args, &exit_code] {
     args->options.per_frame = !args->summary_only;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <ostream>
 
@@ -30,7 +32,52 @@ core::SE3 truthAt(const std::vector<io::StampedPose>& truth, double t) {
                 fmt::format("diagnose-movers: no ground-truth pose within 5 ms of frame time {:.6f}", t));
   return best->T_wc;
 }
+
 }  // namespace
+
+cv::Mat decisionPicture(const cv::Mat& bgr, const cv::Mat& truth_ids, const dynamic::DynamicFrameOutput& result) {
+  core::require(bgr.type() == CV_8UC3, "decisionPicture: the frame must be CV_8UC3");
+  core::require(truth_ids.type() == CV_16U && truth_ids.size() == bgr.size(),
+                "decisionPicture: the truth must be CV_16U of the frame's size");
+  core::require(result.mask.type() == CV_8U && result.mask.size() == bgr.size(),
+                "decisionPicture: the mask must be CV_8U of the frame's size");
+  cv::Mat pic = bgr * 0.6;
+  for (int y = 0; y < pic.rows; ++y) {
+    const std::uint8_t* m = result.mask.ptr<std::uint8_t>(y);
+    const std::uint16_t* t = truth_ids.ptr<std::uint16_t>(y);
+    auto* p = pic.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < pic.cols; ++x) {
+      const bool marked = m[x] != 0, mover = t[x] != 0;
+      if (!marked && !mover) continue;
+      const cv::Vec3b tint = marked && mover ? cv::Vec3b(0, 160, 0) : marked ? cv::Vec3b(0, 0, 200) : cv::Vec3b(200, 0, 0);
+      p[x] = p[x] * 0.5 + tint;
+    }
+  }
+  if (!result.cluster_map.empty()) {
+    cv::Mat dynamic_clusters(result.cluster_map.size(), CV_8U, cv::Scalar(0));
+    for (int y = 0; y < dynamic_clusters.rows; ++y) {
+      const int* c = result.cluster_map.ptr<int>(y);
+      for (int x = 0; x < dynamic_clusters.cols; ++x) {
+        const auto cluster = static_cast<std::size_t>(c[x]);
+        if (c[x] >= 0 && cluster < result.dynamic_cluster.size() && result.dynamic_cluster[cluster])
+          dynamic_clusters.at<std::uint8_t>(y, x) = 255;
+      }
+    }
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(dynamic_clusters, contours, cv::RETR_LIST, cv::CHAIN_APPROX_SIMPLE);
+    cv::drawContours(pic, contours, -1, cv::Scalar(255, 255, 255), 1);
+  }
+  const double bar = std::max(result.diagnostics.confirm_threshold_px, 0.5);
+  for (std::size_t i = 0; i < result.tracks.size(); ++i) {
+    const auto& e = i < result.judged_error_px.size() ? result.judged_error_px[i] : std::nullopt;
+    const cv::Scalar colour = !e                ? cv::Scalar(160, 160, 160)
+                              : *e < bar        ? cv::Scalar(0, 255, 0)
+                              : *e < 3 * bar    ? cv::Scalar(0, 255, 255)
+                                                : cv::Scalar(0, 0, 255);
+    cv::circle(pic, result.tracks[i].current, 2, colour, cv::FILLED);
+  }
+  return pic;
+}
 
 MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, const MoverDiagnosisOptions& options,
                                              std::ostream& out) {
@@ -54,6 +101,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
   core::SE3 T_cw_last, T_cw_before;
   dynamic::BaselineHistory baseline_history(dyn.depth.baseline_frames);  // as the pipeline keeps it
   bool have_before = false;
+  if (!options.images_dir.empty()) std::filesystem::create_directories(options.images_dir);
   while (auto frame = reader.next()) {
     const int k = static_cast<int>(frame->index);
     if (options.last_frame >= 0 && k > options.last_frame) break;
@@ -80,6 +128,11 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
       const auto mk = masks->frameAt(frame->timestamp);
       if (mk) {
         const cv::Mat ids = masks->instanceMask(*mk);
+        if (!options.images_dir.empty()) {
+          const std::string file = fmt::format("{}/{:04d}.png", options.images_dir, k);
+          core::require(cv::imwrite(file, decisionPicture(frame->bgr, ids, result)),
+                        "diagnose-movers: cannot write " + file);
+        }
         for (const dynamic::MoverFrameDiagnosis& d :
              dynamic::diagnoseMovers(result, ids, masks->movingIds(*mk), dyn)) {
           auto& s = summary.instances[d.id];

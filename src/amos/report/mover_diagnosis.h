@@ -9,7 +9,10 @@
 #include <map>
 #include <string>
 
+#include <opencv2/core.hpp>
+
 #include "amos/config/settings.h"
+#include "amos/dynamic/dynamic_front_end.h"
 
 namespace amos::report {
 
@@ -19,6 +22,9 @@ struct MoverDiagnosisOptions {
   int last_frame = -1;         // inclusive; -1 = to the end
   bool exact_initial = false;  // initial pose = the true pose (else constant velocity from the truth)
   bool per_frame = true;       // a line per mover and frame (else the summary only)
+  // When set, a picture of each judged frame's decision is written there (<frame index>.png, see
+  // decisionPicture): where the mask is right, where it is wrong, the dynamic clusters and the tracks' errors.
+  std::string images_dir;
 };
 
 struct MoverDiagnosisSummary {
@@ -30,6 +36,12 @@ struct MoverDiagnosisSummary {
   };
   std::map<std::uint16_t, PerInstance> instances;
 };
+
+// A picture of one frame's decision: the frame (bgr) dimmed, the final mask against the truth (truth_ids: CV_16U,
+// 0 = static) tinted green where a mover is marked, red where the static world is, blue where a mover is missed;
+// the outlines of the dynamic clusters in white; every track's end coloured by its error under the judged pose:
+// green below the confirmation threshold (at least 0.5 px), yellow below three times it, red beyond, grey unscored.
+cv::Mat decisionPicture(const cv::Mat& bgr, const cv::Mat& truth_ids, const dynamic::DynamicFrameOutput& result);
 
 // Prints a table (per_frame) and a summary per instance to `out`; progress on stderr. Throws core::Error when the
 // sequence has no ground-truth poses or masks.
