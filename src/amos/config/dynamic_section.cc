@@ -115,6 +115,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "1 = the mask is decided per superpixel, 0 = it is the union of the dynamic clusters");
   s.add("Dynamic.Boundary.seedOutsideClusters", &o.boundary.seed_outside_clusters,
         "superpixels outside the dynamic clusters whose own tracks move under the refitted pose are seeds too");
+  s.add("Dynamic.Boundary.maxDynamicStep", &o.boundary.max_dynamic_step,
+        "the mask grows into a trackless superpixel only from a neighbour at most this dissimilar (Eq. 1 without "
+        "the position term); 0 = any");
   s.add("Dynamic.Temporal.excludeFromFits", &o.temporal.exclude_last_mask_from_fits,
         "tracks starting in the last frame's mask take no part in the last-frame initial-pose model, the pose refit "
         "and the F fit");

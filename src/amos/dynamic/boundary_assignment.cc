@@ -17,6 +17,7 @@ namespace amos::dynamic {
 void BoundaryOptions::check() const {
   core::requireAtLeast(search_radius_px, "search_radius_px", 0);
   core::requireAtLeast(border_margin_px, "border_margin_px", 0);
+  core::requireAtLeast(max_dynamic_step, "max_dynamic_step", 0.0);
 }
 
 std::vector<bool> borderSuperpixels(const cv::Mat& superpixel_labels, int count, int margin_px) {
@@ -235,7 +236,8 @@ double superpixelDissimilarity(const Superpixel& a, const Superpixel& b, double 
 std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
                                      const std::vector<std::vector<int>>& neighbours, std::vector<RegionLabel> labels,
                                      const std::vector<bool>& may_be_dynamic, double colour_scale,
-                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding) {
+                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding,
+                                     double max_dynamic_step) {
   const std::size_t n = superpixels.size();
   core::require(neighbours.size() == n && labels.size() == n && may_be_dynamic.size() == n,
                 "growRegions: superpixels, neighbours, seeds and flags differ in number");
@@ -250,8 +252,9 @@ std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
       const int b = neighbours[a][k];
       if (labels[b] != RegionLabel::kUnlabelled) continue;
       if (l == RegionLabel::kDynamic && (!may_be_dynamic[b] || (!occluding.empty() && occluding[a][k]))) continue;
-      offers.emplace(superpixelDissimilarity(superpixels[a], superpixels[b], colour_scale, depth_scale_m), b,
-                     static_cast<int>(l));
+      const double cost = superpixelDissimilarity(superpixels[a], superpixels[b], colour_scale, depth_scale_m);
+      if (l == RegionLabel::kDynamic && max_dynamic_step > 0 && cost > max_dynamic_step) continue;
+      offers.emplace(cost, b, static_cast<int>(l));
     }
   };
   for (std::size_t a = 0; a < n; ++a)

@@ -48,6 +48,13 @@ struct BoundaryOptions {
   // dynamic seed too. A deformable walker is split across the position-only clusters, and where it is a minority
   // of a cluster that cluster's mean stays low; its superpixels' own tracks still move.
   bool seed_outside_clusters = true;
+  // Dynamic.Boundary.maxDynamicStep: in the region growing, the dynamic label enters an unlabelled (trackless)
+  // superpixel only from a neighbour at most this dissimilar (Eq. 1 without the position term: 1 = colourScale Lab
+  // units or a depth step of depthScale); 0 = any step, the plain seeded region growing. Without a bar a trackless
+  // surface that touches a mover (the floor under a walker's feet, the desk front behind his legs, the desk and
+  // the floor it stands on) takes the mover's label whenever no static seed reaches it first, however unlike the
+  // mover it looks: what nothing measured is static unless it continues the mover's own surface.
+  double max_dynamic_step = 0;
   void check() const;
 };
 
@@ -91,12 +98,14 @@ enum class RegionLabel : std::int8_t { kUnlabelled = -1, kStatic = 0, kDynamic =
 // with the smallest dissimilarity to it takes that neighbour's label. A superpixel with may_be_dynamic false
 // never takes the dynamic label (it can still be reached by the static one), and the dynamic label does not cross
 // an occlusion edge (occluding, laid out as neighbours; empty = none): a trackless background surface that looks
-// like the mover (the desk behind a cardboard box) is not part of it. Superpixels no label reaches are static.
+// like the mover (the desk behind a cardboard box) is not part of it. With max_dynamic_step > 0 the dynamic label
+// also takes no step between superpixels more dissimilar than that. Superpixels no label reaches are static.
 // Deterministic (ties broken by superpixel id).
 std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
                                      const std::vector<std::vector<int>>& neighbours, std::vector<RegionLabel> seeds,
                                      const std::vector<bool>& may_be_dynamic, double colour_scale,
-                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding = {});
+                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding = {},
+                                     double max_dynamic_step = 0);
 
 // What one last->current track says about the superpixel it ends in.
 struct TrackEvidence {

@@ -118,6 +118,33 @@ TEST(SuperpixelRegions, GrowingFollowsTheCheapestEdges) {
   EXPECT_EQ(blocked[2], RegionLabel::kStatic);
 }
 
+TEST(SuperpixelRegions, TheDynamicLabelTakesNoStepBeyondTheBar) {
+  // A chain 0-1-2-3 with L = 0, 5, 40, 45, seeded dynamic at 0 and nothing else (a trackless surface touching a
+  // mover): plain growing gives the mover's label to all of it; with a bar of 1 (colour scale 10) the dynamic label
+  // takes 1 (0.5 away) and stops at the step to 2 (3.5), which nothing else reaches: static. The static label is
+  // not barred.
+  std::vector<Superpixel> sp = {superpixel(0, 0), superpixel(5, 0), superpixel(40, 0), superpixel(45, 0)};
+  const std::vector<std::vector<int>> neighbours = {{1}, {0, 2}, {1, 3}, {2}};
+  std::vector<RegionLabel> seeds(4, RegionLabel::kUnlabelled);
+  seeds[0] = RegionLabel::kDynamic;
+  const std::vector<bool> anywhere(4, true);
+  const auto plain = growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1);
+  EXPECT_EQ(plain, std::vector<RegionLabel>(4, RegionLabel::kDynamic));
+  const auto barred = growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1, {}, 1.0);
+  const std::vector<RegionLabel> expected = {RegionLabel::kDynamic, RegionLabel::kDynamic, RegionLabel::kStatic,
+                                             RegionLabel::kStatic};
+  EXPECT_EQ(barred, expected);
+  seeds[3] = RegionLabel::kStatic;  // a static seed beyond the step reaches 2 over it
+  EXPECT_EQ(growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1, {}, 1.0)[2], RegionLabel::kStatic);
+  // A depth step counts too: 1 at 2.0 m, 2 at 2.3 m (3 depth units) with the same colour.
+  sp = {superpixel(0, 2.0), superpixel(0, 2.0), superpixel(0, 2.3), superpixel(0, 2.3)};
+  seeds.assign(4, RegionLabel::kUnlabelled);
+  seeds[0] = RegionLabel::kDynamic;
+  const auto depth_barred = growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1, {}, 1.0);
+  EXPECT_EQ(depth_barred[1], RegionLabel::kDynamic);
+  EXPECT_EQ(depth_barred[2], RegionLabel::kStatic);
+}
+
 TEST(SuperpixelRegions, OcclusionEdgesAreDepthStepsAlongTheSharedBorder) {
   // 3 x 3 blocks; the left column stands at 1 m in front of a 2 m wall, the right column is a slanted surface
   // (1 cm per pixel, about 0.5% of the depth: no step).

@@ -123,7 +123,7 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   }
   const std::vector<RegionLabel> labels =
       growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,
-                  options.superpixel.depth_scale_m, g.occlusion_edges);
+                  options.superpixel.depth_scale_m, g.occlusion_edges, options.boundary.max_dynamic_step);
   std::vector<bool> dynamic(count);
   for (int s = 0; s < count; ++s) dynamic[s] = labels[s] == RegionLabel::kDynamic;
   return dynamic;
