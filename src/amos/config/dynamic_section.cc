@@ -115,6 +115,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "1 = the mask is decided per superpixel, 0 = it is the union of the dynamic clusters");
   s.add("Dynamic.Boundary.seedOutsideClusters", &o.boundary.seed_outside_clusters,
         "superpixels outside the dynamic clusters whose own tracks move under the refitted pose are seeds too");
+  s.add("Dynamic.Boundary.stillSigmas", &o.boundary.still_sigmas,
+        "with a pose refit, a dynamic cluster's motion, which the tracks that move with it follow, counts from this "
+        "many times the static tracks' noise scale (if below the confirmation threshold); 0 = from the threshold");
   s.add("Dynamic.Boundary.maxDynamicStep", &o.boundary.max_dynamic_step,
         "the mask grows into a trackless superpixel only from a neighbour at most this dissimilar (Eq. 1 without "
         "the position term); 0 = any");

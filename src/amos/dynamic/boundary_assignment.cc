@@ -18,6 +18,7 @@ void BoundaryOptions::check() const {
   core::requireAtLeast(search_radius_px, "search_radius_px", 0);
   core::requireAtLeast(border_margin_px, "border_margin_px", 0);
   core::requireAtLeast(max_dynamic_step, "max_dynamic_step", 0.0);
+  core::requireAtLeast(still_sigmas, "still_sigmas", 0.0);
 }
 
 std::vector<bool> borderSuperpixels(const cv::Mat& superpixel_labels, int count, int margin_px) {
@@ -279,6 +280,7 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
   const int n = static_cast<int>(superpixels.size());
   const int clusters = static_cast<int>(dynamic_cluster.size());
   core::require(labels.type() == CV_32S, "seedSuperpixels: labels must be CV_32S");
+  const double still_px = options.still_px > 0 ? std::min(options.still_px, static_px) : static_px;
   core::require(static_cast<int>(neighbours.size()) == n && static_cast<int>(border.size()) == n,
                 "seedSuperpixels: superpixels, neighbours and border flags differ in number");
   auto clusterOf = [&](int s) {
@@ -316,7 +318,7 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
   for (int c = 0; c < clusters; ++c) {
     if (rx[c].empty()) continue;
     const Eigen::Vector2d m(upperMedian(std::move(rx[c])), upperMedian(std::move(ry[c])));
-    if (m.norm() >= static_px) motion[c] = m;
+    if (m.norm() >= still_px) motion[c] = m;
   }
   std::vector<int> dynamic_votes(n, 0), static_votes(n, 0);
   std::vector<bool> in_zone(n, false);
@@ -330,11 +332,12 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
     const bool still = t.residual && t.residual->norm() < static_px;
     bool moving = false;
     if (!zone.empty()) {
-      moving = (std::isfinite(t.epipolar_px) && t.epipolar_px > epipolar_px) || (t.residual && !still);
+      moving = (std::isfinite(t.epipolar_px) && t.epipolar_px > epipolar_px) ||
+               (t.residual && t.residual->norm() >= static_px);
       for (int z : zone)
         if (t.residual && motion[z] && (*t.residual - *motion[z]).norm() < t.residual->norm()) moving = true;
     } else {
-      moving = options.seed_outside_zones && t.residual && !still;
+      moving = options.seed_outside_zones && t.residual && t.residual->norm() >= static_px;
     }
     if (moving)
       ++dynamic_votes[s];

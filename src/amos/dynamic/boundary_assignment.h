@@ -48,6 +48,16 @@ struct BoundaryOptions {
   // dynamic seed too. A deformable walker is split across the position-only clusters, and where it is a minority
   // of a cluster that cluster's mean stays low; its superpixels' own tracks still move.
   bool seed_outside_clusters = true;
+  // Dynamic.Boundary.stillSigmas: with a successful pose refit, a dynamic cluster's motion (the median of its
+  // tracks' residuals), which the tracks that move with it follow when they seed, counts from this many times the
+  // static tracks' noise scale (PoseRefit::sigma_px) on, when that is below the confirmation threshold; 0 = from
+  // the threshold. The threshold's 1 px floor is there for a cluster's mean error; as the bar for a cluster's
+  // motion it lets a mover that slows down seed static inside the very cluster that the depth or the long baseline
+  // found dynamic: a pushed box gliding to a stop or a door easing shut moves 0.2-0.6 px per frame, 2-6 times the
+  // 0.1 px noise of clean images (box_push seed 8, frames 160-190: 10-30 % of the box marked). 3: the median of a
+  // static cluster's residuals stays within 3 sigma, and a static track follows a motion of 3 sigma (is nearer it
+  // than zero) with p ~ 7 %.
+  double still_sigmas = 0;
   // Dynamic.Boundary.maxDynamicStep: in the region growing, the dynamic label enters an unlabelled (trackless)
   // superpixel only from a neighbour at most this dissimilar (Eq. 1 without the position term: 1 = colourScale Lab
   // units or a depth step of depthScale); 0 = any step, the plain seeded region growing. Without a bar a trackless
@@ -133,6 +143,9 @@ struct SeedOptions {
   // Votes such a superpixel needs (and more than its static votes): two independent tracks, as for an epipolar
   // region (one may be an LK slip).
   int min_outside_votes = 2;
+  // When > 0 and below static_px: a dynamic cluster's motion counts from this size on (Dynamic.Boundary.stillSigmas
+  // x the refit's noise scale), so the tracks that move with a slow dynamic cluster vote for it.
+  double still_px = 0;
 };
 
 std::vector<RegionLabel> seedSuperpixels(const cv::Mat& superpixel_labels, const std::vector<Superpixel>& superpixels,

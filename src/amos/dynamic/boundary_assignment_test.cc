@@ -278,6 +278,37 @@ TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
   EXPECT_EQ(quiet[12], S);
 }
 
+TEST(SuperpixelRegions, ASlowDynamicClustersTracksFollowItFromTheStillBar) {
+  // Cluster 0 is dynamic (found by other evidence) and glides by (0.5, 0) px, a quarter of static_px = 2: without a
+  // still bar its tracks seed static; with still_px = 0.3 (3 sigma of 0.1 px noise) they move with it. A still
+  // background track in it (0.02 px) stays static either way, and so does one next to it that moves by 0.8 px
+  // across the cluster's motion (it does not follow it, and stays below static_px).
+  const FiveByFiveBlocks b;
+  const auto& [labels, sp, neighbours, border] = b;
+  const std::vector<bool> dynamic_cluster = {true, false};
+  auto at = &FiveByFiveBlocks::at;
+  const std::vector<TrackEvidence> tracks = {
+      {at(6), Eigen::Vector2d(0.5, 0.0), 0.1},   {at(7), Eigen::Vector2d(0.45, 0.05), 0.1},
+      {at(11), Eigen::Vector2d(0.55, 0.0), 0.1}, {at(12), Eigen::Vector2d(0.02, 0.0), 0.1},
+      {at(13), Eigen::Vector2d(0.0, 0.8), 0.1},
+  };
+  const RegionLabel D = RegionLabel::kDynamic, S = RegionLabel::kStatic;
+  const auto plain = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0);
+  EXPECT_EQ(plain[6], S);
+  EXPECT_EQ(plain[11], S);
+  SeedOptions options;
+  options.still_px = 0.3;
+  const auto slow = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0, options);
+  EXPECT_EQ(slow[6], D);
+  EXPECT_EQ(slow[7], D);
+  EXPECT_EQ(slow[11], D);
+  EXPECT_EQ(slow[12], S);
+  EXPECT_EQ(slow[13], S);
+  // A bar above static_px changes nothing.
+  options.still_px = 5.0;
+  EXPECT_EQ(seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0, options), plain);
+}
+
 TEST(SuperpixelRegions, TracksOutsideTheDynamicClustersSeedOnlyWhenAskedAndInPairs) {
   // Nothing dynamic. Block 7 holds two tracks moving by themselves, block 17 one, block 13 two moving and three
   // still ones.

@@ -97,7 +97,7 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
                                      const SuperpixelGraph* graph, const std::vector<bool>& depth_moving,
                                      const std::vector<bool>& baseline_moving,
-                                     const std::vector<int>& baseline_points) {
+                                     const std::vector<int>& baseline_points, double still_bar_px) {
   const int count = static_cast<int>(segmentation.superpixels.size());
   SuperpixelGraph computed;
   if (graph == nullptr) computed = superpixelGraph(segmentation, depth, options.reprojection.depth_edge_ratio);
@@ -106,7 +106,7 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   std::vector<RegionLabel> seeds =
       seedSuperpixels(segmentation.labels, segmentation.superpixels, neighbours, border, dynamic_cluster, evidence,
                       static_bar_px, options.epipolar.dynamic_threshold_px,
-                      SeedOptions{seed_outside, options.epipolar.min_dynamic_points});
+                      SeedOptions{seed_outside, options.epipolar.min_dynamic_points, still_bar_px});
   for (std::size_t s = 0; s < depth_moving.size() && s < seeds.size(); ++s)
     if (depth_moving[s] && seeds[s] == RegionLabel::kUnlabelled && !(s < border.size() && border[s]))
       seeds[s] = RegionLabel::kDynamic;
@@ -188,7 +188,8 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
     out.dynamic_superpixel =
         dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
                            seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr,
-                           depth_moving, baseline_moving, baseline_points);
+                           depth_moving, baseline_moving, baseline_points,
+                           confirmation.refit.ok ? options.boundary.still_sigmas * confirmation.refit.sigma_px : 0.0);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);

@@ -42,6 +42,7 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 // superpixel that the tracks leave unlabelled is a dynamic seed (border superpixels excepted).
 // `baseline_moving`: per superpixel, whether its points moved over the long baseline (baseline_tracks.h; empty =
 // none): such a superpixel is a dynamic seed whatever its one-frame votes say (border superpixels excepted).
+// `still_bar_px`: SeedOptions::still_px (0 = static_bar_px).
 // `baseline_points`: per superpixel, how many long-baseline points lie on it (empty = none); with
 // Dynamic.BaselineTracks.growOverSurface the dynamic label may also enter, outside the dynamic clusters, the
 // superpixels that neither a track nor a long-baseline point measured and that are reached from a baseline-moving
@@ -54,7 +55,7 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const SuperpixelGraph* graph = nullptr,
                                      const std::vector<bool>& depth_moving = {},
                                      const std::vector<bool>& baseline_moving = {},
-                                     const std::vector<int>& baseline_points = {});
+                                     const std::vector<int>& baseline_points = {}, double still_bar_px = 0);
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
 // dynamicSuperpixels): breadth-first from the baseline-moving seeds over unmeasured, non-border superpixels.
