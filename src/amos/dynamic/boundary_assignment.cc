@@ -332,12 +332,11 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
     const bool still = t.residual && t.residual->norm() < static_px;
     bool moving = false;
     if (!zone.empty()) {
-      moving = (std::isfinite(t.epipolar_px) && t.epipolar_px > epipolar_px) ||
-               (t.residual && t.residual->norm() >= static_px);
+      moving = (std::isfinite(t.epipolar_px) && t.epipolar_px > epipolar_px) || (t.residual && !still);
       for (int z : zone)
         if (t.residual && motion[z] && (*t.residual - *motion[z]).norm() < t.residual->norm()) moving = true;
     } else {
-      moving = options.seed_outside_zones && t.residual && t.residual->norm() >= static_px;
+      moving = options.seed_outside_zones && t.residual && !still;
     }
     if (moving)
       ++dynamic_votes[s];

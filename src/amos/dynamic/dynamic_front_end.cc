@@ -1,7 +1,6 @@
 #include "amos/dynamic/dynamic_front_end.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <opencv2/core.hpp>
 #include <utility>
 
@@ -236,17 +235,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
         holdMotion(hold_in, camera_, hold_grid_, options_.depth, options_.temporal.hold_frames,
                    options_.temporal.hold_min_frames);
     diag.held_superpixels = hold.held_superpixels;
-    if (hold.held_superpixels > 0) {
-      const cv::Mat& labels = partition.segmentation.labels;
-      for (int y = 0; y < labels.rows; ++y) {
-        const int* l = labels.ptr<int>(y);
-        std::uint8_t* m = out.mask.ptr<std::uint8_t>(y);
-        for (int x = 0; x < labels.cols; ++x) {
-          const auto label = static_cast<std::size_t>(l[x]);
-          if (l[x] >= 0 && label < hold.held.size() && hold.held[label]) m[x] = 255;
-        }
-      }
-    }
+    if (hold.held_superpixels > 0) markLabelledPixels(partition.segmentation.labels, hold.held, out.mask);
     out.hold_score = std::move(hold.score);
     lap("hold");
   }

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "amos/core/error.h"
+#include "amos/dynamic/frame_regions.h"
 
 namespace amos::dynamic {
 
@@ -33,10 +34,7 @@ std::vector<bool> stillSuperpixels(const std::vector<PointTrack>& tracks,
   std::vector<std::vector<double>> errors(n_sp);
   for (std::size_t i = 0; i < judged_error_px.size(); ++i) {
     if (!judged_error_px[i]) continue;
-    const cv::Point2f& at = tracks[i].current;
-    const int x = static_cast<int>(std::lround(at.x)), y = static_cast<int>(std::lround(at.y));
-    if (x < 0 || y < 0 || x >= labels.cols || y >= labels.rows) continue;
-    const int label = labels.at<int>(y, x);
+    const int label = labelAt(labels, tracks[i].current);
     if (label >= 0 && label < count) errors[static_cast<std::size_t>(label)].push_back(*judged_error_px[i]);
   }
   std::vector<bool> out(n_sp, false);

@@ -12,6 +12,7 @@
 #include "amos/core/error.h"
 #include "amos/dynamic/baseline_history.h"
 #include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/mask_building.h"
 #include "amos/dynamic/mover_diagnostics.h"
 #include "amos/eval/ground_truth_masks.h"
 #include "amos/io/dataset.h"
@@ -53,16 +54,9 @@ cv::Mat decisionPicture(const cv::Mat& bgr, const cv::Mat& truth_ids, const dyna
       p[x] = p[x] * 0.5 + tint;
     }
   }
-  if (!result.cluster_map.empty()) {
+  if (!result.cluster_map.empty() && !result.dynamic_cluster.empty()) {
     cv::Mat dynamic_clusters(result.cluster_map.size(), CV_8U, cv::Scalar(0));
-    for (int y = 0; y < dynamic_clusters.rows; ++y) {
-      const int* c = result.cluster_map.ptr<int>(y);
-      for (int x = 0; x < dynamic_clusters.cols; ++x) {
-        const auto cluster = static_cast<std::size_t>(c[x]);
-        if (c[x] >= 0 && cluster < result.dynamic_cluster.size() && result.dynamic_cluster[cluster])
-          dynamic_clusters.at<std::uint8_t>(y, x) = 255;
-      }
-    }
+    dynamic::markLabelledPixels(result.cluster_map, result.dynamic_cluster, dynamic_clusters);
     std::vector<std::vector<cv::Point>> contours;
     cv::findContours(dynamic_clusters, contours, cv::RETR_LIST, cv::CHAIN_APPROX_SIMPLE);
     cv::drawContours(pic, contours, -1, cv::Scalar(255, 255, 255), 1);
