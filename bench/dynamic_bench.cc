@@ -240,6 +240,36 @@ void BM_BaselineTracks(benchmark::State& state) {
 }
 BENCHMARK(BM_BaselineTracks)->Unit(benchmark::kMillisecond);
 
+// The rigid movers (rigid_movers.h) on a Bonn frame, as the front end runs them after the long-baseline tracks with
+// Dynamic.RigidMovers.enabled. The baseline frame is the frame itself with a 240 x 200 px block moved 6 px to the
+// left (what a slow mover does over ten frames), so that the fit and the sample test have a mover to work on.
+void BM_RigidMovers(benchmark::State& state) {
+  const BenchData& d = data();
+  const DynamicOptions options;
+  const cv::Rect block(200, 140, 240, 200);
+  cv::Mat baseline_gray = d.current.gray.clone();
+  d.current.gray(block).copyTo(baseline_gray(block - cv::Point(6, 0)));
+  std::vector<cv::Point2f> points;
+  for (const PointTrack& t : d.tracks) points.push_back(t.current);
+  const BaselineMotion m = baselineMotion(points, d.current.gray, d.current.depth, d.T_cw_initial, baseline_gray,
+                                          d.T_cw_initial, d.camera, options.tracking, options.reprojection,
+                                          options.baseline_tracks);
+  const SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
+  const int count = static_cast<int>(seg.superpixels.size());
+  RigidMoverVerdict v;
+  for (auto _ : state) {
+    v = rigidMoverSuperpixels(m, d.current.gray, d.current.depth, d.T_cw_initial, baseline_gray, d.current.depth,
+                              d.T_cw_initial, d.camera, seg.labels, count, options.reprojection,
+                              options.rigid_movers);
+    benchmark::DoNotOptimize(v.moving_superpixels);
+  }
+  state.counters["moving_points"] = m.moving_points;
+  state.counters["movers"] = static_cast<double>(v.movers.size());
+  state.counters["votes"] = v.mover_votes + v.static_votes;
+  state.counters["moving_superpixels"] = v.moving_superpixels;
+}
+BENCHMARK(BM_RigidMovers)->Unit(benchmark::kMillisecond);
+
 void BM_CornerTracking(benchmark::State& state) {
   const BenchData& d = data();
   const CornerTrackingOptions options;

@@ -183,6 +183,26 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.BaselineTracks.growDissimilarity", &o.baseline_tracks.grow_dissimilarity,
         "largest Eq. 1 dissimilarity (no position term) of one step of that growth");
 
+  s.add("Dynamic.RigidMovers.enabled", &o.rigid_movers.enabled,
+        "the rigid motions of the moving long-baseline points are fitted and every textured sample of the frame is "
+        "judged by which motion, the static world's or a mover's, explains it over the baseline (acts only with "
+        "Dynamic.BaselineTracks.enabled)");
+  s.add("Dynamic.RigidMovers.minInliers", &o.rigid_movers.min_inliers, "moving points one rigid motion must explain");
+  s.add("Dynamic.RigidMovers.inlierPx", &o.rigid_movers.inlier_px,
+        "reprojection error of such a point over the baseline [px]");
+  s.add("Dynamic.RigidMovers.maxMovers", &o.rigid_movers.max_movers, "rigid motions fitted at most");
+  s.add("Dynamic.RigidMovers.sampleStep", &o.rigid_movers.sample_step_px, "grid step of the samples [px]");
+  s.add("Dynamic.RigidMovers.minSeparation", &o.rigid_movers.min_separation_px,
+        "a sample decides only where the hypotheses put it this far apart [px]");
+  s.add("Dynamic.RigidMovers.intensityMargin", &o.rigid_movers.intensity_margin,
+        "a hypothesis wins a sample when its 3x3 patch differs from the baseline image by this many grey levels less");
+  s.add("Dynamic.RigidMovers.minSamples", &o.rigid_movers.min_samples,
+        "samples a superpixel needs for a mover (and twice those for the static world) to move");
+  s.add("Dynamic.RigidMovers.regionReach", &o.rigid_movers.region_reach_px,
+        "a mover speaks for the samples within this many pixels of the box around its points");
+  s.add("Dynamic.RigidMovers.minGradient", &o.rigid_movers.min_gradient,
+        "RMS intensity gradient a sample needs along the direction separating the hypotheses [grey levels per px]");
+
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
         "1 = of the initial-pose hypotheses and models with at least half the most inliers, the one whose inliers "
         "cover the most image cells wins; 0 = the most inliers");

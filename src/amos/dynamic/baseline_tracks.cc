@@ -184,11 +184,11 @@ void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& mo
   }
 }
 
-// The weakest direction's mean squared intensity gradient (grey levels^2 per px^2) over the 7x7 window around
-// (u, v): the smaller eigenvalue of the window's structure tensor, what LK's precision there depends on (Shi and
-// Tomasi's "good features to track"). (u, v) must lie at least 4 px inside the image.
-double windowTexture(const cv::Mat& gray, int u, int v) {
-  double xx = 0, xy = 0, yy = 0;
+
+}  // namespace
+
+WindowStructure windowStructure(const cv::Mat& gray, int u, int v) {
+  WindowStructure w;
   for (int dv = -3; dv <= 3; ++dv) {
     const std::uint8_t* row = gray.ptr<std::uint8_t>(v + dv);
     const std::uint8_t* up = gray.ptr<std::uint8_t>(v + dv - 1);
@@ -196,14 +196,17 @@ double windowTexture(const cv::Mat& gray, int u, int v) {
     for (int du = -3; du <= 3; ++du) {
       const int x = u + du;
       const double gx = 0.5 * (row[x + 1] - row[x - 1]), gy = 0.5 * (down[x] - up[x]);
-      xx += gx * gx, xy += gx * gy, yy += gy * gy;
+      w.xx += gx * gx, w.xy += gx * gy, w.yy += gy * gy;
     }
   }
-  xx /= 49, xy /= 49, yy /= 49;
-  return 0.5 * (xx + yy) - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
+  w.xx /= 49, w.xy /= 49, w.yy /= 49;
+  return w;
 }
 
-}  // namespace
+double windowTexture(const cv::Mat& gray, int u, int v) {
+  const WindowStructure w = windowStructure(gray, u, v);
+  return 0.5 * (w.xx + w.yy) - std::sqrt(0.25 * (w.xx - w.yy) * (w.xx - w.yy) + w.xy * w.xy);
+}
 
 BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
                               const cv::Mat& depth, const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,

@@ -137,6 +137,20 @@ int densifyBaselineMotion(BaselineMotion& motion, const ImagePyramid& pyramid, c
                           int count, const SuperpixelGraph* graph, const CornerTrackingOptions& lk,
                           const ReprojectionOptions& reprojection, const BaselineTrackOptions& options);
 
+// The structure tensor of the 7x7 window around (u, v) of a CV_8UC1 image: the mean products of the intensity
+// gradient's components (grey levels^2 per px^2); its quadratic form in a unit direction is the mean squared
+// gradient along it, i.e. how well the window tells a shift along that direction from none. (u, v) must lie at
+// least 4 px inside the image.
+struct WindowStructure {
+  double xx = 0, xy = 0, yy = 0;
+  double along(double dx, double dy) const { return dx * dx * xx + 2 * dx * dy * xy + dy * dy * yy; }
+};
+WindowStructure windowStructure(const cv::Mat& gray, int u, int v);
+
+// Its smaller eigenvalue: the weakest direction's mean squared gradient, what LK's precision there depends on (Shi
+// and Tomasi's "good features to track").
+double windowTexture(const cv::Mat& gray, int u, int v);
+
 // Per superpixel (labels: CV_32S, count labels): whether at least options.min_votes of its points move and they
 // outnumber its static ones, counting the densified points or not (a superpixel is moving either way: they add
 // evidence of motion, they do not outvote the corners). With options.pool_neighbours and a graph of these

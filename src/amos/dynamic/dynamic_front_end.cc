@@ -177,6 +177,18 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     if (options_.baseline_tracks.grow_over_surface)
       baseline_points = baselinePointsPerSuperpixel(baseline, partition.segmentation.labels, superpixels);
     lap("baseline_tracks");
+    // Rigid movers (rigid_movers.h): the moving points' rigid motions, and the superpixels that follow one.
+    if (options_.rigid_movers.enabled) {
+      const RigidMoverVerdict rigid = rigidMoverSuperpixels(
+          baseline, in.gray, in.depth, confirmation.refit.T_cw, in.baseline_gray, in.baseline_depth,
+          in.T_cw_baseline, camera_, partition.segmentation.labels, superpixels, options_.reprojection,
+          options_.rigid_movers);
+      diag.rigid_movers = static_cast<int>(rigid.movers.size());
+      diag.rigid_superpixels = rigid.moving_superpixels;
+      for (std::size_t s = 0; s < rigid.moving.size() && s < baseline_moving.size(); ++s)
+        baseline_moving[s] = baseline_moving[s] || rigid.moving[s];
+      lap("rigid_movers");
+    }
   }
 
   // Decision: the epipolar violators vote for clusters and judged prior regions, then the mask follows the dynamic

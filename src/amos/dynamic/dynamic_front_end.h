@@ -104,6 +104,8 @@ struct DynamicDiagnostics {
   int baseline_moving_points = 0;       // of which moving
   int baseline_dense_points = 0;        // of those, followed where points moved (densifyBaselineMotion)
   int baseline_dynamic_clusters = 0;    // clusters made dynamic by the long-baseline tracks alone
+  int rigid_movers = 0;                 // rigid motions found among the moving points (rigid_movers.h; 0 when off)
+  int rigid_superpixels = 0;            // superpixels whose samples follow one of them
   int held_superpixels = 0;       // superpixels dynamic by the temporal hold alone (motion_hold.h; 0 when off)
   int prior_regions = 0;          // connected components of the prior mask
   int dynamic_prior_regions = 0;  // of which kept in the mask

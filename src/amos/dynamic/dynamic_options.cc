@@ -40,6 +40,7 @@ void DynamicOptions::check() const {
   prior.check();
   depth.check();
   baseline_tracks.check();
+  rigid_movers.check();
   core::requireInRange(temporal.hold_frames, "temporal.hold_frames", 0, 254);
   core::requireOption(temporal.hold_min_frames >= 2 && temporal.hold_min_frames + temporal.hold_frames <= 256,
                       core::option(temporal.hold_min_frames, "temporal.hold_min_frames"),

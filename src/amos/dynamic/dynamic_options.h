@@ -14,6 +14,7 @@
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/prior_propagation.h"
 #include "amos/dynamic/reprojection_scoring.h"
+#include "amos/dynamic/rigid_movers.h"
 
 namespace amos::dynamic {
 
@@ -71,6 +72,7 @@ struct DynamicOptions {
   TemporalOptions temporal;          // Dynamic.Temporal.*
   DepthEvidenceOptions depth;        // Dynamic.Depth.*: movers without tracks, from the depth images
   BaselineTrackOptions baseline_tracks;  // Dynamic.BaselineTracks.*: slow movers, over Dynamic.Depth.baselineFrames
+  RigidMoverOptions rigid_movers;        // Dynamic.RigidMovers.*: their rigid motions, tested per sample
   InitialPoseOptions initial_pose;   // Dynamic.InitialPose.* (used by tracking, III-D)
   PriorScheduleOptions prior;        // Dynamic.Prior.*: how often the person segmentation runs
   void check() const;

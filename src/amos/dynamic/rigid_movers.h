@@ -1,0 +1,89 @@
+#pragma once
+// Rigid movers over the long baseline (issue 16): the long-baseline points that move (baseline_tracks.h) are
+// sparse, about one per superpixel on a door leaf, and a slow mover's superpixels are each held by one or two of
+// them, too few to outvote the one-frame tracks that move below their bar. But a door, a box or a chair moves as
+// one rigid body: its moving points share one motion. That motion is fitted (EPnP RANSAC on the moving points:
+// current-frame point lifted with its depth -> where LK found it in the baseline frame), and every textured sample
+// of the current frame is then asked which motion explains it over the baseline: the static world's (fitted the
+// same way on the points that stayed) or the mover's. That is the paper's reprojection test (Eq. 6) turned into a
+// test between two hypotheses per pixel, with the baseline image as the measurement: a sample votes for the
+// hypothesis under which its 3x3 patch matches the baseline image better by a margin above the images' noise, and
+// only where the two hypotheses put it apart (near a door's hinge they do not, and the sample abstains). A
+// superpixel moves when its samples vote for a mover and outnumber those for the static world two to one: a plain
+// panel without texture gives no vote either way and is left to the region growing. A mover is a compact body: its
+// points must outnumber the points that stayed within the box around them, and it speaks only for the samples near
+// that box.
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "amos/core/camera.h"
+#include "amos/core/pose.h"
+#include "amos/dynamic/baseline_tracks.h"
+#include "amos/dynamic/reprojection_scoring.h"
+
+namespace amos::dynamic {
+
+struct RigidMoverOptions {
+  // Dynamic.RigidMovers.enabled: the test takes part in the decisions. It fits the long-baseline tracks' moving
+  // points, so it acts only with Dynamic.BaselineTracks.enabled (a settings file may switch either alone).
+  bool enabled = false;
+  // Dynamic.RigidMovers.minInliers: moving long-baseline points one rigid motion must explain. EPnP needs 4 and
+  // 6 fix a rigid motion; 8 leaves two over, so that a few LK slips on the static world (0-11 of ~110 points per
+  // frame beyond the bar on TUM fr2/desk, scattered) do not make a mover.
+  int min_inliers = 8;
+  // Dynamic.RigidMovers.inlierPx: a point follows a motion when it is reprojected within this many pixels of where
+  // LK found it in the baseline frame: the long-baseline bar's floor (Dynamic.BaselineTracks.minMotion, 2 px), LK's
+  // error over ten frames. A mover's motion must also move its inliers by more than this from the static world's.
+  double inlier_px = 2.0;
+  // Dynamic.RigidMovers.maxMovers: rigid motions fitted one after the other on the moving points left over.
+  int max_movers = 3;
+  // Dynamic.RigidMovers.sampleStep: the samples lie on a grid of this step [px] (as the depth evidence's).
+  int sample_step_px = 4;
+  // Dynamic.RigidMovers.minSeparation: a sample decides only where the two hypotheses put it this many pixels
+  // apart in the baseline frame; closer, a 3x3 patch's difference is interpolation, not evidence.
+  double min_separation_px = 1.0;
+  // Dynamic.RigidMovers.intensityMargin: a hypothesis wins a sample when its mean absolute difference over the 3x3
+  // patch is lower by this many grey levels: sensor noise of 2-3 grey levels gives a patch mean that varies by
+  // well under 1, and ten frames of shading and resampling by 1-3 more.
+  double intensity_margin = 6.0;
+  // Dynamic.RigidMovers.minSamples: votes a superpixel needs (and twice the static ones) to move: three independent
+  // patches (4 px apart, the 3x3 patches do not overlap).
+  int min_samples = 3;
+  // Dynamic.RigidMovers.regionReach: a mover speaks only for the samples within this many pixels of the box around
+  // its points (the paper's boundary reach, Dynamic.Boundary.radius: about one superpixel).
+  int region_reach_px = 30;
+  // Dynamic.RigidMovers.minGradient: a sample needs at least this RMS intensity gradient [grey levels per px] along
+  // the direction that separates the two hypotheses, over 7x7 px (windowStructure; the floor of
+  // Dynamic.BaselineTracks.densifyMinGradient): a patch textured across one direction only (wood grain, a row of
+  // book spines) cannot tell a shift along the stripes from none.
+  double min_gradient = 4.0;
+  void check() const;
+};
+
+struct RigidMover {
+  core::SE3 T_bc;          // current camera -> baseline camera under this mover's motion
+  int inliers = 0;         // moving points it explains
+  double shift_px = 0;     // median distance of its inliers' predictions from the static world's
+  cv::Rect2f region;       // the box around its inliers in the current frame (raw pixels)
+};
+
+struct RigidMoverVerdict {
+  core::SE3 T_bc_static = core::SE3::Identity();  // the static world's motion (refined on the points that stayed)
+  std::vector<RigidMover> movers;
+  std::vector<bool> moving;  // per superpixel
+  int moving_superpixels = 0;
+  int mover_votes = 0, static_votes = 0;  // samples that decided
+};
+
+// The rigid motions among motion's moving points, and the superpixels (labels CV_32S, count labels) whose samples
+// follow one of them rather than the static world. gray / depth / T_cw: the current frame (CV_8UC1, CV_32F metres,
+// judged pose); baseline_gray / baseline_depth / T_cw_baseline: the baseline frame (its depth only tells which
+// predictions it saw: one nearer by more than max(2 cm, 4 %) was hidden there). reprojection: depth trust rules.
+// Empty `moving` (all false) when no rigid motion has minInliers points.
+RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::Mat& gray, const cv::Mat& depth,
+                                        const core::SE3& T_cw, const cv::Mat& baseline_gray,
+                                        const cv::Mat& baseline_depth, const core::SE3& T_cw_baseline,
+                                        const core::PinholeCamera& camera, const cv::Mat& labels, int count,
+                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options);
+
+}  // namespace amos::dynamic
