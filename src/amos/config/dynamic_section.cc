@@ -151,6 +151,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "a cluster too poor in tracks to be scored is dynamic with this many moving superpixels");
   s.add("Dynamic.Depth.baselineFrames", &o.depth.baseline_frames,
         "the depth is also compared with that of the frame this many frames back, for slow movers (0 = off)");
+  s.add("Dynamic.Depth.baselineMinFrames", &o.depth.baseline_min_frames,
+        "while fewer frames are kept (a sequence's start, after a loss), the oldest serves once this many back (0 = "
+        "off)");
   s.add("Dynamic.Depth.baselineRelativeResidual", &o.depth.baseline_relative_residual,
         "minRelativeResidual of that comparison");
   s.add("Dynamic.Depth.clusterShare", &o.depth.cluster_share,

@@ -93,7 +93,8 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
            "c<id>:<mover share of cluster>/<share of mover> n<tracks> i<initial px>[C] r<refit px>[K] [D]\n";
   cv::Mat last_gray, last_depth, last_mask, last_hold_score;
   core::SE3 T_cw_last, T_cw_before;
-  dynamic::BaselineHistory baseline_history(dyn.depth.baseline_frames);  // as the pipeline keeps it
+  // As the pipeline keeps it.
+  dynamic::BaselineHistory baseline_history(dyn.depth.baseline_frames, dyn.depth.baseline_min_frames);
   bool have_before = false;
   if (!options.images_dir.empty()) std::filesystem::create_directories(options.images_dir);
   while (auto frame = reader.next()) {

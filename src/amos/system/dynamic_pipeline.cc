@@ -48,7 +48,8 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
   if (scheduler_.tasks().segmentation)
     state_.person_masks.emplace(scheduler_.segmentation()->dilation(), options_.prior);
   if (options_.depth.enabled || options_.baseline_tracks.enabled)
-    state_.baseline_history = dynamic::BaselineHistory(options_.depth.baseline_frames);
+    state_.baseline_history =
+        dynamic::BaselineHistory(options_.depth.baseline_frames, options_.depth.baseline_min_frames);
 }
 
 DynamicPipeline::~DynamicPipeline() = default;
