@@ -205,6 +205,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "a mover speaks for the samples within this many pixels of the box around its points");
   s.add("Dynamic.RigidMovers.minGradient", &o.rigid_movers.min_gradient,
         "RMS intensity gradient a sample needs along the direction separating the hypotheses [grey levels per px]");
+  s.add("Dynamic.RigidMovers.growOverSurface", &o.rigid_movers.grow_over_surface,
+        "the mask may grow from the superpixels that follow a rigid mover over unmeasured superpixels of the same "
+        "surface (steps of at most Dynamic.BaselineTracks.growDissimilarity), outside the dynamic clusters too");
 
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
         "1 = of the initial-pose hypotheses and models with at least half the most inliers, the one whose inliers "

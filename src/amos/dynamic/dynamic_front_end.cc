@@ -147,6 +147,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   BaselineMotion baseline;
   std::vector<bool> baseline_moving;
   std::vector<int> baseline_points;  // per superpixel, for growOverSurface
+  std::vector<bool> surface_seeds;    // per superpixel: the rigid movers' (Dynamic.RigidMovers.growOverSurface)
   if (options_.baseline_tracks.enabled && !in.baseline_gray.empty()) {
     std::vector<cv::Point2f> points;
     points.reserve(out.tracks.size());
@@ -174,7 +175,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     diag.baseline_moving_points = baseline.moving_points;
     baseline_moving = baselineMovingSuperpixels(baseline, partition.segmentation.labels, superpixels,
                                                 options_.baseline_tracks, graph);
-    if (options_.baseline_tracks.grow_over_surface)
+    if (options_.baseline_tracks.grow_over_surface || options_.rigid_movers.grow_over_surface)
       baseline_points = baselinePointsPerSuperpixel(baseline, partition.segmentation.labels, superpixels);
     lap("baseline_tracks");
     // Rigid movers (rigid_movers.h): the moving points' rigid motions, and the superpixels that follow one.
@@ -187,6 +188,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
       diag.rigid_superpixels = rigid.moving_superpixels;
       for (std::size_t s = 0; s < rigid.moving.size() && s < baseline_moving.size(); ++s)
         baseline_moving[s] = baseline_moving[s] || rigid.moving[s];
+      if (options_.rigid_movers.grow_over_surface) surface_seeds = rigid.moving;
       lap("rigid_movers");
     }
   }
@@ -214,7 +216,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   }
   const DynamicMask mask = buildDynamicMask(in, out.tracks, partition, regions, candidates, confirmation, epipolar,
                                             voting, judged_prior, depth_moving, options_, diag, baseline_moving,
-                                            baseline_points);
+                                            baseline_points, surface_seeds);
   cv::bitwise_or(out.mask, mask.mask, out.mask);
   lap("decision");
 

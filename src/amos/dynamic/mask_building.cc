@@ -97,7 +97,8 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
                                      const SuperpixelGraph* graph, const std::vector<bool>& depth_moving,
                                      const std::vector<bool>& baseline_moving,
-                                     const std::vector<int>& baseline_points, double still_bar_px) {
+                                     const std::vector<int>& baseline_points, double still_bar_px,
+                                     const std::vector<bool>& surface_seeds) {
   const int count = static_cast<int>(segmentation.superpixels.size());
   SuperpixelGraph computed;
   if (graph == nullptr) computed = superpixelGraph(segmentation, depth, options.reprojection.depth_edge_ratio);
@@ -115,10 +116,15 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   std::vector<bool> may_be_dynamic(count);
   for (int s = 0; s < count; ++s)
     may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
+  std::vector<bool> grow_from = surface_seeds;
   if (options.baseline_tracks.grow_over_surface && !baseline_moving.empty()) {
+    grow_from.resize(baseline_moving.size(), false);
+    for (std::size_t s = 0; s < baseline_moving.size(); ++s) grow_from[s] = grow_from[s] || baseline_moving[s];
+  }
+  if (std::find(grow_from.begin(), grow_from.end(), true) != grow_from.end()) {
     const std::vector<bool> surface = surfaceFromMovingSeeds(
-        segmentation.superpixels, g, seeds, border, baseline_moving, baseline_points,
-        options.superpixel.colour_scale, options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity);
+        segmentation.superpixels, g, seeds, border, grow_from, baseline_points, options.superpixel.colour_scale,
+        options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity);
     for (int s = 0; s < count; ++s) may_be_dynamic[s] = may_be_dynamic[s] || surface[s];
   }
   const std::vector<RegionLabel> labels =
@@ -167,7 +173,8 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
                              const PriorRegions& judged_prior, const std::vector<bool>& depth_moving,
                              const DynamicOptions& options, DynamicDiagnostics& diag,
                              const std::vector<bool>& baseline_moving,
-                             const std::vector<int>& baseline_points) {
+                             const std::vector<int>& baseline_points,
+                             const std::vector<bool>& surface_seeds) {
   DynamicMask out;
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
   const SuperpixelSegmentation& segmentation = partition.segmentation;
@@ -189,7 +196,8 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
         dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
                            seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr,
                            depth_moving, baseline_moving, baseline_points,
-                           confirmation.refit.ok ? options.boundary.still_sigmas * confirmation.refit.sigma_px : 0.0);
+                           confirmation.refit.ok ? options.boundary.still_sigmas * confirmation.refit.sigma_px : 0.0,
+                           surface_seeds);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);

@@ -47,7 +47,8 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 // Dynamic.BaselineTracks.growOverSurface the dynamic label may also enter, outside the dynamic clusters, the
 // superpixels that neither a track nor a long-baseline point measured and that are reached from a baseline-moving
 // seed through non-occlusion borders, each step between superpixels at most growDissimilarity apart
-// (surfaceFromMovingSeeds).
+// (surfaceFromMovingSeeds). `surface_seeds`: per superpixel, seeds of that growth besides (empty = none); the
+// rigid movers' superpixels under Dynamic.RigidMovers.growOverSurface, which grow whatever growOverSurface says.
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
@@ -55,10 +56,12 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const SuperpixelGraph* graph = nullptr,
                                      const std::vector<bool>& depth_moving = {},
                                      const std::vector<bool>& baseline_moving = {},
-                                     const std::vector<int>& baseline_points = {}, double still_bar_px = 0);
+                                     const std::vector<int>& baseline_points = {}, double still_bar_px = 0,
+                                     const std::vector<bool>& surface_seeds = {});
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
-// dynamicSuperpixels): breadth-first from the baseline-moving seeds over unmeasured, non-border superpixels.
+// dynamicSuperpixels): breadth-first from the seeds given as `baseline_moving` (the baseline-moving superpixels
+// and/or the rigid movers' ones) over unmeasured, non-border superpixels.
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
                                          const std::vector<bool>& baseline_moving,
@@ -80,6 +83,7 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
                              const PriorRegions& judged_prior, const std::vector<bool>& depth_moving,
                              const DynamicOptions& options, DynamicDiagnostics& diag,
                              const std::vector<bool>& baseline_moving = {},
-                             const std::vector<int>& baseline_points = {});
+                             const std::vector<int>& baseline_points = {},
+                             const std::vector<bool>& surface_seeds = {});
 
 }  // namespace amos::dynamic

@@ -140,6 +140,37 @@ TEST(MaskBuilding, LongBaselineMotionGrowsOverTheUnmeasuredSurfaceAroundIt) {
   EXPECT_EQ(surface(graph, unseeded, 1.0), only_5);
 }
 
+TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaselineGrowth) {
+  // Superpixel 5 follows a rigid mover (rigid_movers.h) and is also a long-baseline seed; superpixel 10's points
+  // moved over the long baseline but follow no mover. With Dynamic.RigidMovers.growOverSurface alone (surface seeds
+  // = the rigid movers' superpixels) the label grows from 5 into 9 (same dark surface, unmeasured), not from 10 into
+  // 6 (bright, unmeasured, which the long-baseline growth would enter); with neither growth nothing grows.
+  const GeometricPartition partition = blockPartition();
+  const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);
+  const cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
+  std::vector<bool> baseline_moving(16, false), rigid(16, false);
+  baseline_moving[5] = baseline_moving[10] = rigid[5] = true;
+  std::vector<int> baseline_points(16, 0);
+  baseline_points[5] = baseline_points[10] = 3;
+  const DynamicOptions options;  // growOverSurface off
+  std::vector<bool> seeds_only(16, false);
+  seeds_only[5] = seeds_only[10] = true;
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+                               nullptr, {}, baseline_moving, baseline_points),
+            seeds_only);
+  std::vector<bool> grown = seeds_only;
+  grown[9] = true;
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+                               nullptr, {}, baseline_moving, baseline_points, 0.0, rigid),
+            grown);
+  DynamicOptions baseline_growth;
+  baseline_growth.baseline_tracks.grow_over_surface = true;
+  grown[6] = true;
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth,
+                               baseline_growth, nullptr, {}, baseline_moving, baseline_points),
+            grown);
+}
+
 TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
   const DynamicFrameInput in = wallFramePair({40, 40}, 2.f);
   const GeometricPartition partition = blockPartition();

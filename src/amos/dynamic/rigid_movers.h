@@ -57,6 +57,11 @@ struct RigidMoverOptions {
   // Dynamic.BaselineTracks.densifyMinGradient): a patch textured across one direction only (wood grain, a row of
   // book spines) cannot tell a shift along the stripes from none.
   double min_gradient = 4.0;
+  // Dynamic.RigidMovers.growOverSurface: the mask may grow from the superpixels that follow a rigid mover over the
+  // unmeasured superpixels of the same surface (no track, no long-baseline point, no occlusion edge between, each
+  // step at most Dynamic.BaselineTracks.growDissimilarity apart), outside the dynamic clusters too: a door's plain
+  // panel moves with its textured parts, and gives the samples nothing to vote on.
+  bool grow_over_surface = false;
   void check() const;
 };
 

@@ -147,9 +147,10 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
                                d.pixels ? double(c.overlap_px) / d.pixels : 0.0, c.tracks, c.initial_px,
                                c.candidate ? "C" : "", c.confirm_px, c.confirmed ? "K" : "", c.dynamic ? " D" : "");
           }
-          out << fmt::format("  [refit {} sigma {:.2f} thr {:.2f} baseline bar {:.2f}]\n",
+          out << fmt::format("  [refit {} sigma {:.2f} thr {:.2f} baseline bar {:.2f} rigid {}/{}]\n",
                              result.diagnostics.pose_refit_ok ? "ok" : "no", result.diagnostics.pose_refit_sigma_px,
-                             result.diagnostics.confirm_threshold_px, result.baseline_bar_px);
+                             result.diagnostics.confirm_threshold_px, result.baseline_bar_px,
+                             result.diagnostics.rigid_movers, result.diagnostics.rigid_superpixels);
         }
       }
     } else {
