@@ -207,7 +207,8 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "RMS intensity gradient a sample needs along the direction separating the hypotheses [grey levels per px]");
   s.add("Dynamic.RigidMovers.growOverSurface", &o.rigid_movers.grow_over_surface,
         "the mask may grow from the superpixels that follow a rigid mover over unmeasured superpixels of the same "
-        "surface (steps of at most Dynamic.BaselineTracks.growDissimilarity), outside the dynamic clusters too");
+        "surface (steps of at most Dynamic.BaselineTracks.growDissimilarity), outside the dynamic clusters too, within "
+        "Dynamic.RigidMovers.regionReach of the movers' points");
 
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
         "1 = of the initial-pose hypotheses and models with at least half the most inliers, the one whose inliers "

@@ -147,7 +147,7 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
   BaselineMotion baseline;
   std::vector<bool> baseline_moving;
   std::vector<int> baseline_points;  // per superpixel, for growOverSurface
-  std::vector<bool> surface_seeds;    // per superpixel: the rigid movers' (Dynamic.RigidMovers.growOverSurface)
+  SurfaceSeeds surface_seeds;         // the rigid movers' (Dynamic.RigidMovers.growOverSurface)
   if (options_.baseline_tracks.enabled && !in.baseline_gray.empty()) {
     std::vector<cv::Point2f> points;
     points.reserve(out.tracks.size());
@@ -188,7 +188,11 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
       diag.rigid_superpixels = rigid.moving_superpixels;
       for (std::size_t s = 0; s < rigid.moving.size() && s < baseline_moving.size(); ++s)
         baseline_moving[s] = baseline_moving[s] || rigid.moving[s];
-      if (options_.rigid_movers.grow_over_surface) surface_seeds = rigid.moving;
+      if (options_.rigid_movers.grow_over_surface) {
+        surface_seeds.seeds = rigid.moving;
+        surface_seeds.within = superpixelsNearMovers(partition.segmentation.superpixels, rigid.movers,
+                                                     options_.rigid_movers.region_reach_px);
+      }
       lap("rigid_movers");
     }
   }

@@ -98,7 +98,7 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const SuperpixelGraph* graph, const std::vector<bool>& depth_moving,
                                      const std::vector<bool>& baseline_moving,
                                      const std::vector<int>& baseline_points, double still_bar_px,
-                                     const std::vector<bool>& surface_seeds) {
+                                     const SurfaceSeeds& surface_seeds) {
   const int count = static_cast<int>(segmentation.superpixels.size());
   SuperpixelGraph computed;
   if (graph == nullptr) computed = superpixelGraph(segmentation, depth, options.reprojection.depth_edge_ratio);
@@ -116,17 +116,15 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   std::vector<bool> may_be_dynamic(count);
   for (int s = 0; s < count; ++s)
     may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
-  std::vector<bool> grow_from = surface_seeds;
-  if (options.baseline_tracks.grow_over_surface && !baseline_moving.empty()) {
-    grow_from.resize(baseline_moving.size(), false);
-    for (std::size_t s = 0; s < baseline_moving.size(); ++s) grow_from[s] = grow_from[s] || baseline_moving[s];
-  }
-  if (std::find(grow_from.begin(), grow_from.end(), true) != grow_from.end()) {
+  auto grow = [&](const std::vector<bool>& from, const std::vector<bool>& within) {
+    if (std::find(from.begin(), from.end(), true) == from.end()) return;
     const std::vector<bool> surface = surfaceFromMovingSeeds(
-        segmentation.superpixels, g, seeds, border, grow_from, baseline_points, options.superpixel.colour_scale,
-        options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity);
+        segmentation.superpixels, g, seeds, border, from, baseline_points, options.superpixel.colour_scale,
+        options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity, within);
     for (int s = 0; s < count; ++s) may_be_dynamic[s] = may_be_dynamic[s] || surface[s];
-  }
+  };
+  if (options.baseline_tracks.grow_over_surface) grow(baseline_moving, {});
+  grow(surface_seeds.seeds, surface_seeds.within);
   const std::vector<RegionLabel> labels =
       growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,
                   options.superpixel.depth_scale_m, g.occlusion_edges, options.boundary.max_dynamic_step);
@@ -139,7 +137,8 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
                                          const std::vector<bool>& baseline_moving,
                                          const std::vector<int>& baseline_points, double colour_scale,
-                                         double depth_scale_m, double max_dissimilarity) {
+                                         double depth_scale_m, double max_dissimilarity,
+                                         const std::vector<bool>& within) {
   const std::size_t count = superpixels.size();
   core::require(graph.neighbours.size() == count && seeds.size() == count,
                 "surfaceFromMovingSeeds: the graph and the seeds must be of these superpixels");
@@ -154,6 +153,7 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
     for (std::size_t k = 0; k < neighbours.size(); ++k) {
       const int n = neighbours[k];
       if (reached[n] || graph.occlusion_edges[s][k] || flag(border, n)) continue;
+      if (!within.empty() && !flag(within, n)) continue;
       // Measured superpixels speak for themselves: a track's vote or a long-baseline point that did not move.
       if (seeds[n] != RegionLabel::kUnlabelled) continue;
       if (n < static_cast<int>(baseline_points.size()) && baseline_points[n] > 0) continue;
@@ -174,7 +174,7 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
                              const DynamicOptions& options, DynamicDiagnostics& diag,
                              const std::vector<bool>& baseline_moving,
                              const std::vector<int>& baseline_points,
-                             const std::vector<bool>& surface_seeds) {
+                             const SurfaceSeeds& surface_seeds) {
   DynamicMask out;
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
   const SuperpixelSegmentation& segmentation = partition.segmentation;

@@ -19,6 +19,14 @@
 
 namespace amos::dynamic {
 
+// Seeds of the surface growth besides the long-baseline ones (Dynamic.RigidMovers.growOverSurface): per
+// superpixel, those that follow a rigid mover, and those the growth from them may enter at all (empty = any): a
+// mover speaks only for its own region (rigid_movers.h, superpixelsNearMovers), so its plain surface lies there too.
+struct SurfaceSeeds {
+  std::vector<bool> seeds;
+  std::vector<bool> within;
+};
+
 // Sets to 255 the pixels of mask (CV_8U) whose label in label_map (CV_32S, same size, each label an index into
 // marked) is marked.
 void markLabelledPixels(const cv::Mat& label_map, const std::vector<bool>& marked, cv::Mat& mask);
@@ -47,8 +55,8 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 // Dynamic.BaselineTracks.growOverSurface the dynamic label may also enter, outside the dynamic clusters, the
 // superpixels that neither a track nor a long-baseline point measured and that are reached from a baseline-moving
 // seed through non-occlusion borders, each step between superpixels at most growDissimilarity apart
-// (surfaceFromMovingSeeds). `surface_seeds`: per superpixel, seeds of that growth besides (empty = none); the
-// rigid movers' superpixels under Dynamic.RigidMovers.growOverSurface, which grow whatever growOverSurface says.
+// (surfaceFromMovingSeeds). `surface_seeds`: seeds of that growth besides (none = empty), which grow whatever
+// growOverSurface says, but only within their `within` superpixels.
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
@@ -57,16 +65,17 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const std::vector<bool>& depth_moving = {},
                                      const std::vector<bool>& baseline_moving = {},
                                      const std::vector<int>& baseline_points = {}, double still_bar_px = 0,
-                                     const std::vector<bool>& surface_seeds = {});
+                                     const SurfaceSeeds& surface_seeds = {});
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
 // dynamicSuperpixels): breadth-first from the seeds given as `baseline_moving` (the baseline-moving superpixels
-// and/or the rigid movers' ones) over unmeasured, non-border superpixels.
+// and/or the rigid movers' ones) over unmeasured, non-border superpixels; only into the `within` ones (empty = any).
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
                                          const std::vector<bool>& baseline_moving,
                                          const std::vector<int>& baseline_points, double colour_scale,
-                                         double depth_scale_m, double max_dissimilarity);
+                                         double depth_scale_m, double max_dissimilarity,
+                                         const std::vector<bool>& within = {});
 
 struct DynamicMask {
   cv::Mat mask;                          // CV_8U, 255 = dynamic
@@ -84,6 +93,6 @@ DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<Poin
                              const DynamicOptions& options, DynamicDiagnostics& diag,
                              const std::vector<bool>& baseline_moving = {},
                              const std::vector<int>& baseline_points = {},
-                             const std::vector<bool>& surface_seeds = {});
+                             const SurfaceSeeds& surface_seeds = {});
 
 }  // namespace amos::dynamic

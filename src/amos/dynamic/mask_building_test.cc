@@ -144,7 +144,8 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   // Superpixel 5 follows a rigid mover (rigid_movers.h) and is also a long-baseline seed; superpixel 10's points
   // moved over the long baseline but follow no mover. With Dynamic.RigidMovers.growOverSurface alone (surface seeds
   // = the rigid movers' superpixels) the label grows from 5 into 9 (same dark surface, unmeasured), not from 10 into
-  // 6 (bright, unmeasured, which the long-baseline growth would enter); with neither growth nothing grows.
+  // 6 (bright, unmeasured, which the long-baseline growth would enter), and only while 9 is within the mover's
+  // region; with neither growth nothing grows.
   const GeometricPartition partition = blockPartition();
   const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);
   const cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
@@ -161,7 +162,17 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   std::vector<bool> grown = seeds_only;
   grown[9] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, 0.0, rigid),
+                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, {}}),
+            grown);
+  // Bounded to the mover's region: with 9 outside it the label stays on the seeds; within it, it grows again.
+  std::vector<bool> within(16, true);
+  within[9] = false;
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, within}),
+            seeds_only);
+  within[9] = true;
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, within}),
             grown);
   DynamicOptions baseline_growth;
   baseline_growth.baseline_tracks.grow_over_surface = true;

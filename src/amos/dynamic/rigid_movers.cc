@@ -28,6 +28,14 @@ void RigidMoverOptions::check() const {
 
 namespace {
 
+bool withinReach(const cv::Rect2f& r, const cv::Point2f& p, float reach) {
+  return p.x >= r.x - reach && p.y >= r.y - reach && p.x <= r.x + r.width + reach && p.y <= r.y + r.height + reach;
+}
+
+bool nearAnyMover(const std::vector<RigidMover>& movers, const cv::Point2f& p, float reach) {
+  return std::any_of(movers.begin(), movers.end(), [&](const RigidMover& m) { return withinReach(m.region, p, reach); });
+}
+
 // Current-camera points (lifted with the current depth, backProjectTracks' trust rules) of raw pixels.
 std::vector<std::optional<Eigen::Vector3d>> liftPixels(const std::vector<cv::Point2f>& pixels, const cv::Mat& depth,
                                                        const core::PinholeCamera& camera,
@@ -201,12 +209,8 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
   // of a border point into the cluster beside it): a door's plain panel or a box's edge lies between or just
   // beyond its corners, the rest of the image does not.
   const float reach = static_cast<float>(options.region_reach_px);
-  auto near = [reach](const cv::Rect2f& r, const cv::Point2f& p) {
-    return p.x >= r.x - reach && p.y >= r.y - reach && p.x <= r.x + r.width + reach && p.y <= r.y + r.height + reach;
-  };
-  auto nearAny = [&](const cv::Point2f& p) {
-    return std::any_of(out.movers.begin(), out.movers.end(), [&](const RigidMover& m) { return near(m.region, p); });
-  };
+  auto near = [reach](const cv::Rect2f& r, const cv::Point2f& p) { return withinReach(r, p, reach); };
+  auto nearAny = [&](const cv::Point2f& p) { return nearAnyMover(out.movers, p, reach); };
   const int first = std::max(4, step / 2);  // windowStructure's margin
   for (int v = first; v < gray.rows - 4; v += step)
     for (int u = first; u < gray.cols - 4; u += step) {
@@ -291,6 +295,14 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
     if (kept_mover[m]) confirmed.push_back(out.movers[m]);
   out.movers = std::move(confirmed);
   return out;
+}
+
+std::vector<bool> superpixelsNearMovers(const std::vector<Superpixel>& superpixels,
+                                        const std::vector<RigidMover>& movers, int reach_px) {
+  std::vector<bool> near(superpixels.size());
+  for (std::size_t s = 0; s < superpixels.size(); ++s)
+    near[s] = nearAnyMover(movers, cv::Point2f(superpixels[s].x, superpixels[s].y), static_cast<float>(reach_px));
+  return near;
 }
 
 }  // namespace amos::dynamic

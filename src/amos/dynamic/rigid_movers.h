@@ -19,6 +19,7 @@
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
 #include "amos/dynamic/baseline_tracks.h"
+#include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/reprojection_scoring.h"
 
 namespace amos::dynamic {
@@ -60,7 +61,9 @@ struct RigidMoverOptions {
   // Dynamic.RigidMovers.growOverSurface: the mask may grow from the superpixels that follow a rigid mover over the
   // unmeasured superpixels of the same surface (no track, no long-baseline point, no occlusion edge between, each
   // step at most Dynamic.BaselineTracks.growDissimilarity apart), outside the dynamic clusters too: a door's plain
-  // panel moves with its textured parts, and gives the samples nothing to vote on.
+  // panel moves with its textured parts, and gives the samples nothing to vote on. The growth stays within the
+  // movers' regions (superpixelsNearMovers), as their votes do: from a box's superpixels it would otherwise run on
+  // over the plain, shadowed floor beside it (box_push seed 8, frame 86: 37000 px).
   bool grow_over_surface = false;
   void check() const;
 };
@@ -90,5 +93,10 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
                                         const cv::Mat& baseline_depth, const core::SE3& T_cw_baseline,
                                         const core::PinholeCamera& camera, const cv::Mat& labels, int count,
                                         const ReprojectionOptions& reprojection, const RigidMoverOptions& options);
+
+// Per superpixel, whether its centroid lies within reach_px of a mover's region (the box around its inliers):
+// the samples a mover speaks for, and the surface its growth may cover.
+std::vector<bool> superpixelsNearMovers(const std::vector<Superpixel>& superpixels,
+                                        const std::vector<RigidMover>& movers, int reach_px);
 
 }  // namespace amos::dynamic

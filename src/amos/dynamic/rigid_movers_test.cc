@@ -71,6 +71,20 @@ TEST(RigidMovers, ASlowBoxIsFoundWholeByItsRigidMotion) {
   EXPECT_LT(inside_by_points, inside / 2);
 }
 
+TEST(RigidMovers, TheSuperpixelsNearAMoverAreThoseWithinReachOfItsPointsBox) {
+  RigidMover mover;
+  mover.region = cv::Rect2f(100.f, 100.f, 50.f, 40.f);  // u in [100, 150], v in [100, 140]
+  std::vector<Superpixel> superpixels(5);
+  const float centres[5][2] = {{120, 120}, {75, 120}, {69, 120}, {120, 171}, {190, 190}};
+  for (int s = 0; s < 5; ++s) superpixels[s].x = centres[s][0], superpixels[s].y = centres[s][1];
+  EXPECT_EQ(superpixelsNearMovers(superpixels, {mover}, 30), (std::vector<bool>{true, true, false, false, false}));
+  RigidMover second;
+  second.region = cv::Rect2f(180.f, 180.f, 20.f, 20.f);
+  EXPECT_EQ(superpixelsNearMovers(superpixels, {mover, second}, 30),
+            (std::vector<bool>{true, true, false, false, true}));
+  EXPECT_EQ(superpixelsNearMovers(superpixels, {}, 30), std::vector<bool>(5, false));
+}
+
 TEST(RigidMovers, AStaticSceneHasNoMover) {
   const Scene s;
   const Judged j = judge(s, 0.0, 0.0, RigidMoverOptions{});
