@@ -135,7 +135,7 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
 
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
-                                         const std::vector<bool>& baseline_moving,
+                                         const std::vector<bool>& moving_seeds,
                                          const std::vector<int>& baseline_points, double colour_scale,
                                          double depth_scale_m, double max_dissimilarity,
                                          const std::vector<bool>& within) {
@@ -146,7 +146,7 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
   std::vector<bool> reached(count, false);
   std::vector<int> queue;
   for (std::size_t s = 0; s < count; ++s)
-    if (flag(baseline_moving, s) && !flag(border, s)) reached[s] = true, queue.push_back(static_cast<int>(s));
+    if (flag(moving_seeds, s) && !flag(border, s)) reached[s] = true, queue.push_back(static_cast<int>(s));
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const int s = queue[head];
     const std::vector<int>& neighbours = graph.neighbours[s];

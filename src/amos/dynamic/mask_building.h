@@ -68,11 +68,11 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const SurfaceSeeds& surface_seeds = {});
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
-// dynamicSuperpixels): breadth-first from the seeds given as `baseline_moving` (the baseline-moving superpixels
-// and/or the rigid movers' ones) over unmeasured, non-border superpixels; only into the `within` ones (empty = any).
+// dynamicSuperpixels): breadth-first from `moving_seeds` (the baseline-moving superpixels or the rigid movers'
+// ones) over unmeasured, non-border superpixels; only into the `within` ones (empty = any).
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
-                                         const std::vector<bool>& baseline_moving,
+                                         const std::vector<bool>& moving_seeds,
                                          const std::vector<int>& baseline_points, double colour_scale,
                                          double depth_scale_m, double max_dissimilarity,
                                          const std::vector<bool>& within = {});

@@ -209,13 +209,11 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
   // of a border point into the cluster beside it): a door's plain panel or a box's edge lies between or just
   // beyond its corners, the rest of the image does not.
   const float reach = static_cast<float>(options.region_reach_px);
-  auto near = [reach](const cv::Rect2f& r, const cv::Point2f& p) { return withinReach(r, p, reach); };
-  auto nearAny = [&](const cv::Point2f& p) { return nearAnyMover(out.movers, p, reach); };
   const int first = std::max(4, step / 2);  // windowStructure's margin
   for (int v = first; v < gray.rows - 4; v += step)
     for (int u = first; u < gray.cols - 4; u += step) {
       const cv::Point2f p(static_cast<float>(u), static_cast<float>(v));
-      if (nearAny(p)) samples.push_back(p);
+      if (nearAnyMover(out.movers, p, reach)) samples.push_back(p);
     }
   const std::vector<std::optional<Eigen::Vector3d>> points = liftPixels(samples, depth, camera, reprojection);
   std::vector<int> kept;
@@ -256,7 +254,7 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
     int best = -1;
     const WindowStructure structure = windowStructure(gray, u, v);
     for (std::size_t h = 1; h < hypotheses; ++h) {
-      if (z[h][i] <= 0 || !near(out.movers[h - 1].region, pixel)) continue;
+      if (z[h][i] <= 0 || !withinReach(out.movers[h - 1].region, pixel, reach)) continue;
       const cv::Point2f d = undistorted[h][i] - undistorted[0][i];
       const double separation = std::hypot(d.x, d.y);
       if (separation < options.min_separation_px) continue;
