@@ -121,6 +121,9 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.Boundary.maxDynamicStep", &o.boundary.max_dynamic_step,
         "the mask grows into a trackless superpixel only from a neighbour at most this dissimilar (Eq. 1 without "
         "the position term); 0 = any");
+  s.add("Dynamic.Boundary.growFromConfirmed", &o.boundary.grow_from_confirmed,
+        "a dynamic cluster whose mean error under the refitted pose is at least this many times the confirmation "
+        "threshold seeds the growth over unmeasured superpixels of the same surface; 0 = off");
   s.add("Dynamic.Temporal.excludeFromFits", &o.temporal.exclude_last_mask_from_fits,
         "tracks starting in the last frame's mask take no part in the last-frame initial-pose model, the pose refit "
         "and the F fit");

@@ -18,6 +18,7 @@ void BoundaryOptions::check() const {
   core::requireAtLeast(search_radius_px, "search_radius_px", 0);
   core::requireAtLeast(border_margin_px, "border_margin_px", 0);
   core::requireAtLeast(max_dynamic_step, "max_dynamic_step", 0.0);
+  core::requireAtLeast(grow_from_confirmed, "grow_from_confirmed", 0.0);
   core::requireAtLeast(still_sigmas, "still_sigmas", 0.0);
 }
 

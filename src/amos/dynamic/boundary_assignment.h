@@ -65,6 +65,12 @@ struct BoundaryOptions {
   // the floor it stands on) takes the mover's label whenever no static seed reaches it first, however unlike the
   // mover it looks: what nothing measured is static unless it continues the mover's own surface.
   double max_dynamic_step = 0;
+  // Dynamic.Boundary.growFromConfirmed: a dynamic cluster whose Eq. 5 mean under the refitted pose is at least this
+  // many times the confirmation threshold seeds the surface growth (Dynamic.RigidMovers.growOverSurface's rule:
+  // over unmeasured superpixels of the same surface) with its dynamic superpixels; 0 = off. A mover's plain part
+  // (a chair's fabric back, a door's panel) holds no track and, moving in its own plane, no depth change either,
+  // and k-means may give it a cluster of its own beside the textured part whose tracks move.
+  double grow_from_confirmed = 0;
   void check() const;
 };
 

@@ -218,6 +218,16 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
         ++diag.dynamic_clusters;
       }
   }
+  if (options_.boundary.grow_from_confirmed > 0 && confirmation.refit.ok) {
+    // Clusters that move well beyond the confirmation threshold (boundary_assignment.h, growFromConfirmed).
+    const double bar = options_.boundary.grow_from_confirmed * confirmation.static_bar_px;
+    surface_seeds.strong_clusters.assign(voting.dynamic_cluster.size(), false);
+    for (std::size_t c = 0; c < voting.dynamic_cluster.size() && c < confirmation.confirm_scores.size(); ++c)
+      surface_seeds.strong_clusters[c] = voting.dynamic_cluster[c] && confirmation.confirmed[c] &&
+                                         confirmation.confirm_scores[c].equivalent_px >= bar;
+    for (const ClusterScore& score : candidates.cluster_scores)
+      surface_seeds.unscored_clusters.push_back(score.points < options_.reprojection.min_points_per_cluster);
+  }
   const DynamicMask mask = buildDynamicMask(in, out.tracks, partition, regions, candidates, confirmation, epipolar,
                                             voting, judged_prior, depth_moving, options_, diag, baseline_moving,
                                             baseline_points, surface_seeds);

@@ -116,15 +116,47 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   std::vector<bool> may_be_dynamic(count);
   for (int s = 0; s < count; ++s)
     may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
-  auto grow = [&](const std::vector<bool>& from, const std::vector<bool>& within) {
+  auto grow = [&](const std::vector<bool>& from, const std::vector<bool>& within, double max_from_seed) {
     if (std::find(from.begin(), from.end(), true) == from.end()) return;
     const std::vector<bool> surface = surfaceFromMovingSeeds(
         segmentation.superpixels, g, seeds, border, from, baseline_points, options.superpixel.colour_scale,
-        options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity, within);
+        options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity, within, max_from_seed);
     for (int s = 0; s < count; ++s) may_be_dynamic[s] = may_be_dynamic[s] || surface[s];
   };
-  if (options.baseline_tracks.grow_over_surface) grow(baseline_moving, {});
-  grow(surface_seeds.seeds, surface_seeds.within);
+  if (options.baseline_tracks.grow_over_surface) grow(baseline_moving, {}, 0.0);
+  grow(surface_seeds.seeds, surface_seeds.within, 0.0);
+  if (!surface_seeds.strong_clusters.empty()) {
+    // Seeds: the dynamic superpixels of the strong clusters. The growth stays within the box of each cluster's
+    // seeds plus the paper's boundary reach (Dynamic.Boundary.radius), as a rigid mover's does, or in clusters that
+    // too few tracks scored: a seed that straddles the mover's outline must not flood the plain surface behind it
+    // (a desk front, whose cluster the tracks found static), but a mover's plain part may be a cluster of its own.
+    const int clusters = static_cast<int>(surface_seeds.strong_clusters.size());
+    std::vector<bool> from(count, false);
+    std::vector<cv::Rect2f> box(clusters);
+    std::vector<bool> has_box(clusters, false);
+    for (int s = 0; s < count; ++s) {
+      const Superpixel& sp = segmentation.superpixels[s];
+      const int c = sp.cluster;
+      if (seeds[s] != RegionLabel::kDynamic || c < 0 || c >= clusters || !surface_seeds.strong_clusters[c]) continue;
+      from[s] = true;
+      const cv::Rect2f point(sp.x, sp.y, 0.f, 0.f);
+      box[c] = has_box[c] ? (box[c] | point) : point;
+      has_box[c] = true;
+    }
+    const float reach = static_cast<float>(options.boundary.search_radius_px);
+    std::vector<bool> within(count, false);
+    for (int s = 0; s < count; ++s) {
+      const Superpixel& sp = segmentation.superpixels[s];
+      within[s] = sp.cluster >= 0 && ((sp.cluster < static_cast<int>(surface_seeds.unscored_clusters.size()) &&
+                                       surface_seeds.unscored_clusters[sp.cluster]) ||
+                                      (sp.cluster < static_cast<int>(dynamic_cluster.size()) &&
+                                       dynamic_cluster[sp.cluster]));
+      for (int c = 0; c < clusters && !within[s]; ++c)
+        within[s] = has_box[c] && sp.x >= box[c].x - reach && sp.x <= box[c].x + box[c].width + reach &&
+                    sp.y >= box[c].y - reach && sp.y <= box[c].y + box[c].height + reach;
+    }
+    grow(from, within, options.baseline_tracks.grow_dissimilarity);
+  }
   const std::vector<RegionLabel> labels =
       growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,
                   options.superpixel.depth_scale_m, g.occlusion_edges, options.boundary.max_dynamic_step);
@@ -138,15 +170,19 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
                                          const std::vector<bool>& moving_seeds,
                                          const std::vector<int>& baseline_points, double colour_scale,
                                          double depth_scale_m, double max_dissimilarity,
-                                         const std::vector<bool>& within) {
+                                         const std::vector<bool>& within, double max_from_seed) {
   const std::size_t count = superpixels.size();
   core::require(graph.neighbours.size() == count && seeds.size() == count,
                 "surfaceFromMovingSeeds: the graph and the seeds must be of these superpixels");
   auto flag = [](const std::vector<bool>& v, std::size_t s) { return s < v.size() && v[s]; };
   std::vector<bool> reached(count, false);
-  std::vector<int> queue;
+  std::vector<int> queue, origin(count, -1);
   for (std::size_t s = 0; s < count; ++s)
-    if (flag(moving_seeds, s) && !flag(border, s)) reached[s] = true, queue.push_back(static_cast<int>(s));
+    if (flag(moving_seeds, s) && !flag(border, s)) {
+      reached[s] = true;
+      origin[s] = static_cast<int>(s);
+      queue.push_back(static_cast<int>(s));
+    }
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const int s = queue[head];
     const std::vector<int>& neighbours = graph.neighbours[s];
@@ -159,6 +195,12 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
       if (n < static_cast<int>(baseline_points.size()) && baseline_points[n] > 0) continue;
       if (superpixelDissimilarity(superpixels[s], superpixels[n], colour_scale, depth_scale_m) > max_dissimilarity)
         continue;
+      // Small steps may chain along a gradient (a floor receding from the mover that stands on it, into the desk
+      // front beyond): the whole way must stay as like the seed it started from.
+      if (max_from_seed > 0 &&
+          superpixelDissimilarity(superpixels[origin[s]], superpixels[n], colour_scale, depth_scale_m) > max_from_seed)
+        continue;
+      origin[n] = origin[s];
       reached[n] = true;
       queue.push_back(n);
     }

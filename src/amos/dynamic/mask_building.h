@@ -22,9 +22,15 @@ namespace amos::dynamic {
 // Seeds of the surface growth besides the long-baseline ones (Dynamic.RigidMovers.growOverSurface): per
 // superpixel, those that follow a rigid mover, and those the growth from them may enter at all (empty = any): a
 // mover speaks only for its own region (rigid_movers.h, superpixelsNearMovers), so its plain surface lies there too.
+// `strong_clusters`: per cluster, whether its dynamic superpixels seed the growth too
+// (Dynamic.Boundary.growFromConfirmed; empty = none), over superpixels as like the seed as one step may be, near
+// the cluster's seeds (their box plus Dynamic.Boundary.radius) or in the `unscored_clusters` (per cluster: too
+// few tracks for Eq. 5).
 struct SurfaceSeeds {
   std::vector<bool> seeds;
   std::vector<bool> within;
+  std::vector<bool> strong_clusters;
+  std::vector<bool> unscored_clusters;
 };
 
 // Sets to 255 the pixels of mask (CV_8U) whose label in label_map (CV_32S, same size, each label an index into
@@ -69,13 +75,14 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
 // dynamicSuperpixels): breadth-first from `moving_seeds` (the baseline-moving superpixels or the rigid movers'
-// ones) over unmeasured, non-border superpixels; only into the `within` ones (empty = any).
+// ones) over unmeasured, non-border superpixels; only into the `within` ones (empty = any), and, with
+// max_from_seed > 0, only into those at most that dissimilar from the seed the growth started from.
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
                                          const std::vector<bool>& moving_seeds,
                                          const std::vector<int>& baseline_points, double colour_scale,
                                          double depth_scale_m, double max_dissimilarity,
-                                         const std::vector<bool>& within = {});
+                                         const std::vector<bool>& within = {}, double max_from_seed = 0);
 
 struct DynamicMask {
   cv::Mat mask;                          // CV_8U, 255 = dynamic

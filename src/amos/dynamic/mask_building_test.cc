@@ -140,6 +140,33 @@ TEST(MaskBuilding, LongBaselineMotionGrowsOverTheUnmeasuredSurfaceAroundIt) {
   EXPECT_EQ(surface(graph, unseeded, 1.0), only_5);
 }
 
+TEST(MaskBuilding, TheSurfaceGrowthMayBeHeldToItsSeedsLikeness) {
+  // Seed 5 (L 20), then 9 (L 28) and 10 (L 36): each step is 0.8 colourScale units, but 10 is 1.6 from the seed.
+  // Steps alone chain into 10 (a floor's gradient away from the mover standing on it); held to 1 from the seed the
+  // growth stops at 9.
+  GeometricPartition partition = blockPartition();
+  partition.segmentation.superpixels[9].L = 28.f;
+  partition.segmentation.superpixels[10].L = 36.f;
+  const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);  // all but 5, 6, 9, 10
+  const cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
+  const DynamicOptions options;
+  const SuperpixelGraph graph = superpixelGraph(partition.segmentation, depth, options.reprojection.depth_edge_ratio);
+  std::vector<bool> seed(16, false);
+  seed[5] = true;
+  auto surface = [&](double max_from_seed) {
+    return surfaceFromMovingSeeds(partition.segmentation.superpixels, graph,
+                                  std::vector<RegionLabel>(16, RegionLabel::kUnlabelled), border, seed, {},
+                                  options.superpixel.colour_scale, options.superpixel.depth_scale_m, 1.0, {},
+                                  max_from_seed);
+  };
+  std::vector<bool> five_nine = seed;
+  five_nine[9] = true;
+  std::vector<bool> five_nine_ten = five_nine;
+  five_nine_ten[10] = true;
+  EXPECT_EQ(surface(0.0), five_nine_ten);
+  EXPECT_EQ(surface(1.0), five_nine);
+}
+
 TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaselineGrowth) {
   // Superpixel 5 follows a rigid mover (rigid_movers.h) and is also a long-baseline seed; superpixel 10's points
   // moved over the long baseline but follow no mover. With Dynamic.RigidMovers.growOverSurface alone (surface seeds
@@ -162,17 +189,17 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   std::vector<bool> grown = seeds_only;
   grown[9] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, {}}),
+                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, {}, {}, {}}),
             grown);
   // Bounded to the mover's region: with 9 outside it the label stays on the seeds; within it, it grows again.
   std::vector<bool> within(16, true);
   within[9] = false;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, within}),
+                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, within, {}, {}}),
             seeds_only);
   within[9] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, within}),
+                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, within, {}, {}}),
             grown);
   DynamicOptions baseline_growth;
   baseline_growth.baseline_tracks.grow_over_surface = true;
@@ -180,6 +207,41 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth,
                                baseline_growth, nullptr, {}, baseline_moving, baseline_points),
             grown);
+}
+
+TEST(MaskBuilding, AClusterMovingWellBeyondTheThresholdGrowsOverItsSurfaceIntoAnotherCluster) {
+  // Cluster 0 (dark, left half) is dynamic, with two violators in superpixel 5. Superpixel 6 lies in cluster 1 but
+  // is as dark as cluster 0 and unmeasured (a chair's plain back that k-means put beside its seat's cluster): only
+  // when cluster 0 is a strong cluster (Dynamic.Boundary.growFromConfirmed) does the label reach it, and only while
+  // 6 lies near the seeds (their box plus Dynamic.Boundary.radius) or in a cluster no tracks scored; superpixel 10
+  // (bright) never.
+  GeometricPartition partition = blockPartition();
+  partition.segmentation.superpixels[6].L = 20.f;
+  const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);  // all but 5, 6, 9, 10
+  const std::vector<TrackEvidence> evidence = {{{14, 15}, std::nullopt, 10.0}, {{16, 15}, std::nullopt, 10.0}};
+  const cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
+  auto judge = [&](const std::vector<bool>& strong, const std::vector<bool>& unscored, int radius_px,
+                   const std::vector<TrackEvidence>& tracks) {
+    SurfaceSeeds surface;
+    surface.strong_clusters = strong;
+    surface.unscored_clusters = unscored;
+    DynamicOptions options;
+    options.boundary.search_radius_px = radius_px;
+    return dynamicSuperpixels(partition.segmentation, border, {true, false}, tracks, 1.0, false, depth, options,
+                              nullptr, {}, {}, {}, 0.0, surface);
+  };
+  std::vector<bool> with_6 = leftHalfSuperpixels();
+  with_6[6] = true;
+  EXPECT_EQ(judge({}, {}, 30, evidence), leftHalfSuperpixels());
+  EXPECT_EQ(judge({false, false}, {false, true}, 30, evidence), leftHalfSuperpixels());
+  EXPECT_EQ(judge({true, false}, {false, false}, 30, evidence), with_6);  // 6 within 30 px of the seed
+  EXPECT_EQ(judge({true, false}, {false, false}, 0, evidence), leftHalfSuperpixels());
+  EXPECT_EQ(judge({true, false}, {false, true}, 0, evidence), with_6);  // cluster 1 unscored
+  // A track that stayed on 6 measures it: the growth does not enter it.
+  std::vector<TrackEvidence> measured = evidence;
+  measured.push_back({{24, 15}, Eigen::Vector2d::Zero(), 0.0});
+  measured.push_back({{26, 15}, Eigen::Vector2d::Zero(), 0.0});
+  EXPECT_EQ(judge({true, false}, {false, true}, 30, measured), leftHalfSuperpixels());
 }
 
 TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
