@@ -1,9 +1,11 @@
 #include "amos/dynamic/mask_building.h"
 
 #include "amos/core/error.h"
+#include "amos/dynamic/rigid_movers.h"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace amos::dynamic {
 
@@ -132,30 +134,28 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
     // (a desk front, whose cluster the tracks found static), but a mover's plain part may be a cluster of its own.
     const int clusters = static_cast<int>(surface_seeds.strong_clusters.size());
     std::vector<bool> from(count, false);
-    std::vector<cv::Rect2f> box(clusters);
-    std::vector<bool> has_box(clusters, false);
+    std::vector<std::optional<cv::Rect2f>> seed_box(clusters);  // per strong cluster, around its seeds' centroids
     for (int s = 0; s < count; ++s) {
       const Superpixel& sp = segmentation.superpixels[s];
       const int c = sp.cluster;
       if (seeds[s] != RegionLabel::kDynamic || c < 0 || c >= clusters || !surface_seeds.strong_clusters[c]) continue;
       from[s] = true;
-      const cv::Rect2f point(sp.x, sp.y, 0.f, 0.f);
-      box[c] = has_box[c] ? (box[c] | point) : point;
-      has_box[c] = true;
+      const cv::Rect2f centroid(sp.x, sp.y, 0.f, 0.f);
+      seed_box[c] = seed_box[c] ? (*seed_box[c] | centroid) : centroid;
     }
-    const float reach = static_cast<float>(options.boundary.search_radius_px);
-    std::vector<bool> within(count, false);
-    for (int s = 0; s < count; ++s) {
-      const Superpixel& sp = segmentation.superpixels[s];
-      within[s] = sp.cluster >= 0 && ((sp.cluster < static_cast<int>(surface_seeds.unscored_clusters.size()) &&
-                                       surface_seeds.unscored_clusters[sp.cluster]) ||
-                                      (sp.cluster < static_cast<int>(dynamic_cluster.size()) &&
-                                       dynamic_cluster[sp.cluster]));
-      for (int c = 0; c < clusters && !within[s]; ++c)
-        within[s] = has_box[c] && sp.x >= box[c].x - reach && sp.x <= box[c].x + box[c].width + reach &&
-                    sp.y >= box[c].y - reach && sp.y <= box[c].y + box[c].height + reach;
+    std::vector<cv::Rect2f> boxes;
+    for (const auto& box : seed_box)
+      if (box) boxes.push_back(*box);
+    if (!boxes.empty()) {  // else no strong cluster holds a dynamic seed
+      std::vector<bool> within =
+          superpixelsNearBoxes(segmentation.superpixels, boxes, options.boundary.search_radius_px);
+      auto flag = [](const std::vector<bool>& v, int c) { return c >= 0 && c < static_cast<int>(v.size()) && v[c]; };
+      for (int s = 0; s < count; ++s) {
+        const int c = segmentation.superpixels[s].cluster;
+        within[s] = within[s] || flag(surface_seeds.unscored_clusters, c) || flag(dynamic_cluster, c);
+      }
+      grow(from, within, options.baseline_tracks.grow_dissimilarity);
     }
-    grow(from, within, options.baseline_tracks.grow_dissimilarity);
   }
   const std::vector<RegionLabel> labels =
       growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,

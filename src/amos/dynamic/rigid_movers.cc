@@ -295,12 +295,24 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
   return out;
 }
 
+std::vector<bool> superpixelsNearBoxes(const std::vector<Superpixel>& superpixels,
+                                       const std::vector<cv::Rect2f>& boxes, int reach_px) {
+  const float reach = static_cast<float>(reach_px);
+  std::vector<bool> near(superpixels.size());
+  for (std::size_t s = 0; s < superpixels.size(); ++s) {
+    const cv::Point2f centroid(superpixels[s].x, superpixels[s].y);
+    near[s] = std::any_of(boxes.begin(), boxes.end(),
+                          [&](const cv::Rect2f& box) { return withinReach(box, centroid, reach); });
+  }
+  return near;
+}
+
 std::vector<bool> superpixelsNearMovers(const std::vector<Superpixel>& superpixels,
                                         const std::vector<RigidMover>& movers, int reach_px) {
-  std::vector<bool> near(superpixels.size());
-  for (std::size_t s = 0; s < superpixels.size(); ++s)
-    near[s] = nearAnyMover(movers, cv::Point2f(superpixels[s].x, superpixels[s].y), static_cast<float>(reach_px));
-  return near;
+  std::vector<cv::Rect2f> regions;
+  regions.reserve(movers.size());
+  for (const RigidMover& m : movers) regions.push_back(m.region);
+  return superpixelsNearBoxes(superpixels, regions, reach_px);
 }
 
 }  // namespace amos::dynamic

@@ -94,6 +94,10 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
                                         const core::PinholeCamera& camera, const cv::Mat& labels, int count,
                                         const ReprojectionOptions& reprojection, const RigidMoverOptions& options);
 
+// Per superpixel, whether its centroid lies within reach_px of one of the boxes.
+std::vector<bool> superpixelsNearBoxes(const std::vector<Superpixel>& superpixels,
+                                       const std::vector<cv::Rect2f>& boxes, int reach_px);
+
 // Per superpixel, whether its centroid lies within reach_px of a mover's region (the box around its inliers):
 // the samples a mover speaks for, and the surface its growth may cover.
 std::vector<bool> superpixelsNearMovers(const std::vector<Superpixel>& superpixels,
