@@ -22,6 +22,7 @@
 #include "amos/config/settings.h"
 #include "amos/dynamic/dynamic_front_end.h"
 #include "amos/dynamic/motion_hold.h"
+#include "amos/dynamic/rigid_mover_depth.h"
 #include "amos/segmentation/model_locator.h"
 #include "amos/segmentation/segmenter_factory.h"
 #include "amos/dynamic/superpixel_metrics.h"
@@ -269,6 +270,37 @@ void BM_RigidMovers(benchmark::State& state) {
   state.counters["moving_superpixels"] = v.moving_superpixels;
 }
 BENCHMARK(BM_RigidMovers)->Unit(benchmark::kMillisecond);
+
+// The rigid movers' depth votes (rigid_mover_depth.h, Dynamic.RigidMovers.depthVotes) for the mover of
+// BM_RigidMovers' frame: every baseline depth sample lifted, moved by each hypothesis and read in the current depth.
+void BM_RigidMoverDepthVotes(benchmark::State& state) {
+  const BenchData& d = data();
+  const DynamicOptions options;
+  const cv::Rect block(200, 140, 240, 200);
+  cv::Mat baseline_gray = d.current.gray.clone();
+  d.current.gray(block).copyTo(baseline_gray(block - cv::Point(6, 0)));
+  std::vector<cv::Point2f> points;
+  for (const PointTrack& t : d.tracks) points.push_back(t.current);
+  const BaselineMotion m = baselineMotion(points, d.current.gray, d.current.depth, d.T_cw_initial, baseline_gray,
+                                          d.T_cw_initial, d.camera, options.tracking, options.reprojection,
+                                          options.baseline_tracks);
+  const SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
+  const int count = static_cast<int>(seg.superpixels.size());
+  const RigidMoverVerdict v =
+      rigidMoverSuperpixels(m, d.current.gray, d.current.depth, d.T_cw_initial, baseline_gray, d.current.depth,
+                            d.T_cw_initial, d.camera, seg.labels, count, options.reprojection, options.rigid_movers);
+  const DepthSampleGrid grid(d.camera, options.depth.sample_step_px);
+  std::vector<RigidSampleVote> votes;
+  for (auto _ : state) {
+    votes = rigidMoverDepthVotes(v.movers, v.T_bc_static, d.current.depth, d.current.depth, d.camera, grid,
+                                 seg.labels, count, options.rigid_movers.region_reach_px,
+                                 options.reprojection.depth_edge_ratio, options.depth);
+    benchmark::DoNotOptimize(votes.data());
+  }
+  state.counters["movers"] = static_cast<double>(v.movers.size());
+  state.counters["votes"] = static_cast<double>(votes.size());
+}
+BENCHMARK(BM_RigidMoverDepthVotes)->Unit(benchmark::kMillisecond);
 
 void BM_CornerTracking(benchmark::State& state) {
   const BenchData& d = data();

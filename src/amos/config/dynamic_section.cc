@@ -212,6 +212,10 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "the mask may grow from the superpixels that follow a rigid mover over unmeasured superpixels of the same "
         "surface (steps of at most Dynamic.BaselineTracks.growDissimilarity), outside the dynamic clusters too, within "
         "Dynamic.RigidMovers.regionReach of the movers' points");
+  s.add("Dynamic.RigidMovers.depthVotes", &o.rigid_movers.depth_votes,
+        "the baseline frame's depth samples vote too: for a mover where its motion matches the current depth and the "
+        "current frame sees through the static world's prediction, and the other way round (needs "
+        "Dynamic.Depth.enabled for the sample grid and the noise model)");
 
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
         "1 = of the initial-pose hypotheses and models with at least half the most inliers, the one whose inliers "

@@ -42,25 +42,22 @@ DepthSampleGrid::DepthSampleGrid(const core::PinholeCamera& camera, int step_px)
     normalised_.emplace_back((u.x - camera.cx()) / camera.fx(), (u.y - camera.cy()) / camera.fy());
 }
 
-namespace {
-
-// Offset of the depth-edge test: 4 px. A pose error of a pixel moves a sample across an edge by that much, and a
+// The depth-edge test's offset, 4 px: a pose error of a pixel moves a sample across an edge by that much, and a
 // structured-light sensor blurs and shifts its depth edges by a few pixels more (TUM fr2/desk: 2.73 % of the pixels
 // marked with 4 against 2.88 % with 2, in geometry mode).
-constexpr int kEdgeOffset = 4;
-
-// Depth at (x, y) when it is valid and none of the four neighbours kEdgeOffset away lies across a depth edge;
-// else 0. (x, y) must be kEdgeOffset inside the image.
 float smoothDepthAt(const cv::Mat& depth, int x, int y, double ratio) {
   const float z = depth.at<float>(y, x);
   if (!(z > 0.f)) return 0.f;
   const float tolerance = static_cast<float>(ratio) * z;
-  for (const auto& [dx, dy] : {std::pair{kEdgeOffset, 0}, {-kEdgeOffset, 0}, {0, kEdgeOffset}, {0, -kEdgeOffset}}) {
+  for (const auto& [dx, dy] : {std::pair{kDepthEdgeOffset, 0}, {-kDepthEdgeOffset, 0}, {0, kDepthEdgeOffset},
+                               {0, -kDepthEdgeOffset}}) {
     const float n = depth.at<float>(y + dy, x + dx);
     if (!(n > 0.f) || std::abs(n - z) > tolerance) return 0.f;
   }
   return z;
 }
+
+namespace {
 
 double median(std::vector<double>& v) {
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
@@ -76,7 +73,7 @@ LiftedDepthSamples liftDepthSamples(const cv::Mat& depth, const DepthSampleGrid&
   core::require(depth.type() == CV_32F, "liftDepthSamples: depth must be CV_32F metres");
   core::require(labels.type() == CV_32S && labels.size() == depth.size(),
                 "liftDepthSamples: labels must be CV_32S of the depth's size");
-  const int margin = kEdgeOffset;
+  const int margin = kDepthEdgeOffset;
   LiftedDepthSamples out;
   const std::size_t n = grid.pixels().size();
   out.labels.reserve(n);
@@ -113,7 +110,7 @@ DepthEvidence superpixelDepthEvidence(const LiftedDepthSamples& current, const c
   const core::SE3 T_last_cur = T_cw_last * T_cw.inverse();
   const Eigen::Matrix3d R = T_last_cur.linear();
   const Eigen::Vector3d t = T_last_cur.translation();
-  const int margin = kEdgeOffset;
+  const int margin = kDepthEdgeOffset;
   // Pass 1: the lifted points in the last camera and their ideal (undistorted) pixels there.
   struct Lifted {
     int label;

@@ -130,6 +130,13 @@ struct DepthEvidence {
   int moving_superpixels = 0;
 };
 
+// Offset of the depth-edge test [px] (smoothDepthAt).
+inline constexpr int kDepthEdgeOffset = 4;
+
+// Depth at raw pixel (x, y) when it is valid and none of the four neighbours kDepthEdgeOffset away lies across a
+// depth edge (differs by more than ratio times the depth); else 0. (x, y) must be kDepthEdgeOffset inside the image.
+float smoothDepthAt(const cv::Mat& depth, int x, int y, double ratio);
+
 // The current frame's side of a comparison, the same for every frame it is compared with: the samples of `grid`
 // with a valid depth (CV_32F metres, 0 = none) that lies on no depth edge (a neighbour 4 px away differing by more
 // than depth_edge_ratio, Dynamic.Reprojection.depthEdgeRatio) and within options.max_depth_m, lifted into the

@@ -180,10 +180,11 @@ DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
     lap("baseline_tracks");
     // Rigid movers (rigid_movers.h): the moving points' rigid motions, and the superpixels that follow one.
     if (options_.rigid_movers.enabled) {
+      const RigidDepthInput depth_input{depth_grid_, options_.depth, options_.reprojection.depth_edge_ratio};
       const RigidMoverVerdict rigid = rigidMoverSuperpixels(
           baseline, in.gray, in.depth, confirmation.refit.T_cw, in.baseline_gray, in.baseline_depth,
           in.T_cw_baseline, camera_, partition.segmentation.labels, superpixels, options_.reprojection,
-          options_.rigid_movers);
+          options_.rigid_movers, options_.depth.enabled ? &depth_input : nullptr);
       diag.rigid_movers = static_cast<int>(rigid.movers.size());
       diag.rigid_superpixels = rigid.moving_superpixels;
       for (std::size_t s = 0; s < rigid.moving.size() && s < baseline_moving.size(); ++s)

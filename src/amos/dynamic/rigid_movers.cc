@@ -10,6 +10,7 @@
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
 #include "amos/dynamic/frame_regions.h"
+#include "amos/dynamic/rigid_mover_depth.h"
 #include "amos/dynamic/robust_scale.h"
 
 namespace amos::dynamic {
@@ -117,7 +118,8 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
                                         const core::SE3& T_cw, const cv::Mat& baseline_gray,
                                         const cv::Mat& baseline_depth, const core::SE3& T_cw_baseline,
                                         const core::PinholeCamera& camera, const cv::Mat& labels, int count,
-                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options) {
+                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options,
+                                        const RigidDepthInput* depth_input) {
   core::require(gray.type() == CV_8UC1 && baseline_gray.type() == CV_8UC1 && gray.size() == baseline_gray.size() &&
                     depth.type() == CV_32F && depth.size() == gray.size() && labels.type() == CV_32S &&
                     labels.size() == gray.size(),
@@ -237,11 +239,7 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
   std::vector<std::vector<cv::Point2f>> raw(hypotheses);
   for (std::size_t h = 0; h < hypotheses; ++h) raw[h] = camera.distort(undistorted[h]);
   std::vector<int> mover_votes(out.moving.size(), 0), static_votes(out.moving.size(), 0);
-  struct SampleVote {
-    int superpixel;
-    int mover;  // >= 0: for that mover; -1 - m: for the static world against mover m
-  };
-  std::vector<SampleVote> votes;
+  std::vector<RigidSampleVote> votes;
   const double min_texture = options.min_gradient * options.min_gradient;
   std::vector<int> mover_tally(out.movers.size(), 0), static_tally(out.movers.size(), 0);
   for (std::size_t i = 0; i < X.size(); ++i) {
@@ -273,12 +271,21 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
     else if (e_static + options.intensity_margin < e_mover)
       votes.push_back({s, -1 - best}), ++static_tally[best];
   }
+  if (depth_input && options.depth_votes && !baseline_depth.empty()) {
+    // Where the image has no texture to vote with, the baseline's depth does (rigid_mover_depth.h).
+    for (const RigidSampleVote& vote :
+         rigidMoverDepthVotes(out.movers, out.T_bc_static, depth, baseline_depth, camera, depth_input->grid, labels,
+                              count, options.region_reach_px, depth_input->depth_edge_ratio, depth_input->options)) {
+      votes.push_back(vote);
+      ++(vote.mover >= 0 ? mover_tally[vote.mover] : static_tally[-1 - vote.mover]);
+    }
+  }
   // A mover must explain the samples around its own points better than the static world does; a motion fitted to
   // a real sensor's structured errors (TUM fr2/desk: the near desk at the image bottom, where depth and colour were
   // taken ~20 ms apart) does not, and its votes are dropped.
   std::vector<bool> kept_mover(out.movers.size());
   for (std::size_t m = 0; m < out.movers.size(); ++m) kept_mover[m] = mover_tally[m] > static_tally[m];
-  for (const SampleVote& vote : votes) {
+  for (const RigidSampleVote& vote : votes) {
     if (vote.mover >= 0 && kept_mover[vote.mover])
       ++mover_votes[vote.superpixel], ++out.mover_votes;
     else if (vote.mover < 0)

@@ -19,6 +19,7 @@
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
 #include "amos/dynamic/baseline_tracks.h"
+#include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/reprojection_scoring.h"
 
@@ -65,6 +66,11 @@ struct RigidMoverOptions {
   // movers' regions (superpixelsNearMovers), as their votes do: from a box's superpixels it would otherwise run on
   // over the plain, shadowed floor beside it (box_push seed 8, frame 86: 37000 px).
   bool grow_over_surface = false;
+  // Dynamic.RigidMovers.depthVotes: the baseline frame's depth samples vote too (rigid_mover_depth.h), where the
+  // image cannot: a door's plain panel, or a surface receding from the camera, which the intensity patches and the
+  // depth evidence's free-space test leave undecided. Their votes count in the region test as well: a slanted
+  // door's box holds more textured wall than textured door.
+  bool depth_votes = false;
   void check() const;
 };
 
@@ -73,6 +79,19 @@ struct RigidMover {
   int inliers = 0;         // moving points it explains
   double shift_px = 0;     // median distance of its inliers' predictions from the static world's
   cv::Rect2f region;       // the box around its inliers in the current frame (raw pixels)
+};
+
+// A sample's vote: for mover `mover` (>= 0), or for the static world against mover -1 - mover.
+struct RigidSampleVote {
+  int superpixel;
+  int mover;
+};
+
+// What the depth votes need (Dynamic.RigidMovers.depthVotes): the depth evidence's sample grid and noise model.
+struct RigidDepthInput {
+  const DepthSampleGrid& grid;
+  const DepthEvidenceOptions& options;
+  double depth_edge_ratio;  // Dynamic.Reprojection.depthEdgeRatio
 };
 
 struct RigidMoverVerdict {
@@ -87,12 +106,14 @@ struct RigidMoverVerdict {
 // follow one of them rather than the static world. gray / depth / T_cw: the current frame (CV_8UC1, CV_32F metres,
 // judged pose); baseline_gray / baseline_depth / T_cw_baseline: the baseline frame (its depth only tells which
 // predictions it saw: one nearer by more than max(2 cm, 4 %) was hidden there). reprojection: depth trust rules.
+// With depth_input and options.depth_votes the baseline's depth votes too (rigid_mover_depth.h).
 // Empty `moving` (all false) when no rigid motion has minInliers points.
 RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::Mat& gray, const cv::Mat& depth,
                                         const core::SE3& T_cw, const cv::Mat& baseline_gray,
                                         const cv::Mat& baseline_depth, const core::SE3& T_cw_baseline,
                                         const core::PinholeCamera& camera, const cv::Mat& labels, int count,
-                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options);
+                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options,
+                                        const RigidDepthInput* depth_input = nullptr);
 
 // Per superpixel, whether its centroid lies within reach_px of one of the boxes.
 std::vector<bool> superpixelsNearBoxes(const std::vector<Superpixel>& superpixels,
