@@ -244,27 +244,43 @@ BENCHMARK(BM_BaselineTracks)->Unit(benchmark::kMillisecond);
 // The rigid movers (rigid_movers.h) on a Bonn frame, as the front end runs them after the long-baseline tracks with
 // Dynamic.RigidMovers.enabled. The baseline frame is the frame itself with a 240 x 200 px block moved 6 px to the
 // left (what a slow mover does over ten frames), so that the fit and the sample test have a mover to work on.
+struct RigidMoverFrame {
+  cv::Mat baseline_gray;
+  BaselineMotion motion;
+  SuperpixelSegmentation segmentation;
+  int count = 0;
+};
+
+RigidMoverFrame rigidMoverFrame(const BenchData& d, const DynamicOptions& options) {
+  RigidMoverFrame f;
+  const cv::Rect block(200, 140, 240, 200);
+  f.baseline_gray = d.current.gray.clone();
+  d.current.gray(block).copyTo(f.baseline_gray(block - cv::Point(6, 0)));
+  std::vector<cv::Point2f> points;
+  for (const PointTrack& t : d.tracks) points.push_back(t.current);
+  f.motion = baselineMotion(points, d.current.gray, d.current.depth, d.T_cw_initial, f.baseline_gray, d.T_cw_initial,
+                            d.camera, options.tracking, options.reprojection, options.baseline_tracks);
+  f.segmentation = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
+  f.count = static_cast<int>(f.segmentation.superpixels.size());
+  return f;
+}
+
+RigidMoverVerdict rigidMovers(const BenchData& d, const RigidMoverFrame& f, const DynamicOptions& options) {
+  return rigidMoverSuperpixels(f.motion, d.current.gray, d.current.depth, d.T_cw_initial, f.baseline_gray,
+                               d.current.depth, d.T_cw_initial, d.camera, f.segmentation.labels, f.count,
+                               options.reprojection, options.rigid_movers);
+}
+
 void BM_RigidMovers(benchmark::State& state) {
   const BenchData& d = data();
   const DynamicOptions options;
-  const cv::Rect block(200, 140, 240, 200);
-  cv::Mat baseline_gray = d.current.gray.clone();
-  d.current.gray(block).copyTo(baseline_gray(block - cv::Point(6, 0)));
-  std::vector<cv::Point2f> points;
-  for (const PointTrack& t : d.tracks) points.push_back(t.current);
-  const BaselineMotion m = baselineMotion(points, d.current.gray, d.current.depth, d.T_cw_initial, baseline_gray,
-                                          d.T_cw_initial, d.camera, options.tracking, options.reprojection,
-                                          options.baseline_tracks);
-  const SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
-  const int count = static_cast<int>(seg.superpixels.size());
+  const RigidMoverFrame f = rigidMoverFrame(d, options);
   RigidMoverVerdict v;
   for (auto _ : state) {
-    v = rigidMoverSuperpixels(m, d.current.gray, d.current.depth, d.T_cw_initial, baseline_gray, d.current.depth,
-                              d.T_cw_initial, d.camera, seg.labels, count, options.reprojection,
-                              options.rigid_movers);
+    v = rigidMovers(d, f, options);
     benchmark::DoNotOptimize(v.moving_superpixels);
   }
-  state.counters["moving_points"] = m.moving_points;
+  state.counters["moving_points"] = f.motion.moving_points;
   state.counters["movers"] = static_cast<double>(v.movers.size());
   state.counters["votes"] = v.mover_votes + v.static_votes;
   state.counters["moving_superpixels"] = v.moving_superpixels;
@@ -276,24 +292,13 @@ BENCHMARK(BM_RigidMovers)->Unit(benchmark::kMillisecond);
 void BM_RigidMoverDepthVotes(benchmark::State& state) {
   const BenchData& d = data();
   const DynamicOptions options;
-  const cv::Rect block(200, 140, 240, 200);
-  cv::Mat baseline_gray = d.current.gray.clone();
-  d.current.gray(block).copyTo(baseline_gray(block - cv::Point(6, 0)));
-  std::vector<cv::Point2f> points;
-  for (const PointTrack& t : d.tracks) points.push_back(t.current);
-  const BaselineMotion m = baselineMotion(points, d.current.gray, d.current.depth, d.T_cw_initial, baseline_gray,
-                                          d.T_cw_initial, d.camera, options.tracking, options.reprojection,
-                                          options.baseline_tracks);
-  const SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
-  const int count = static_cast<int>(seg.superpixels.size());
-  const RigidMoverVerdict v =
-      rigidMoverSuperpixels(m, d.current.gray, d.current.depth, d.T_cw_initial, baseline_gray, d.current.depth,
-                            d.T_cw_initial, d.camera, seg.labels, count, options.reprojection, options.rigid_movers);
+  const RigidMoverFrame f = rigidMoverFrame(d, options);
+  const RigidMoverVerdict v = rigidMovers(d, f, options);
   const DepthSampleGrid grid(d.camera, options.depth.sample_step_px);
   std::vector<RigidSampleVote> votes;
   for (auto _ : state) {
     votes = rigidMoverDepthVotes(v.movers, v.T_bc_static, d.current.depth, d.current.depth, d.camera, grid,
-                                 seg.labels, count, options.rigid_movers.region_reach_px,
+                                 f.segmentation.labels, f.count, options.rigid_movers.region_reach_px,
                                  options.reprojection.depth_edge_ratio, options.depth);
     benchmark::DoNotOptimize(votes.data());
   }

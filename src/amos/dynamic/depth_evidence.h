@@ -134,7 +134,7 @@ struct DepthEvidence {
 inline constexpr int kDepthEdgeOffset = 4;
 
 // Depth at raw pixel (x, y) when it is valid and none of the four neighbours kDepthEdgeOffset away lies across a
-// depth edge (differs by more than ratio times the depth); else 0. (x, y) must be kDepthEdgeOffset inside the image.
+// depth edge (differs by more than ratio times the depth); else 0, also within kDepthEdgeOffset of the image's edge.
 float smoothDepthAt(const cv::Mat& depth, int x, int y, double ratio);
 
 // The current frame's side of a comparison, the same for every frame it is compared with: the samples of `grid`

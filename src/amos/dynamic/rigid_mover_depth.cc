@@ -10,20 +10,12 @@ namespace amos::dynamic {
 
 namespace {
 
-bool withinReach(const cv::Rect2f& r, const cv::Point2f& p, float reach) {
-  return p.x >= r.x - reach && p.y >= r.y - reach && p.x <= r.x + r.width + reach && p.y <= r.y + r.height + reach;
-}
-
 // The current depth's residual at the raw pixel a hypothesis puts a point of depth z: measured minus predicted
 // (positive: the current frame sees beyond the point). Empty where the pixel leaves the image or its depth is
-// missing, on an edge or beyond the range.
+// missing, on an edge or beyond the range (smoothDepthAt).
 std::optional<double> residualAt(const cv::Mat& depth, const cv::Point2f& at, double z, double depth_edge_ratio,
                                  const DepthEvidenceOptions& options) {
-  const int x = cvRound(at.x), y = cvRound(at.y);
-  if (x < kDepthEdgeOffset || y < kDepthEdgeOffset || x >= depth.cols - kDepthEdgeOffset ||
-      y >= depth.rows - kDepthEdgeOffset)
-    return std::nullopt;
-  const float measured = smoothDepthAt(depth, x, y, depth_edge_ratio);
+  const float measured = smoothDepthAt(depth, cvRound(at.x), cvRound(at.y), depth_edge_ratio);
   if (measured <= 0.f || measured > options.max_depth_m) return std::nullopt;
   return measured - z;
 }
@@ -49,13 +41,10 @@ std::vector<RigidSampleVote> rigidMoverDepthVotes(const std::vector<RigidMover>&
 
   // The baseline samples, lifted, and their pixels (undistorted, then raw) and depths in the current camera per
   // hypothesis.
-  const int margin = kDepthEdgeOffset;
   std::vector<std::vector<cv::Point2f>> ideal(hypotheses);
   std::vector<std::vector<double>> z(hypotheses);
   for (std::size_t i = 0; i < grid.pixels().size(); ++i) {
     const cv::Point q = grid.pixels()[i];
-    if (q.x < margin || q.y < margin || q.x >= baseline_depth.cols - margin || q.y >= baseline_depth.rows - margin)
-      continue;
     const float zb = smoothDepthAt(baseline_depth, q.x, q.y, depth_edge_ratio);
     if (zb <= 0.f || zb > depth_options.max_depth_m) continue;
     const cv::Point2d& xn = grid.normalised()[i];

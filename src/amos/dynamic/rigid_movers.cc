@@ -27,11 +27,11 @@ void RigidMoverOptions::check() const {
   core::requireAtLeast(min_gradient, "min_gradient", 0.0);
 }
 
-namespace {
-
 bool withinReach(const cv::Rect2f& r, const cv::Point2f& p, float reach) {
   return p.x >= r.x - reach && p.y >= r.y - reach && p.x <= r.x + r.width + reach && p.y <= r.y + r.height + reach;
 }
+
+namespace {
 
 bool nearAnyMover(const std::vector<RigidMover>& movers, const cv::Point2f& p, float reach) {
   return std::any_of(movers.begin(), movers.end(), [&](const RigidMover& m) { return withinReach(m.region, p, reach); });

@@ -115,6 +115,9 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
                                         const ReprojectionOptions& reprojection, const RigidMoverOptions& options,
                                         const RigidDepthInput* depth_input = nullptr);
 
+// Whether p lies within reach pixels of the box r (a mover's region and the samples it speaks for).
+bool withinReach(const cv::Rect2f& r, const cv::Point2f& p, float reach);
+
 // Per superpixel, whether its centroid lies within reach_px of one of the boxes.
 std::vector<bool> superpixelsNearBoxes(const std::vector<Superpixel>& superpixels,
                                        const std::vector<cv::Rect2f>& boxes, int reach_px);
