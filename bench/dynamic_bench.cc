@@ -444,11 +444,11 @@ void BM_FrontEndGeometry(benchmark::State& state) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   const DynamicFrontEnd front_end(d.camera, options);
-  DynamicFrameInput in;
+  FrontEndInput in;
   in.gray = d.current.gray, in.bgr = d.current.bgr, in.depth = d.current.depth;
   in.last_gray = d.last.gray, in.last_depth = d.last.depth;
   in.T_cw_initial = d.T_cw_initial;
-  DynamicFrameOutput out;
+  FrontEndResult out;
   std::map<std::string, double> stage_ms;
   for (auto _ : state) {
     out = front_end.process(in);

@@ -29,7 +29,7 @@ std::vector<std::optional<Eigen::Vector2d>> residualsUnder(const TrackPoints& li
   return residuals;
 }
 
-CandidateScoring scoreCandidates(const std::vector<PointTrack>& tracks, const DynamicFrameInput& in,
+CandidateScoring scoreCandidates(const std::vector<PointTrack>& tracks, const FrontEndInput& in,
                                  const cv::Mat& decision_map, int num_clusters, const PriorRegions& prior,
                                  const core::PinholeCamera& camera, const DynamicOptions& options,
                                  DynamicDiagnostics& diag) {

@@ -47,7 +47,7 @@ struct CandidateScoring {
 
 // tracks: last -> current; prior: this frame's prior regions (empty when none are used). Fills
 // diag.tracks_with_depth.
-CandidateScoring scoreCandidates(const std::vector<PointTrack>& tracks, const DynamicFrameInput& in,
+CandidateScoring scoreCandidates(const std::vector<PointTrack>& tracks, const FrontEndInput& in,
                                  const cv::Mat& decision_map, int num_clusters, const PriorRegions& prior,
                                  const core::PinholeCamera& camera, const DynamicOptions& options,
                                  DynamicDiagnostics& diag);

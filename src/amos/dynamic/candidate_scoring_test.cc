@@ -9,7 +9,7 @@ namespace {
 
 // The small test camera looking at a wall 2 m away, with the same pose in both frames; the decision map splits the
 // frame into cluster 0 (x < 60) and cluster 1.
-DynamicFrameInput wallFrame() { return wallFramePair({120, 100}, 2.f); }
+FrontEndInput wallFrame() { return wallFramePair({120, 100}, 2.f); }
 
 cv::Mat leftRightClusters() {
   cv::Mat map(100, 120, CV_32S, cv::Scalar(0));
@@ -29,7 +29,7 @@ std::vector<PointTrack> stillLeftMovingRight() {
 
 TEST(CandidateScoring, TheMovingClusterIsACandidateAndItsTracksStayOutOfTheFits) {
   const std::vector<PointTrack> tracks = stillLeftMovingRight();
-  DynamicFrameInput in = wallFrame();
+  FrontEndInput in = wallFrame();
   in.last_mask = cv::Mat(100, 120, CV_8U, cv::Scalar(0));
   in.last_mask.at<uchar>(20, 20) = 255;  // track 1 started on the last frame's mover
   PriorRegions prior;
@@ -61,7 +61,7 @@ TEST(CandidateScoring, TheMovingClusterIsACandidateAndItsTracksStayOutOfTheFits)
 }
 
 TEST(CandidateScoring, TracksOnADepthEdgeGetAnIntervalInsteadOfAPoint) {
-  DynamicFrameInput in = wallFrame();
+  FrontEndInput in = wallFrame();
   in.last_depth(cv::Rect(60, 0, 60, 100)).setTo(3.f);  // a step at x = 60
   const std::vector<PointTrack> tracks = {{{30, 50}, {30, 50}}, {{59, 50}, {59, 50}}};
   const TrackPoints lifted = liftTracks(tracks, in.last_depth, in.T_cw_last, smallTestCamera(), DynamicOptions{});

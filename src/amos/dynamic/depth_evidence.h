@@ -79,7 +79,7 @@ struct DepthEvidenceOptions {
   // shows no depth change, only its leading edge does, and nothing says that the rest of its cluster is static.
   int unscored_cluster_superpixels = 2;
   // Dynamic.Depth.baselineFrames: the current depth is also compared with that of the frame this many frames back
-  // (DynamicFrameInput::baseline_depth), and a superpixel moves when either comparison says so. Against the last
+  // (FrontEndInput::baseline_depth), and a superpixel moves when either comparison says so. Against the last
   // frame alone a mover must shift by minResidual (1 cm) in 33 ms, 0.3 m/s; over 10 frames (0.33 s) 3 cm/s will
   // do: a door easing into its stops, a chair starting to roll (2-3 px per frame at 1 m). The price: a mover that
   // stops stays marked for up to this many frames. 0 = the last frame only.

@@ -27,7 +27,7 @@ DynamicFrontEnd::DynamicFrontEnd(const core::PinholeCamera& camera, const Dynami
 
 namespace {
 
-void checkInput(const DynamicFrameInput& in) {
+void checkInput(const FrontEndInput& in) {
   core::require(!in.gray.empty() && in.gray.type() == CV_8UC1, "DynamicFrontEnd: gray must be CV_8UC1");
   const cv::Size size = in.gray.size();
   core::require(in.bgr.type() == CV_8UC3 && in.bgr.size() == size, "DynamicFrontEnd: bgr must be CV_8UC3, gray's size");
@@ -51,10 +51,10 @@ void checkInput(const DynamicFrameInput& in) {
 
 }  // namespace
 
-DynamicFrameOutput DynamicFrontEnd::process(const DynamicFrameInput& in) const {
+FrontEndResult DynamicFrontEnd::process(const FrontEndInput& in) const {
   checkInput(in);
   core::Stopwatch total;
-  DynamicFrameOutput out;
+  FrontEndResult out;
   DynamicDiagnostics& diag = out.diagnostics;
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
   const DynamicMode mode = options_.mode;

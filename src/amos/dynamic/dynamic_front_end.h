@@ -46,7 +46,7 @@
 
 namespace amos::dynamic {
 
-struct DynamicFrameInput {
+struct FrontEndInput {
   cv::Mat gray;        // current frame, CV_8UC1
   cv::Mat bgr;         // current frame, CV_8UC3 (superpixel colour)
   cv::Mat depth;       // current frame, CV_32F metres, 0 = invalid (superpixel depth)
@@ -58,7 +58,7 @@ struct DynamicFrameInput {
   // The last frame's final dynamic mask (CV_8U, 255 = dynamic), in the last frame's pixels; empty when unknown
   // (first frame, after a lost frame, mode none). Temporal evidence: movers rarely stop between two frames.
   cv::Mat last_mask;
-  // The last frame's hold scores (DynamicFrameOutput::hold_score, with Dynamic.Temporal.holdFrames); empty when
+  // The last frame's hold scores (FrontEndResult::hold_score, with Dynamic.Temporal.holdFrames); empty when
   // unknown.
   cv::Mat last_hold_score;
   // The depth and pose of the frame Dynamic.Depth.baselineFrames back (depth_evidence.h), for slow movers; empty
@@ -111,7 +111,7 @@ struct DynamicDiagnostics {
   int dynamic_prior_regions = 0;  // of which kept in the mask
 };
 
-struct DynamicFrameOutput {
+struct FrontEndResult {
   cv::Mat mask;  // CV_8U, 255 = dynamic (features there must not be used), 0 = static; image size
   DynamicDiagnostics diagnostics;
   cv::Mat hold_score;  // CV_8U, the temporal hold's scores (motion_hold.h: per sample) for the next frame; empty: off
@@ -135,7 +135,7 @@ class DynamicFrontEnd {
  public:
   DynamicFrontEnd(const core::PinholeCamera& camera, const DynamicOptions& options);
 
-  DynamicFrameOutput process(const DynamicFrameInput& input) const;
+  FrontEndResult process(const FrontEndInput& input) const;
 
   const DynamicOptions& options() const { return options_; }
 

@@ -51,8 +51,8 @@ const SyntheticPair& syntheticPair() {
   return pair;
 }
 
-DynamicFrameInput inputFor(const SyntheticPair& p) {
-  DynamicFrameInput in;
+FrontEndInput inputFor(const SyntheticPair& p) {
+  FrontEndInput in;
   in.gray = p.current.gray, in.bgr = p.current.bgr, in.depth = p.current.depth;
   in.last_gray = p.last.gray, in.last_depth = p.last.depth;
   in.T_cw_last = p.T_cw_last;
@@ -71,7 +71,7 @@ TEST(DynamicFrontEnd, GeometryModeMasksTheMovingBoxAndNotTheWall) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   const DynamicFrontEnd front_end(testCamera(), options);
-  const DynamicFrameOutput out = front_end.process(inputFor(pair));
+  const FrontEndResult out = front_end.process(inputFor(pair));
   const DynamicDiagnostics& d = out.diagnostics;
   ASSERT_TRUE(d.geometry_ran);
   EXPECT_TRUE(d.fundamental_ok);
@@ -122,12 +122,12 @@ TEST(DynamicFrontEnd, PrecomputedPartitionGivesTheSameMask) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   const DynamicFrontEnd front_end(testCamera(), options);
-  DynamicFrameInput in = inputFor(pair);
-  const DynamicFrameOutput computed_here = front_end.process(in);
+  FrontEndInput in = inputFor(pair);
+  const FrontEndResult computed_here = front_end.process(in);
   const GeometricPartition ahead =
       computeGeometricPartition(pair.current.bgr, pair.current.depth, options.superpixel, options.cluster);
   in.partition = &ahead;
-  const DynamicFrameOutput precomputed = front_end.process(in);
+  const FrontEndResult precomputed = front_end.process(in);
   ASSERT_GT(cv::countNonZero(computed_here.mask), 0);
   EXPECT_EQ(cv::countNonZero(computed_here.mask != precomputed.mask), 0);
   EXPECT_EQ(cv::countNonZero(computed_here.cluster_map != precomputed.cluster_map), 0);
@@ -141,7 +141,7 @@ TEST(DynamicFrontEnd, StaticSceneGivesAnEmptyMask) {
   still.current = render(pair.T_cw_current, Eigen::Vector3d::Zero());
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrameOutput out = DynamicFrontEnd(cam, options).process(inputFor(still));
+  const FrontEndResult out = DynamicFrontEnd(cam, options).process(inputFor(still));
   EXPECT_EQ(out.diagnostics.candidate_clusters, 0);
   EXPECT_EQ(out.diagnostics.dynamic_clusters, 0);
   EXPECT_EQ(cv::countNonZero(out.mask), 0);
@@ -150,7 +150,7 @@ TEST(DynamicFrontEnd, StaticSceneGivesAnEmptyMask) {
 TEST(DynamicFrontEnd, ModesCombinePriorAndGeometry) {
   const SyntheticPair& pair = syntheticPair();
   const core::PinholeCamera cam = testCamera();
-  DynamicFrameInput in = inputFor(pair);
+  FrontEndInput in = inputFor(pair);
   in.prior_mask = cv::Mat(480, 640, CV_8U, cv::Scalar(0));
   in.prior_mask(cv::Rect(500, 50, 100, 200)).setTo(255);  // a "person" on the static wall
   DynamicOptions options;
@@ -159,28 +159,28 @@ TEST(DynamicFrontEnd, ModesCombinePriorAndGeometry) {
   EXPECT_EQ(cv::countNonZero(DynamicFrontEnd(cam, options).process(in).mask), 0);
 
   options.mode = DynamicMode::kPrior;
-  DynamicFrameOutput prior = DynamicFrontEnd(cam, options).process(in);
+  FrontEndResult prior = DynamicFrontEnd(cam, options).process(in);
   EXPECT_FALSE(prior.diagnostics.geometry_ran);
   EXPECT_EQ(cv::countNonZero(prior.mask != in.prior_mask), 0);
   EXPECT_EQ(prior.diagnostics.prior_regions, 1);
 
   options.mode = DynamicMode::kFull;
-  DynamicFrameOutput full = DynamicFrontEnd(cam, options).process(in);
+  FrontEndResult full = DynamicFrontEnd(cam, options).process(in);
   EXPECT_EQ(coverage(full.mask, in.prior_mask), 1.0);
   EXPECT_GT(coverage(full.mask, pair.current.box_mask), 0.85);
 
   // Judged prior regions: the static "person" region holds no epipolar violator and leaves the mask.
   options.judge_prior_regions = true;
-  DynamicFrameOutput judged = DynamicFrontEnd(cam, options).process(in);
+  FrontEndResult judged = DynamicFrontEnd(cam, options).process(in);
   EXPECT_EQ(judged.diagnostics.dynamic_prior_regions, 0);
   EXPECT_LT(coverage(judged.mask, in.prior_mask), 0.05);
 
   // The first frame (no last frame) can only use the prior.
-  DynamicFrameInput first = in;
+  FrontEndInput first = in;
   first.last_gray.release();
   first.last_depth.release();
   options.judge_prior_regions = false;
-  DynamicFrameOutput only_prior = DynamicFrontEnd(cam, options).process(first);
+  FrontEndResult only_prior = DynamicFrontEnd(cam, options).process(first);
   EXPECT_FALSE(only_prior.diagnostics.geometry_ran);
   EXPECT_EQ(cv::countNonZero(only_prior.mask != in.prior_mask), 0);
 }
@@ -191,12 +191,12 @@ TEST(DynamicFrontEnd, UsesPrecomputedTracksAndRejectsBadInput) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   const DynamicFrontEnd front_end(cam, options);
-  DynamicFrameInput in = inputFor(pair);
+  FrontEndInput in = inputFor(pair);
   const std::vector<PointTrack> tracks = trackCorners(in.last_gray, in.gray, options.tracking);
   in.tracks = &tracks;
-  const DynamicFrameOutput a = front_end.process(in);
+  const FrontEndResult a = front_end.process(in);
   in.tracks = nullptr;
-  const DynamicFrameOutput b = front_end.process(in);
+  const FrontEndResult b = front_end.process(in);
   EXPECT_EQ(a.diagnostics.tracks, static_cast<int>(tracks.size()));
   EXPECT_EQ(cv::countNonZero(a.mask != b.mask), 0);  // same tracks, same answer: deterministic
   in.depth = cv::Mat(480, 640, CV_16U);
@@ -228,7 +228,7 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
     raw.convertTo(depth, CV_32F, 1.0 / 5000.0);
     cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
   };
-  DynamicFrameInput in;
+  FrontEndInput in;
   cv::Mat last_bgr;
   load(100, last_bgr, in.last_gray, in.last_depth);
   load(101, in.bgr, in.gray, in.depth);
@@ -244,7 +244,7 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
   EXPECT_LT(core::translationNorm(pose.T_cw), 0.1);  // 33 ms of hand-held motion
   in.T_cw_initial = pose.T_cw;
   in.tracks = &tracks;
-  const DynamicFrameOutput out = DynamicFrontEnd(cam, options).process(in);
+  const FrontEndResult out = DynamicFrontEnd(cam, options).process(in);
   const DynamicDiagnostics& d = out.diagnostics;
   EXPECT_TRUE(d.fundamental_ok);
   EXPECT_GT(d.tracks, 200);
@@ -268,7 +268,7 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
   EXPECT_EQ(whole, d.dynamic_superpixels);
   // With the per-superpixel mask switched off the mask is exactly the union of the dynamic clusters.
   options.boundary.superpixel_mask = false;
-  const DynamicFrameOutput clusters = DynamicFrontEnd(cam, options).process(in);
+  const FrontEndResult clusters = DynamicFrontEnd(cam, options).process(in);
   int expected = 0;
   for (int y = 0; y < clusters.cluster_map.rows; ++y)
     for (int x = 0; x < clusters.cluster_map.cols; ++x)
@@ -286,11 +286,11 @@ TEST(DynamicFrontEnd, FittingOnAllTracksLetsARigidMoverHide) {
   // LK run to 0.01 px: whether the bent F passes the box's tracks is decided by hundredths of a pixel here.
   options.tracking.lk_max_iterations = 30;
   options.tracking.lk_epsilon = 0.01;
-  const DynamicFrameOutput all = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
+  const FrontEndResult all = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
   EXPECT_EQ(all.diagnostics.f_fit_points, all.diagnostics.tracks);
   EXPECT_LT(coverage(all.mask, syntheticPair().current.box_mask), 0.2);
   options.epipolar.min_fit_points = DynamicOptions{}.epipolar.min_fit_points;
-  const DynamicFrameOutput outside = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
+  const FrontEndResult outside = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
   EXPECT_LT(outside.diagnostics.f_fit_points, outside.diagnostics.tracks);
   EXPECT_GT(coverage(outside.mask, syntheticPair().current.box_mask), 0.85);
 }
@@ -305,13 +305,13 @@ TEST(DynamicFrontEnd, RefittedPoseFindsAMoverSlidingAlongItsEpipolarLines) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   options.reprojection.refit_pose = false;
-  const DynamicFrameOutput epipolar_only = DynamicFrontEnd(cam, options).process(inputFor(along));
+  const FrontEndResult epipolar_only = DynamicFrontEnd(cam, options).process(inputFor(along));
   EXPECT_LT(coverage(epipolar_only.mask, along.current.box_mask), 0.2);
   { const auto& d = epipolar_only.diagnostics; std::cout << "DBG cand " << d.candidate_clusters << " dyn " << d.dynamic_clusters << " dynpts " << d.dynamic_points << " tracks " << d.tracks << " ffit " << d.f_fit_points << " finl " << d.f_final_inliers << " conf " << d.confirmed_clusters << " sp " << d.dynamic_superpixels << "\n"; }
   EXPECT_FALSE(epipolar_only.diagnostics.pose_refit_ok);
 
   options.reprojection.refit_pose = true;
-  const DynamicFrameOutput refitted = DynamicFrontEnd(cam, options).process(inputFor(along));
+  const FrontEndResult refitted = DynamicFrontEnd(cam, options).process(inputFor(along));
   const DynamicDiagnostics& d = refitted.diagnostics;
   EXPECT_TRUE(d.pose_refit_ok);
   EXPECT_GE(d.confirmed_clusters, 1);
@@ -337,9 +337,9 @@ TEST(DynamicFrontEnd, SuperpixelMaskFollowsTheMoverOutline) {
   auto precisionOf = [&](const cv::Mat& mask) {
     return coverage(pair.current.box_mask, mask);  // share of the mask on the box
   };
-  const DynamicFrameOutput superpixels = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  const FrontEndResult superpixels = DynamicFrontEnd(cam, options).process(inputFor(pair));
   options.boundary.superpixel_mask = false;
-  const DynamicFrameOutput clusters = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  const FrontEndResult clusters = DynamicFrontEnd(cam, options).process(inputFor(pair));
   const double sp_precision = precisionOf(superpixels.mask), cl_precision = precisionOf(clusters.mask);
   const double sp_recall = coverage(superpixels.mask, pair.current.box_mask);
   std::cout << "superpixel mask: precision " << sp_precision << " recall " << sp_recall << "; cluster mask: precision "
@@ -357,27 +357,27 @@ TEST(DynamicFrontEnd, LastMaskKeepsTracksOutOfTheFitsButDoesNotDecide) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   const DynamicFrontEnd front_end(testCamera(), options);
-  const DynamicFrameInput plain = inputFor(syntheticPair());
-  const DynamicFrameOutput without = front_end.process(plain);
+  const FrontEndInput plain = inputFor(syntheticPair());
+  const FrontEndResult without = front_end.process(plain);
   ASSERT_TRUE(without.diagnostics.pose_refit_ok);
 
-  DynamicFrameInput with_box = plain;
+  FrontEndInput with_box = plain;
   with_box.last_mask = syntheticPair().last.box_mask;
-  const DynamicFrameOutput box = front_end.process(with_box);
+  const FrontEndResult box = front_end.process(with_box);
   ASSERT_TRUE(box.diagnostics.pose_refit_ok);
   EXPECT_LE(box.diagnostics.pose_refit_points, without.diagnostics.pose_refit_points);
   EXPECT_LE(box.diagnostics.f_fit_points, without.diagnostics.f_fit_points);
   EXPECT_GT(coverage(box.mask, syntheticPair().current.box_mask), 0.85);
 
   // A wall patch away from the box (left half, above the floor) wrongly in the last mask.
-  DynamicFrameInput with_wall = plain;
+  FrontEndInput with_wall = plain;
   with_wall.last_mask = cv::Mat(480, 640, CV_8U, cv::Scalar(0));
   const cv::Rect patch(20, 20, 120, 120);
   with_wall.last_mask(patch).setTo(255);
   int tracks_in_patch = 0;
   for (const PointTrack& t : without.tracks) tracks_in_patch += patch.contains(cv::Point(t.last));
   ASSERT_GT(tracks_in_patch, 10);
-  const DynamicFrameOutput wall = front_end.process(with_wall);
+  const FrontEndResult wall = front_end.process(with_wall);
   EXPECT_LT(wall.diagnostics.pose_refit_points, without.diagnostics.pose_refit_points);
   EXPECT_GE(wall.diagnostics.pose_refit_points + tracks_in_patch, without.diagnostics.pose_refit_points);
   cv::Mat patch_mask(480, 640, CV_8U, cv::Scalar(0));
@@ -387,12 +387,12 @@ TEST(DynamicFrontEnd, LastMaskKeepsTracksOutOfTheFitsButDoesNotDecide) {
 
   // Switched off, the last mask changes nothing.
   options.temporal.exclude_last_mask_from_fits = false;
-  const DynamicFrameOutput off = DynamicFrontEnd(testCamera(), options).process(with_wall);
+  const FrontEndResult off = DynamicFrontEnd(testCamera(), options).process(with_wall);
   EXPECT_EQ(off.diagnostics.pose_refit_points, without.diagnostics.pose_refit_points);
   EXPECT_EQ(cv::countNonZero(off.mask != without.mask), 0);
 
   // A last mask of the wrong size is an input error.
-  DynamicFrameInput bad = plain;
+  FrontEndInput bad = plain;
   bad.last_mask = cv::Mat(10, 10, CV_8U, cv::Scalar(0));
   EXPECT_THROW(front_end.process(bad), core::Error);
 }
@@ -410,9 +410,9 @@ TEST(DynamicFrontEnd, OutlineTracksScoredByTheirDepthIntervalsFindTheMover) {
   pair.last.depth.setTo(0.f, inside);
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrameOutput with = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  const FrontEndResult with = DynamicFrontEnd(cam, options).process(inputFor(pair));
   options.reprojection.interval_errors = false;
-  const DynamicFrameOutput without = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  const FrontEndResult without = DynamicFrontEnd(cam, options).process(inputFor(pair));
   EXPECT_GT(coverage(with.mask, pair.current.box_mask), coverage(without.mask, pair.current.box_mask));
   EXPECT_GT(coverage(with.mask, pair.current.box_mask), 0.5);
 }
@@ -428,17 +428,17 @@ namespace {
 TEST(DynamicFrontEnd, DepthEvidenceFindsATexturelessMover) {
   SyntheticPair p = syntheticPair();
   p.current = render(p.T_cw_current, Eigen::Vector3d(0.0, 0.0, -0.08));
-  DynamicFrameInput in = inputFor(p);
+  FrontEndInput in = inputFor(p);
   in.gray = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(128));
   in.last_gray = in.gray.clone();
   in.bgr = cv::Mat(in.bgr.size(), CV_8UC3, cv::Scalar(128, 128, 128));
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrameOutput without = DynamicFrontEnd(testing::testCamera(), options).process(in);
+  const FrontEndResult without = DynamicFrontEnd(testing::testCamera(), options).process(in);
   EXPECT_EQ(without.diagnostics.tracks, 0);
   EXPECT_EQ(cv::countNonZero(without.mask), 0);
   options.depth.enabled = true;
-  const DynamicFrameOutput with = DynamicFrontEnd(testing::testCamera(), options).process(in);
+  const FrontEndResult with = DynamicFrontEnd(testing::testCamera(), options).process(in);
   const cv::Mat& box = p.current.box_mask;
   const double found = cv::countNonZero(with.mask & box) / static_cast<double>(cv::countNonZero(box));
   const double spill = cv::countNonZero(with.mask & ~box) / static_cast<double>(box.total());
@@ -458,7 +458,7 @@ TEST(DynamicFrontEnd, BaselineTracksFindAMoverTooSlowForOneFrame) {
   const Rendered baseline = render(pose(0.0), Eigen::Vector3d::Zero());
   const Rendered last = render(pose(0.018), Eigen::Vector3d(0.0, -0.0135, 0.0));
   const Rendered current = render(pose(0.020), Eigen::Vector3d(0.0, -0.015, 0.0));
-  DynamicFrameInput in;
+  FrontEndInput in;
   in.gray = current.gray, in.bgr = current.bgr, in.depth = current.depth;
   in.last_gray = last.gray, in.last_depth = last.depth;
   in.T_cw_last = pose(0.018);
@@ -467,9 +467,9 @@ TEST(DynamicFrontEnd, BaselineTracksFindAMoverTooSlowForOneFrame) {
   in.T_cw_baseline = pose(0.0);
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrameOutput without = DynamicFrontEnd(testCamera(), options).process(in);
+  const FrontEndResult without = DynamicFrontEnd(testCamera(), options).process(in);
   options.baseline_tracks.enabled = true;
-  const DynamicFrameOutput with = DynamicFrontEnd(testCamera(), options).process(in);
+  const FrontEndResult with = DynamicFrontEnd(testCamera(), options).process(in);
   cv::Mat wall;
   cv::bitwise_not(current.box_mask, wall);
   EXPECT_LT(coverage(without.mask, current.box_mask), 0.2);
@@ -500,16 +500,16 @@ TEST(DynamicFrontEnd, TheTemporalHoldKeepsAMoverThatSlowsDownMasked) {
   cv::Mat last_mask_held, last_mask_plain, last_score;
   for (int k = 1; k <= 9; ++k) {
     const Rendered now = render(pose(k), Eigen::Vector3d(0.0, -rise(k), 0.0));
-    DynamicFrameInput in;
+    FrontEndInput in;
     in.gray = now.gray, in.bgr = now.bgr, in.depth = now.depth;
     in.last_gray = last.gray, in.last_depth = last.depth;
     in.T_cw_last = pose(k - 1);
     in.T_cw_initial = pose(k);
     in.last_mask = last_mask_plain;
-    const DynamicFrameOutput without = plain.process(in);
+    const FrontEndResult without = plain.process(in);
     in.last_mask = last_mask_held;
     in.last_hold_score = last_score;
-    const DynamicFrameOutput with = held.process(in);
+    const FrontEndResult with = held.process(in);
     cv::Mat wall;
     cv::bitwise_not(now.box_mask, wall);
     EXPECT_LT(coverage(with.mask, wall), 0.03) << "frame " << k;

@@ -26,7 +26,7 @@ enum class DynamicMode { kNone, kPrior, kGeometry, kFull };
 DynamicMode parseDynamicMode(const std::string& text);
 std::string toString(DynamicMode mode);
 
-// Temporal evidence from the last frame's final dynamic mask (DynamicFrameInput::last_mask): a mover seen in the
+// Temporal evidence from the last frame's final dynamic mask (FrontEndInput::last_mask): a mover seen in the
 // last frame is most likely still moving 33 ms later.
 struct TemporalOptions {
   // Dynamic.Temporal.excludeFromFits: the tracks starting inside the last mask take no part in the last-frame model

@@ -44,7 +44,7 @@ cv::Mat clusterSuperpixels(SuperpixelSegmentation& segmentation, const Clusterin
 
 // The geometric partition of one frame (III-B): its depth-SLIC superpixels, clustered, and the per-pixel cluster
 // map. It needs only that frame's colour and depth, so it can be computed ahead of time (e.g. for the next frame
-// in a look-ahead worker) and handed to DynamicFrontEnd through DynamicFrameInput::partition.
+// in a look-ahead worker) and handed to DynamicFrontEnd through FrontEndInput::partition.
 struct GeometricPartition {
   SuperpixelSegmentation segmentation;  // Superpixel::cluster filled in
   cv::Mat cluster_map;                  // CV_32S cluster of every pixel

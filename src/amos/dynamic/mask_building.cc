@@ -208,7 +208,7 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
   return reached;
 }
 
-DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<PointTrack>& tracks,
+DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTrack>& tracks,
                              const GeometricPartition& partition, const DecisionRegions& regions,
                              const CandidateScoring& candidates, const PoseConfirmation& confirmation,
                              const EpipolarEvidence& epipolar, const ClusterVoting& voting,

@@ -92,7 +92,7 @@ struct DynamicMask {
 // The geometric stage's mask. judged_prior: the prior regions voted on (cluster_voting.h), empty when they are not
 // judged (the caller then masks every prior region itself). depth_moving / baseline_moving: per superpixel, from the
 // depth evidence and the long-baseline tracks (empty without; see dynamicSuperpixels). Fills diag.dynamic_superpixels.
-DynamicMask buildDynamicMask(const DynamicFrameInput& in, const std::vector<PointTrack>& tracks,
+DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTrack>& tracks,
                              const GeometricPartition& partition, const DecisionRegions& regions,
                              const CandidateScoring& candidates, const PoseConfirmation& confirmation,
                              const EpipolarEvidence& epipolar, const ClusterVoting& voting,

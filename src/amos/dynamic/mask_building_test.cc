@@ -51,7 +51,7 @@ TEST(MaskBuilding, MarksThePixelsOfMarkedLabelsAndKeepsTheRest) {
 }
 
 TEST(MaskBuilding, WholeClustersAndTheKeptPriorRegions) {
-  const DynamicFrameInput in = wallFramePair({40, 40}, 2.f);
+  const FrontEndInput in = wallFramePair({40, 40}, 2.f);
   const GeometricPartition partition = blockPartition();
   const DecisionRegions regions = findDecisionRegions(partition.segmentation, partition.cluster_map, 0);
   DynamicOptions options;
@@ -245,7 +245,7 @@ TEST(MaskBuilding, AClusterMovingWellBeyondTheThresholdGrowsOverItsSurfaceIntoAn
 }
 
 TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
-  const DynamicFrameInput in = wallFramePair({40, 40}, 2.f);
+  const FrontEndInput in = wallFramePair({40, 40}, 2.f);
   const GeometricPartition partition = blockPartition();
   const DecisionRegions regions = findDecisionRegions(partition.segmentation, partition.cluster_map, 0);
   const std::vector<PointTrack> tracks = {still(14, 15), still(16, 15), still(24, 15), still(26, 15)};

@@ -15,7 +15,7 @@ namespace {
 double median(std::vector<double> v) { return v.empty() ? 0 : upperMedian(std::move(v)); }
 }  // namespace
 
-std::vector<MoverFrameDiagnosis> diagnoseMovers(const DynamicFrameOutput& out, const cv::Mat& instances,
+std::vector<MoverFrameDiagnosis> diagnoseMovers(const FrontEndResult& out, const cv::Mat& instances,
                                                 const std::vector<bool>& moving, const DynamicOptions& options) {
   core::require(instances.type() == CV_16UC1 && instances.size() == out.mask.size(),
                 "diagnoseMovers: instances must be CV_16U of the mask's size");

@@ -43,7 +43,7 @@ struct MoverFrameDiagnosis {
 
 // out: DynamicFrontEnd::process's output for the frame; instances: CV_16U ids (0 = static); moving[id]: whether
 // that instance moves in the frame. Instances at rest are not diagnosed.
-std::vector<MoverFrameDiagnosis> diagnoseMovers(const DynamicFrameOutput& out, const cv::Mat& instances,
+std::vector<MoverFrameDiagnosis> diagnoseMovers(const FrontEndResult& out, const cv::Mat& instances,
                                                 const std::vector<bool>& moving, const DynamicOptions& options);
 
 }  // namespace amos::dynamic

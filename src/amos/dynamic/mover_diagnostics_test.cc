@@ -6,8 +6,8 @@ namespace amos::dynamic {
 namespace {
 
 // A 40x40 frame in two clusters (left / right half); a mover fills the left half's top 20 rows.
-DynamicFrameOutput frame(bool left_dynamic, int tracks_on_mover) {
-  DynamicFrameOutput out;
+FrontEndResult frame(bool left_dynamic, int tracks_on_mover) {
+  FrontEndResult out;
   out.mask = cv::Mat(40, 40, CV_8U, cv::Scalar(0));
   out.cluster_map = cv::Mat(40, 40, CV_32S, cv::Scalar(1));
   out.cluster_map.colRange(0, 20).setTo(0);
@@ -53,7 +53,7 @@ TEST(MoverDiagnostics, FoundMoverReportsItsTracksAndCluster) {
 TEST(MoverDiagnostics, BaselinePointsOnTheMoverAreCounted) {
   std::vector<bool> moving(8, false);
   moving[7] = true;
-  DynamicFrameOutput out = frame(true, 3);
+  FrontEndResult out = frame(true, 3);
   // Two points on the mover (one beyond the bar), one on the static right half.
   out.baseline_points = {{{5.f, 5.f}, {9.f, 5.f}, 4.0, true}, {{8.f, 8.f}, {8.5f, 8.f}, 0.5, false},
                          {{30.f, 5.f}, {30.f, 5.f}, 0.1, false}};
@@ -69,7 +69,7 @@ TEST(MoverDiagnostics, CausesOfAMiss) {
   moving[7] = true;
   EXPECT_EQ(diagnoseMovers(frame(false, 1), moverIds(), moving, DynamicOptions{})[0].cause, "no-tracks");
   EXPECT_EQ(diagnoseMovers(frame(false, 4), moverIds(), moving, DynamicOptions{})[0].cause, "below-threshold");
-  DynamicFrameOutput mask_missed = frame(true, 4);
+  FrontEndResult mask_missed = frame(true, 4);
   mask_missed.mask.setTo(0);
   EXPECT_EQ(diagnoseMovers(mask_missed, moverIds(), moving, DynamicOptions{})[0].cause, "mask");
   // At rest: not diagnosed.

@@ -11,7 +11,7 @@ namespace {
 // (x < 60) and 20 in cluster 1 that moved 2 px, too little for a candidate (3 px) and plenty under a clean refit.
 struct Scene {
   std::vector<PointTrack> tracks;
-  DynamicFrameInput in;
+  FrontEndInput in;
   cv::Mat decision_map;
 };
 

@@ -15,8 +15,8 @@ using testing::smallTestCamera;
 using testing::testCamera;
 
 // A frame pair looking at a wall depth_m away, with the same (identity) pose in both frames; gray is black.
-inline DynamicFrameInput wallFramePair(cv::Size size, float depth_m) {
-  DynamicFrameInput in;
+inline FrontEndInput wallFramePair(cv::Size size, float depth_m) {
+  FrontEndInput in;
   in.gray = cv::Mat(size, CV_8U, cv::Scalar(0));
   in.depth = cv::Mat(size, CV_32F, cv::Scalar(depth_m));
   in.last_depth = in.depth.clone();

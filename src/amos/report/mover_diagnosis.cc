@@ -36,7 +36,7 @@ core::SE3 truthAt(const std::vector<io::StampedPose>& truth, double t) {
 
 }  // namespace
 
-cv::Mat decisionPicture(const cv::Mat& bgr, const cv::Mat& truth_ids, const dynamic::DynamicFrameOutput& result) {
+cv::Mat decisionPicture(const cv::Mat& bgr, const cv::Mat& truth_ids, const dynamic::FrontEndResult& result) {
   core::require(bgr.type() == CV_8UC3, "decisionPicture: the frame must be CV_8UC3");
   core::require(truth_ids.type() == CV_16U && truth_ids.size() == bgr.size(),
                 "decisionPicture: the truth must be CV_16U of the frame's size");
@@ -104,7 +104,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
     cv::cvtColor(frame->bgr, gray, cv::COLOR_BGR2GRAY);
     const core::SE3 T_cw = truthAt(truth, frame->timestamp).inverse();
     if (k >= options.first_frame && !last_gray.empty()) {
-      dynamic::DynamicFrameInput in;
+      dynamic::FrontEndInput in;
       in.gray = gray, in.bgr = frame->bgr, in.depth = frame->depth;
       in.last_gray = last_gray, in.last_depth = last_depth, in.last_mask = last_mask;
       in.last_hold_score = last_hold_score;
@@ -117,7 +117,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
       in.T_cw_initial = options.exact_initial ? T_cw
                         : have_before        ? T_cw_last * T_cw_before.inverse() * T_cw_last
                                              : T_cw_last;
-      const dynamic::DynamicFrameOutput result = front_end.process(in);
+      const dynamic::FrontEndResult result = front_end.process(in);
       last_mask = result.mask;
       last_hold_score = result.hold_score;
       const auto mk = masks->frameAt(frame->timestamp);

@@ -41,7 +41,7 @@ struct MoverDiagnosisSummary {
 // 0 = static) tinted green where a mover is marked, red where the static world is, blue where a mover is missed;
 // the outlines of the dynamic clusters in white; every track's end coloured by its error under the judged pose:
 // green below the confirmation threshold (at least 0.5 px), yellow below three times it, red beyond, grey unscored.
-cv::Mat decisionPicture(const cv::Mat& bgr, const cv::Mat& truth_ids, const dynamic::DynamicFrameOutput& result);
+cv::Mat decisionPicture(const cv::Mat& bgr, const cv::Mat& truth_ids, const dynamic::FrontEndResult& result);
 
 // Prints a table (per_frame) and a summary per instance to `out`; progress on stderr. Throws core::Error when the
 // sequence has no ground-truth poses or masks.

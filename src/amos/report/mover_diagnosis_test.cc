@@ -12,7 +12,7 @@ namespace {
 struct Scene {
   cv::Mat bgr = cv::Mat(20, 40, CV_8UC3, cv::Scalar(100, 100, 100));
   cv::Mat truth = cv::Mat(20, 40, CV_16U, cv::Scalar(0));
-  dynamic::DynamicFrameOutput out;
+  dynamic::FrontEndResult out;
   Scene() {
     truth.colRange(0, 20).setTo(3);
     out.mask = cv::Mat(20, 40, CV_8U, cv::Scalar(0));

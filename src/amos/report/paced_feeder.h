@@ -9,7 +9,7 @@
 //
 //   PacedFeeder feeder(source, pipeline);  // starts the thread
 //   while (feeder.nextForStageB()) {
-//     DynamicFrameOutput out = pipeline.processNext();
+//     ProcessedFrame out = pipeline.processNext();
 //     ...
 //   }
 //

@@ -157,7 +157,7 @@ std::vector<io::StampedPose> observedGroundTruth(const std::string& gt_file, con
 }
 
 // What observers see of a processed frame: image headers are shared, the keypoints copied.
-FrameSnapshot frameSnapshot(const system::DynamicFrameOutput& out, std::size_t total, std::size_t processed) {
+FrameSnapshot frameSnapshot(const system::ProcessedFrame& out, std::size_t total, std::size_t processed) {
   FrameSnapshot s;
   s.index = out.frame.index;
   s.total = total;
@@ -269,7 +269,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
   system::DynamicPipeline& pipeline = *result.pipeline;
   // Everything done with a processed frame; false when the run should end (--max-frames reached).
-  auto consume = [&](const system::DynamicFrameOutput& out) {
+  auto consume = [&](const system::ProcessedFrame& out) {
     const io::RgbdFrame& frame = out.frame;
     source_report.latency_ms.push_back(msSince(frame.arrival));
     if (options.source != FrameSourceKind::kFolder)

@@ -56,7 +56,7 @@ DynamicPipeline::~DynamicPipeline() = default;
 
 FrameNumber DynamicPipeline::push(io::RgbdFrame frame) { return scheduler_.push(std::move(frame), processed_.load()); }
 
-DynamicFrameOutput DynamicPipeline::process(io::RgbdFrame frame) {
+ProcessedFrame DynamicPipeline::process(io::RgbdFrame frame) {
   push(std::move(frame));
   return processNext();
 }
@@ -175,10 +175,10 @@ PersonMaskCarrier::Masks DynamicPipeline::personMasks(FrameSlot& slot,
   return masks;
 }
 
-DynamicPipeline::Judgement DynamicPipeline::judge(dynamic::DynamicFrameInput input) {
+DynamicPipeline::Judgement DynamicPipeline::judge(dynamic::FrontEndInput input) {
   core::Stopwatch watch;
   const double cpu = threadCpuMs();
-  dynamic::DynamicFrameOutput judged = front_end_.process(input);
+  dynamic::FrontEndResult judged = front_end_.process(input);
   times_.add("dynamic.front_end", watch.elapsedMs());
   times_.add("cpu.front_end", threadCpuMs() - cpu);
   for (const auto& [stage, ms] : judged.timings_ms) times_.add("dynamic." + stage, ms);
@@ -186,7 +186,7 @@ DynamicPipeline::Judgement DynamicPipeline::judge(dynamic::DynamicFrameInput inp
 }
 
 void DynamicPipeline::track(const FrameSlot& slot, const ExtractedFeatures& features, const FrameExtras& extras,
-                            DynamicFrameOutput& out) {
+                            ProcessedFrame& out) {
   const double cpu = threadCpuMs();
   out.slam = slam_.track(slot.frame, features, extras);
   times_.add("cpu.track", threadCpuMs() - cpu);
@@ -195,7 +195,7 @@ void DynamicPipeline::track(const FrameSlot& slot, const ExtractedFeatures& feat
   removed_fractions_.push_back(out.removed_fraction);
 }
 
-void DynamicPipeline::remember(const DynamicFrameOutput& out, FrameMotionInput motion, cv::Mat hold_score) {
+void DynamicPipeline::remember(const ProcessedFrame& out, FrameMotionInput motion, cv::Mat hold_score) {
   const tracking::TrackResult& result = out.slam.track;
   if (result.state != tracking::TrackingState::kOk) {
     state_.last.reset();  // a lost frame's pose would poison the reprojection test of the next one
@@ -222,10 +222,10 @@ FrameNumber DynamicPipeline::firstSlotNeeded() const {
   return options_.prior.baseFor(state_.processed);
 }
 
-DynamicFrameOutput DynamicPipeline::processNext() {
+ProcessedFrame DynamicPipeline::processNext() {
   core::require(waiting() > 0, "DynamicPipeline::processNext: no frame was pushed");
   FrameSlot& slot = scheduler_.slot(state_.processed);
-  DynamicFrameOutput out;
+  ProcessedFrame out;
   out.frame = slot.frame;
   const StageATasks& tasks = scheduler_.tasks();
   if (!tasks.segmentation) slot.dilated_prior_mask.set_value(cv::Mat());
@@ -237,7 +237,7 @@ DynamicFrameOutput DynamicPipeline::processNext() {
   FrameExtras extras;
   cv::Mat hold_score;
   if (options_.mode != dynamic::DynamicMode::kNone) {
-    dynamic::DynamicFrameInput input;
+    dynamic::FrontEndInput input;
     input.gray = motion.gray;
     input.bgr = slot.frame.bgr;
     input.depth = slot.frame.depth;
@@ -295,7 +295,7 @@ DynamicFrameOutput DynamicPipeline::processNext() {
     out.dynamic_mask = extras.dynamic_mask;
   }
   core::Stopwatch wait;
-  const FrameFeatures features = slot.features.get();
+  const SlotOrbFeatures features = slot.features.get();
   times_.add("dynamic.features_wait", wait.elapsedMs());
   out.keypoints.reserve(features.features.keypoints.size());
   for (const cv::KeyPoint& k : features.features.keypoints) out.keypoints.push_back(k.pt);

@@ -43,7 +43,7 @@
 //   pipeline.push(frame0);
 //   while (pipeline.waiting() > 0) {
 //     if (auto next = source.next()) pipeline.push(*next);  // one frame of look-ahead: A(k+1) runs beside B(k)
-//     DynamicFrameOutput out = pipeline.processNext();      // frame k
+//     ProcessedFrame out = pipeline.processNext();      // frame k
 //   }
 //   pipeline.finish();
 #include <opencv2/core.hpp>
@@ -74,7 +74,7 @@ struct PriorAudit {
   double covered = 1;  // share of the network's mask inside the dilated carried mask: what removal needs
 };
 
-struct DynamicFrameOutput {
+struct ProcessedFrame {
   io::RgbdFrame frame;  // the frame processed
   FrameOutput slam;
   cv::Mat dynamic_mask;  // CV_8U, 255 = dynamic (empty in mode none)
@@ -98,9 +98,9 @@ class DynamicPipeline {
   // Frames pushed and not processed yet.
   std::size_t waiting() const { return scheduler_.pushed() - processed_.load(); }
   // Stage B: processes the oldest waiting frame (core::Error when none waits).
-  DynamicFrameOutput processNext();
+  ProcessedFrame processNext();
   // push() then processNext(): one frame without look-ahead.
-  DynamicFrameOutput process(io::RgbdFrame frame);
+  ProcessedFrame process(io::RgbdFrame frame);
   // Closes the segmentation lane and finishes the SLAM system. Frames still waiting are not processed.
   void finish();
 
@@ -153,10 +153,10 @@ class DynamicPipeline {
   struct Judgement {
     cv::Mat mask, hold_score;
   };
-  Judgement judge(dynamic::DynamicFrameInput input);
+  Judgement judge(dynamic::FrontEndInput input);
   void track(const FrameSlot& slot, const ExtractedFeatures& features, const FrameExtras& extras,
-             DynamicFrameOutput& out);
-  void remember(const DynamicFrameOutput& out, FrameMotionInput motion, cv::Mat hold_score);
+             ProcessedFrame& out);
+  void remember(const ProcessedFrame& out, FrameMotionInput motion, cv::Mat hold_score);
 
   // The slots that stage B will still read from (the segmentation that serves the next frame, and on).
   FrameNumber firstSlotNeeded() const;

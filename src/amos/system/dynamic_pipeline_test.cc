@@ -89,7 +89,7 @@ RunRecord runPipeline(const std::vector<io::RgbdFrame>& frames, std::size_t ahea
   options.mode = dynamic::DynamicMode::kFull;
   DynamicPipeline pipeline(slam, options, realSegmentation());
   RunRecord record;
-  feedPipeline(pipeline, frames, ahead, [&](const DynamicFrameOutput& out) {
+  feedPipeline(pipeline, frames, ahead, [&](const ProcessedFrame& out) {
     record.prior_masks.push_back(out.prior_mask);
     record.dynamic_masks.push_back(out.dynamic_mask);
     record.poses.push_back(out.slam.track.T_cw);
@@ -143,7 +143,7 @@ TEST(DynamicPipeline, BaselineComparisonsAreDeterministicAndMayBeOff) {
     options.depth.baseline_frames = baseline_frames;
     DynamicPipeline pipeline(slam, options, nullptr);
     std::vector<cv::Mat> masks;
-    feedPipeline(pipeline, frames, ahead, [&](const DynamicFrameOutput& out) { masks.push_back(out.dynamic_mask); });
+    feedPipeline(pipeline, frames, ahead, [&](const ProcessedFrame& out) { masks.push_back(out.dynamic_mask); });
     pipeline.finish();
     return masks;
   };
@@ -244,7 +244,7 @@ TEST(DynamicPipeline, SegmentsEveryIntervalthFrame) {
   DynamicPipeline pipeline(slam, priorOptions(3, 2), workerOf(std::make_unique<RecordingSegmenter>(log)));
   std::vector<io::RgbdFrame> frames;
   for (std::size_t code = 10; code < 18; ++code) frames.push_back(codedFrame(code));
-  feedPipeline(pipeline, frames, 1, [&](const DynamicFrameOutput& out) {
+  feedPipeline(pipeline, frames, 1, [&](const ProcessedFrame& out) {
     if (out.frame.index == 12) {  // frame 3 was pushed ahead of frame 2: on its way before frame 3 is processed
       std::unique_lock<std::mutex> lock(log->mutex);
       EXPECT_TRUE(log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.count(13) > 0; }));
@@ -264,7 +264,7 @@ TEST(DynamicPipeline, DetectsOnEveryDetectEverythSegmentation) {
   DynamicPipeline pipeline(slam, priorOptions(3, 2, 2), workerOf(std::make_unique<RecordingSegmenter>(log)));
   std::vector<io::RgbdFrame> frames;
   for (std::size_t code = 10; code < 25; ++code) frames.push_back(codedFrame(code));
-  feedPipeline(pipeline, frames, 1, [](const DynamicFrameOutput&) {});
+  feedPipeline(pipeline, frames, 1, [](const ProcessedFrame&) {});
   pipeline.finish();
   std::unique_lock<std::mutex> lock(log->mutex);
   log->changed.wait_for(lock, std::chrono::seconds(5), [&] { return log->started.size() >= 5; });
@@ -303,7 +303,7 @@ MaskedExtractionRun runLeftBand(const std::vector<io::RgbdFrame>& frames, double
   DynamicPipeline pipeline(slam, options, workerOf(std::make_unique<LeftBandSegmenter>(fraction)));
   MaskedExtractionRun run;
   std::size_t k = 0;
-  feedPipeline(pipeline, frames, 1, [&](const DynamicFrameOutput& out) {
+  feedPipeline(pipeline, frames, 1, [&](const ProcessedFrame& out) {
     run.kept = out.slam.keypoints;
     run.removed = out.slam.removed_dynamic;
     if (k++ == 0) run.map_from_first_frame = out.slam.track.initialized_map;

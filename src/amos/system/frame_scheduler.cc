@@ -48,10 +48,10 @@ FrameCornerTracks trackFrameCorners(const FrameMotionInput& previous, const Fram
   return out;
 }
 
-FrameFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
+SlotOrbFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
                               const SlamSystem& slam, const PreparationInputs& inputs) {
   const double cpu_start = core::threadCpuMs();
-  FrameFeatures out;
+  SlotOrbFeatures out;
   // The previous frame's mask rather than this frame's: waiting for this frame's segmentation would put the
   // segmenter and the extractor one after the other on every frame. People move a few pixels between frames, well
   // inside the mask's dilation; keypoints that still land on a person are removed with this frame's mask as always.

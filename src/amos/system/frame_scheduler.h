@@ -59,7 +59,7 @@ struct PreparationInputs {
 // The tasks of stage A, each a pure function of the frame, the options and its declared inputs.
 FrameMotionInput prepareMotion(const io::RgbdFrame& frame, const StageATasks& tasks,
                                const dynamic::DynamicOptions& options);
-FrameFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
+SlotOrbFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
                               const SlamSystem& slam, const PreparationInputs& inputs);
 FramePartition partitionFrame(const io::RgbdFrame& frame, const dynamic::DynamicOptions& options);
 // The corners of `previous` tracked into `current` (both from prepareMotion with the geometric stage on).

@@ -78,7 +78,7 @@ TEST(FrameScheduler, MaskedExtractionWaitsForThePreviousFramesMask) {
   left.colRange(0, 448).setTo(255);  // 70 % of the view
   mask0.set_value(left);
   map_ready.set_value(true);
-  const FrameFeatures p = prepared.get();
+  const SlotOrbFeatures p = prepared.get();
   ASSERT_GT(p.features.keypoints.size(), 50u);
   for (const cv::KeyPoint& k : p.features.keypoints) EXPECT_GE(k.pt.x, 448.f - 1.f) << "a keypoint inside the mask";
 }

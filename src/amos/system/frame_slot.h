@@ -40,7 +40,7 @@ struct FrameCornerTracks {
   double ms = 0, cpu_ms = 0;
 };
 
-struct FrameFeatures {
+struct SlotOrbFeatures {
   ExtractedFeatures features;  // ORB keypoints and descriptors of the grey image
   double handoff_wait_ms = 0;  // waiting for the hand-offs of earlier frames (masked extraction only)
   double cpu_ms = 0;
@@ -71,7 +71,7 @@ struct FrameSlot {
   std::shared_future<segmentation::SegmentationResult> audit_segmentation;
   std::shared_future<FrameMotionInput> motion;
   std::future<FrameCornerTracks> corner_tracks;
-  std::future<FrameFeatures> features;
+  std::future<SlotOrbFeatures> features;
   std::future<FramePartition> partition;
   // Stage B's hand-offs: set by stage B of this frame, read through `handoff` by stage A of later frames.
   std::promise<cv::Mat> dilated_prior_mask;
