@@ -1,7 +1,10 @@
+include(${CMAKE_CURRENT_LIST_DIR}/AmosTestLabels.cmake)
+
 # amos_add_module(<name> [DEPS <target>...] [TEST_DEPS <target>...] [EXCLUDE <regex>])
 # Builds src/amos/<name>/*.cc (except *_test.cc and *_bench.cc) into the static library amos_<name>
 # (alias amos::<name>). With AMOS_BUILD_TESTS, every *_test.cc beside it goes into amos_<name>_tests, whose
-# GoogleTest cases are registered with CTest as "<name>/<Suite>.<Case>".
+# GoogleTest cases are registered with CTest as "<name>/<Suite>.<Case>", labelled and given a timeout by
+# amos_label_tests (AmosTestLabels.cmake).
 function(amos_add_module name)
   cmake_parse_arguments(ARG "" "EXCLUDE" "DEPS;TEST_DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
@@ -32,6 +35,7 @@ function(amos_add_module name)
         AMOS_BINARY_DIR="${PROJECT_BINARY_DIR}")
       gtest_discover_tests(amos_${name}_tests TEST_PREFIX "${name}/" DISCOVERY_TIMEOUT 60
         WORKING_DIRECTORY ${PROJECT_BINARY_DIR})
+      amos_label_tests(amos_${name}_tests ${tests})
     endif()
   endif()
 endfunction()
