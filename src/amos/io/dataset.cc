@@ -178,7 +178,17 @@ std::vector<AssociatedFrame> associateFrameLists(const std::string& rgb_text, co
 namespace {
 
 // The image cv::imread would give, decoded by io::readPng (libdeflate), with the reason when there is none.
-cv::Mat readImage(const std::string& file, int flags, const char* what) {
+void requireSize(cv::Size size, const std::string& file, const char* what, const ReaderOptions& options) {
+  if (size.width == options.width && size.height == options.height) return;
+  throw FrameLoadError(FrameProblem::kWrongSize, file,
+                       fmt::format("{} '{}' is {}x{}, the settings say {}x{}", what, file, size.width, size.height,
+                                   options.width, options.height));
+}
+
+// Reads an image of the settings' size: a PNG whose header declares another size is refused before its pixels are
+// decoded (a bound on the memory a frame takes); other formats are checked once decoded.
+cv::Mat readImage(const std::string& file, int flags, const char* what, const ReaderOptions& options) {
+  if (const auto declared = pngHeaderSize(file)) requireSize(*declared, file, what, options);
   PngReadInfo info;
   cv::Mat image;
   try {
@@ -186,7 +196,10 @@ cv::Mat readImage(const std::string& file, int flags, const char* what) {
   } catch (const cv::Exception& e) {
     throw FrameLoadError(FrameProblem::kUnreadable, file, fmt::format("cannot read {} '{}': {}", what, file, e.what()));
   }
-  if (!image.empty()) return image;
+  if (!image.empty()) {
+    requireSize(image.size(), file, what, options);
+    return image;
+  }
   if (!fs::is_regular_file(file))
     throw FrameLoadError(FrameProblem::kMissing, file, fmt::format("{} '{}' is missing", what, file));
   throw FrameLoadError(FrameProblem::kUnreadable, file,
@@ -194,12 +207,6 @@ cv::Mat readImage(const std::string& file, int flags, const char* what) {
                                    info.reason.empty() ? "truncated or not an image" : info.reason));
 }
 
-void requireSize(const cv::Mat& image, const std::string& file, const char* what, const ReaderOptions& options) {
-  if (image.cols == options.width && image.rows == options.height) return;
-  throw FrameLoadError(FrameProblem::kWrongSize, file,
-                       fmt::format("{} '{}' is {}x{}, the settings say {}x{}", what, file, image.cols, image.rows,
-                                   options.width, options.height));
-}
 
 }  // namespace
 
@@ -208,16 +215,14 @@ RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& optio
   frame.index = index;
   frame.timestamp = entry.t_rgb;
   frame.rgb_file = entry.rgb_file;
-  frame.bgr = readImage(entry.rgb_file, cv::IMREAD_COLOR, "colour image");
-  requireSize(frame.bgr, entry.rgb_file, "colour image", options);
-  const cv::Mat raw = readImage(entry.depth_file, cv::IMREAD_UNCHANGED, "depth image");
+  frame.bgr = readImage(entry.rgb_file, cv::IMREAD_COLOR, "colour image", options);
+  const cv::Mat raw = readImage(entry.depth_file, cv::IMREAD_UNCHANGED, "depth image", options);
   if (raw.channels() != 1 || (raw.depth() != CV_16U && raw.depth() != CV_32F)) {
     throw FrameLoadError(FrameProblem::kWrongFormat, entry.depth_file,
                          fmt::format("depth image '{}' is {}-bit with {} channel(s); expected a 16-bit single-channel "
                                      "PNG",
                                      entry.depth_file, raw.elemSize1() * 8, raw.channels()));
   }
-  requireSize(raw, entry.depth_file, "depth image", options);
   raw.convertTo(frame.depth, CV_32F, raw.depth() == CV_16U ? 1.0 / options.depth_factor : 1.0);
   const cv::Mat valid = frame.depth > 0;  // NaN compares false: not valid
   if (cv::countNonZero(valid) < options.min_valid_depth * static_cast<double>(frame.depth.total())) {

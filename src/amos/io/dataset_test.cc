@@ -285,6 +285,27 @@ TEST_F(TinySequence, LoadErrorsNameTheFileAndTheReason) {
   EXPECT_STREQ(frameProblemName(FrameProblem::kWrongFormat), "wrong_format");
 }
 
+// A PNG whose header declares a huge image is refused by its header, before any pixel is decoded (before, the
+// whole image was decoded first: 2.45 GB for 20000x20000).
+TEST_F(TinySequence, AnImageOfTheWrongSizeIsRefusedByItsHeaderBeforeDecoding) {
+  writeImages("1.0");
+  const fs::path rgb = dir_ / "rgb" / "1.0.png";
+  std::fstream png(rgb, std::ios::in | std::ios::out | std::ios::binary);
+  png.seekp(16);
+  const char huge[8] = {0, 0, 0x4e, 0x20, 0, 0, 0x4e, 0x20};  // IHDR width and height 20000, big-endian
+  png.write(huge, sizeof huge);
+  png.close();
+  writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n");
+  const SequenceIndex index = indexSequence(dir_.string());
+  try {
+    loadRgbdFrame(index.frames[0], smallOptions(), 0);
+    FAIL() << "expected a FrameLoadError";
+  } catch (const FrameLoadError& e) {
+    EXPECT_EQ(e.problem(), FrameProblem::kWrongSize) << e.what();
+    EXPECT_NE(std::string(e.what()).find("20000x20000, the settings say 64x48"), std::string::npos) << e.what();
+  }
+}
+
 // --strict: the first bad frame ends the stream with its error, after the frames before it.
 TEST_F(TinySequence, StrictReaderRethrowsTheFirstBadFrame) {
   writeImages("1.0");

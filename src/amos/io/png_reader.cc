@@ -481,4 +481,21 @@ cv::Mat readPng(const std::string& path, int imread_flags, PngReadInfo* info) {
   return decoded.image;
 }
 
+std::optional<cv::Size> pngHeaderSize(const std::string& path) {
+  // Signature (8 bytes), IHDR length (4) and type (4), width and height (4 each, big-endian).
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  unsigned char header[24];
+  if (!file || std::fread(header, 1, sizeof header, file.get()) != sizeof header) return std::nullopt;
+  if (std::memcmp(header, kSignature, sizeof kSignature) != 0 || std::memcmp(header + 12, "IHDR", 4) != 0)
+    return std::nullopt;
+  const auto big_endian = [&](int at) {
+    return (std::uint32_t{header[at]} << 24) | (std::uint32_t{header[at + 1]} << 16) |
+           (std::uint32_t{header[at + 2]} << 8) | std::uint32_t{header[at + 3]};
+  };
+  const std::uint32_t width = big_endian(16), height = big_endian(20);
+  if (width == 0 || height == 0 || width > INT_MAX || height > INT_MAX) return std::nullopt;
+  return cv::Size(static_cast<int>(width), static_cast<int>(height));
+}
+
 }  // namespace amos::io

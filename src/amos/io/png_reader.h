@@ -32,6 +32,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace amos::io {
@@ -58,5 +59,10 @@ cv::Mat decodePng(const std::uint8_t* data, std::size_t size, int imread_flags, 
 // The image cv::imread(path, imread_flags) gives (see above); when it is rejected, logs a warning naming `path`
 // unless `info` is given (the caller then reports info->reason).
 cv::Mat readPng(const std::string& path, int imread_flags, PngReadInfo* info = nullptr);
+
+// The image size a PNG file's header (its IHDR chunk, the first 33 bytes) declares, read without decoding the
+// pixels: so that an image of the wrong size is refused before it takes memory (a 20000x20000 frame would need
+// 1.2 GB). nullopt when the file cannot be opened or does not start with a PNG signature and an IHDR chunk.
+std::optional<cv::Size> pngHeaderSize(const std::string& path);
 
 }  // namespace amos::io

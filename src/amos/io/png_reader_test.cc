@@ -443,6 +443,17 @@ TEST_F(PngReaderFiles, EmptyMissingTruncatedAndCorruptFilesGiveAnEmptyMat) {
   expectRejected(dir_ / "corrupt_ihdr.png", "CRC mismatch in chunk IHDR");
 }
 
+TEST(PngReader, HeaderSizeIsReadWithoutDecoding) {
+  const fs::path dir = amos::testing::scratchDirForThisTest("amos_png_reader_test_");
+  const fs::path png = dir / "a.png", text = dir / "a.txt";
+  cv::imwrite(png.string(), cv::Mat(48, 64, CV_16UC1, cv::Scalar(7)));
+  std::ofstream(text) << "not a PNG at all, but long enough";
+  EXPECT_EQ(pngHeaderSize(png.string()), cv::Size(64, 48));
+  EXPECT_EQ(pngHeaderSize(text.string()), std::nullopt);
+  EXPECT_EQ(pngHeaderSize((dir / "missing.png").string()), std::nullopt);
+  fs::remove_all(dir);
+}
+
 TEST(PngReader, EveryTruncationOfASmallPngIsRejected) {
   cv::Mat image(5, 7, CV_16UC3);
   cv::RNG(5).fill(image, cv::RNG::UNIFORM, 0, 65536);
