@@ -32,14 +32,28 @@ struct StampedFile {
   std::string file;
 };
 
-std::vector<StampedFile> readStampedList(const std::vector<TextLine>& lines, const std::string& path) {
+// The rows of rgb.txt or depth.txt. A row with the stamp of the row before it (a list appended twice, a copy
+// gone wrong) is a duplicate: left out, warned about once (count and first line) and counted in `duplicates`.
+std::vector<StampedFile> readStampedList(const std::vector<TextLine>& lines, const std::string& path,
+                                         std::size_t& duplicates) {
   std::vector<StampedFile> out;
+  int first_duplicate_line = 0;
+  duplicates = 0;
   for (const auto& line : lines) {
     if (line.fields.size() < 2) {
       throw core::Error(fmt::format("{}:{}: expected 'timestamp filename', got {} field(s)", path, line.number,
                                     line.fields.size()));
     }
-    out.push_back({parseNumber(line.fields[0], path, line.number, "timestamp"), line.fields[1]});
+    const double stamp = parseNumber(line.fields[0], path, line.number, "timestamp");
+    if (!out.empty() && stamp == out.back().t) {
+      if (duplicates++ == 0) first_duplicate_line = line.number;
+      continue;
+    }
+    out.push_back({stamp, line.fields[1]});
+  }
+  if (duplicates > 0) {
+    spdlog::warn("{}: {} row(s) repeat the time stamp of the row before (first: line {}); left out", path, duplicates,
+                 first_duplicate_line);
   }
   return out;
 }
@@ -147,8 +161,10 @@ SequenceIndex indexSequence(const std::string& dir, double max_dt) {
     const std::string rgb_list = (root / "rgb.txt").string(), depth_list = (root / "depth.txt").string();
     core::require(fs::is_regular_file(rgb_list) && fs::is_regular_file(depth_list),
                   fmt::format("'{}' has neither an association file nor rgb.txt + depth.txt", dir));
-    index.frames = associateLists(readStampedList(readTextLines(rgb_list), rgb_list),
-                                  readStampedList(readTextLines(depth_list), depth_list), max_dt);
+    std::size_t rgb_duplicates = 0, depth_duplicates = 0;
+    index.frames = associateLists(readStampedList(readTextLines(rgb_list), rgb_list, rgb_duplicates),
+                                  readStampedList(readTextLines(depth_list), depth_list, depth_duplicates), max_dt);
+    index.association.duplicate_rows = rgb_duplicates + depth_duplicates;
   }
   for (auto& f : index.frames) {
     f.rgb_file = (root / f.rgb_file).string();
@@ -171,13 +187,13 @@ std::vector<AssociatedFrame> associateFrameLists(const std::string& rgb_text, co
                                                  const std::string& depth_text, const std::string& depth_path,
                                                  double max_dt) {
   std::istringstream rgb_in(rgb_text), depth_in(depth_text);
-  return associateLists(readStampedList(readTextLines(rgb_in), rgb_path),
-                        readStampedList(readTextLines(depth_in), depth_path), max_dt);
+  std::size_t duplicates = 0;
+  return associateLists(readStampedList(readTextLines(rgb_in), rgb_path, duplicates),
+                        readStampedList(readTextLines(depth_in), depth_path, duplicates), max_dt);
 }
 
 namespace {
 
-// The image cv::imread would give, decoded by io::readPng (libdeflate), with the reason when there is none.
 void requireSize(cv::Size size, const std::string& file, const char* what, const ReaderOptions& options) {
   if (size.width == options.width && size.height == options.height) return;
   throw FrameLoadError(FrameProblem::kWrongSize, file,
@@ -185,7 +201,8 @@ void requireSize(cv::Size size, const std::string& file, const char* what, const
                                    options.width, options.height));
 }
 
-// Reads an image of the settings' size: a PNG whose header declares another size is refused before its pixels are
+// The image cv::imread would give, decoded by io::readPng (libdeflate), with the reason when there is none; only
+// of the settings' size: a PNG whose header declares another size is refused before its pixels are
 // decoded (a bound on the memory a frame takes); other formats are checked once decoded.
 cv::Mat readImage(const std::string& file, int flags, const char* what, const ReaderOptions& options) {
   if (const auto declared = pngHeaderSize(file)) requireSize(*declared, file, what, options);

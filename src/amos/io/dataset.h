@@ -32,6 +32,9 @@ struct AssociationStats {
   std::size_t rows = 0;                // rows of that file
   std::size_t rows_beyond_window = 0;  // rows whose RGB and depth stamps differ by more than window_s
   double window_s = 0;                 // the association window (indexSequence's max_dt)
+  // rgb.txt / depth.txt rows left out for repeating the stamp of the row before (an association file's rows must
+  // increase: a repeat there is an error)
+  std::size_t duplicate_rows = 0;
 };
 
 struct SequenceIndex {

@@ -125,6 +125,18 @@ TEST_F(TinySequence, AssociatesListsAndSkipsMissingFile) {
   EXPECT_EQ(count, 2);
 }
 
+// A list appended twice: the repeated rows are left out and counted, not read as more frames.
+TEST_F(TinySequence, RepeatedRowsOfTheListsAreLeftOutAndCounted) {
+  writeImages("1.0");
+  writeImages("2.0");
+  const std::string rgb = "1.0 rgb/1.0.png\n2.0 rgb/2.0.png\n", depth = "1.0 depth/1.0.png\n2.0 depth/2.0.png\n";
+  writeFile("rgb.txt", rgb + "2.0 rgb/2.0.png\n");
+  writeFile("depth.txt", depth);
+  const SequenceIndex index = indexSequence(dir_.string());
+  EXPECT_EQ(index.frames.size(), 2u);
+  EXPECT_EQ(index.association.duplicate_rows, 1u);
+}
+
 // As a FrameSource the folder reader delivers on demand: poll() is next(), nothing is dropped, and every frame
 // is stamped when it is handed over.
 TEST_F(TinySequence, ReaderIsAFrameSourceThatNeverDrops) {

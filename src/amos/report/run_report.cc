@@ -40,6 +40,7 @@ nlohmann::json toJson(const io::AssociationStats& association) {
   return {{"file", association.file},
           {"rows", association.rows},
           {"rows_beyond_window", association.rows_beyond_window},
+          {"duplicate_rows", association.duplicate_rows},
           {"window_s", association.window_s}};
 }
 

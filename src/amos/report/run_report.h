@@ -7,7 +7,7 @@
 //                   ATE / RPE when the sequence has ground truth, and the dynamic mask's pixel precision / recall /
 //                   IoU when it has ground-truth mover masks, and where the frames came from ("source": kind,
 //                   frames delivered / processed / dropped, latency from a frame's arrival to its pose), how its
-//                   association file paired RGB and depth ("association": rows, rows_beyond_window), the frames
+//                   association file paired RGB and depth ("association": rows, rows_beyond_window, duplicate_rows), the frames
 //                   skipped as unreadable by reason ("skipped_frames") and the depth dropouts, and how the run
 //                   ended ("end": status complete | interrupted | failed, reason)
 // Each file is written under a temporary name and renamed (io/atomic_file.h): a killed run never leaves a
@@ -75,7 +75,7 @@ struct RunInfo {
   double mask_outputs_s = 0;
   std::optional<SourceReport> source;  // absent when the caller did not read frames from a FrameSource
   // The sequence's association file (io::SequenceIndex::association); absent for a live camera or when the frames
-  // were associated from rgb.txt + depth.txt.
+  // were associated from rgb.txt + depth.txt without repeated rows.
   std::optional<io::AssociationStats> association;
   io::SkippedFrames skipped_frames;    // frames the source could not read, by reason
   DepthDropouts depth_dropouts;

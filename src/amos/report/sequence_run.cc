@@ -204,7 +204,8 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
     parseCameraSpec(options.camera);  // a wrong --camera is an error before any model is loaded
   }
   const std::string gt_file = index ? index->groundtruth_file : std::string();
-  if (index && !index->association.file.empty()) result.info.association = index->association;
+  if (index && (!index->association.file.empty() || index->association.duplicate_rows > 0))
+    result.info.association = index->association;
   system::SlamOptions slam_options = slamOptionsFromSettings(settings, options.deterministic);
   slam_options.after_keyframe = options.after_keyframe;
   slam_options.tracking.localization_only = options.localize;
