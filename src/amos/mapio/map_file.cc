@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <mutex>
@@ -436,6 +437,9 @@ MapFileSummary decodeMap(const std::string& bytes, const std::string& source,
 }
 
 MapFileSummary loadMap(const std::string& path, const std::shared_ptr<const map::Sensor>& sensor, map::Map& into) {
+  // Said before opening: a stream opens a folder, then fails with the C++ library's words on the first read.
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw core::Error(path + ": is a folder, not a map file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw core::Error(path + ": cannot open the map file");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

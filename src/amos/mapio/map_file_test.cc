@@ -255,6 +255,26 @@ TEST(MapFile, MissingFileIsAnErrorNamingIt) {
   }
 }
 
+TEST(MapFile, AFolderOrASymlinkLoopIsAnErrorNamingIt) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "amos_map_file_folder_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::create_symlink(dir / "b.map", dir / "a.map");
+  std::filesystem::create_symlink(dir / "a.map", dir / "b.map");
+  const auto message = [](const std::string& path) {
+    map::Map m;
+    try {
+      loadMap(path, testSensor(), m);
+    } catch (const core::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(dir.string()), dir.string() + ": is a folder, not a map file");
+  EXPECT_EQ(message((dir / "a.map").string()), (dir / "a.map").string() + ": cannot open the map file");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(MapFile, LoadsOnlyIntoAnEmptyMap) {
   const auto sensor = testSensor();
   map::Map m;
