@@ -233,6 +233,10 @@ RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& optio
   frame.timestamp = entry.t_rgb;
   frame.rgb_file = entry.rgb_file;
   frame.bgr = readImage(entry.rgb_file, cv::IMREAD_COLOR, "colour image", options);
+  if (cv::countNonZero(frame.bgr.reshape(1)) == 0) {
+    throw FrameLoadError(FrameProblem::kBlank, entry.rgb_file,
+                         fmt::format("colour image '{}' is black throughout: nothing to track", entry.rgb_file));
+  }
   const cv::Mat raw = readImage(entry.depth_file, cv::IMREAD_UNCHANGED, "depth image", options);
   if (raw.channels() != 1 || (raw.depth() != CV_16U && raw.depth() != CV_32F)) {
     throw FrameLoadError(FrameProblem::kWrongFormat, entry.depth_file,

@@ -90,7 +90,8 @@ class FrameLoadError : public core::Error {
 };
 
 // Loads and validates one frame: throws FrameLoadError naming the file for a missing or unreadable image, a wrong
-// size or a depth image that is not 16-bit single-channel. A depth dropout (see ReaderOptions::min_valid_depth) is
+// size, a blank colour image (black throughout: nothing to track) or a depth image that is not 16-bit
+// single-channel. A depth dropout (see ReaderOptions::min_valid_depth) is
 // not an error: the frame comes back with depth_dropout set and all-zero depth.
 RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index);
 

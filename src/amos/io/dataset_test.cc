@@ -125,6 +125,20 @@ TEST_F(TinySequence, AssociatesListsAndSkipsMissingFile) {
   EXPECT_EQ(count, 2);
 }
 
+// An all-black frame (a covered lens) is skipped as blank, not passed on as a depth dropout "tracked from colour".
+TEST_F(TinySequence, ABlackFrameIsSkippedAsBlank) {
+  writeImages("1.0");
+  cv::imwrite((dir_ / "rgb" / "2.0.png").string(), cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(0)));
+  cv::imwrite((dir_ / "depth" / "2.0.png").string(), cv::Mat(48, 64, CV_16U, cv::Scalar(0)));
+  writeFile("associations.txt", "1.0 rgb/1.0.png 1.0 depth/1.0.png\n2.0 rgb/2.0.png 2.0 depth/2.0.png\n");
+  SequenceReader reader(indexSequence(dir_.string()), smallOptions());
+  std::size_t delivered = 0;
+  while (reader.next()) ++delivered;
+  EXPECT_EQ(delivered, 1u);
+  EXPECT_EQ(reader.stats().skipped.count(FrameProblem::kBlank), 1u);
+  EXPECT_STREQ(frameProblemName(FrameProblem::kBlank), "blank");
+}
+
 // A list appended twice: the repeated rows are left out and counted, not read as more frames.
 TEST_F(TinySequence, RepeatedRowsOfTheListsAreLeftOutAndCounted) {
   writeImages("1.0");

@@ -10,6 +10,7 @@ const char* frameProblemName(FrameProblem problem) {
     case FrameProblem::kUnreadable: return "unreadable";
     case FrameProblem::kWrongSize: return "wrong_size";
     case FrameProblem::kWrongFormat: return "wrong_format";
+    case FrameProblem::kBlank: return "blank";
   }
   return "?";
 }

@@ -20,11 +20,13 @@ enum class FrameProblem {
   kMissing,     // a listed image file does not exist
   kUnreadable,  // the file exists but does not decode (truncated, not an image)
   kWrongSize,   // the image is not Camera.width x Camera.height
-  kWrongFormat  // depth that is not a single-channel 16-bit (or 32-bit float) image, e.g. an 8-bit PNG
+  kWrongFormat,  // depth that is not a single-channel 16-bit (or 32-bit float) image, e.g. an 8-bit PNG
+  kBlank         // a colour image black throughout (a covered lens, a sensor not yet started)
 };
-constexpr std::array<FrameProblem, 4> kFrameProblems = {FrameProblem::kMissing, FrameProblem::kUnreadable,
-                                                        FrameProblem::kWrongSize, FrameProblem::kWrongFormat};
-// "missing" | "unreadable" | "wrong_size" | "wrong_format" (the keys of stats.json's "skipped_frames").
+constexpr std::array<FrameProblem, 5> kFrameProblems = {FrameProblem::kMissing, FrameProblem::kUnreadable,
+                                                        FrameProblem::kWrongSize, FrameProblem::kWrongFormat,
+                                                        FrameProblem::kBlank};
+// "missing" | "unreadable" | "wrong_size" | "wrong_format" | "blank" (the keys of stats.json's "skipped_frames").
 const char* frameProblemName(FrameProblem problem);
 
 // Frames skipped, by reason.

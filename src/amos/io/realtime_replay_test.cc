@@ -39,7 +39,7 @@ class ReplaySequence : public ::testing::Test {
     for (std::size_t i = 0; i < stamps.size(); ++i) {
       const std::string stamp = fmt::format("{:.6f}", stamps[i]);
       cv::imwrite((dir_ / "rgb" / (stamp + ".png")).string(),
-                  cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(static_cast<double>(i))));
+                  cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(static_cast<double>(i + 1))));  // not black: a black frame is skipped
       cv::Mat d(48, 64, CV_16U, cv::Scalar(5000.0 * static_cast<double>(1 + i)));
       if (static_cast<int>(i) == bad_depth) d = cv::Mat(48, 64, CV_8U, cv::Scalar(200));
       cv::imwrite((dir_ / "depth" / (stamp + ".png")).string(), d);
@@ -135,7 +135,7 @@ TEST_F(ReplaySequence, FastConsumerGetsEveryFrameAtItsRecordedTime) {
   for (std::size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i].index, i);
     EXPECT_DOUBLE_EQ(got[i].timestamp, stamps[i]);
-    EXPECT_EQ(got[i].bgr.at<cv::Vec3b>(0, 0)[0], i);
+    EXPECT_EQ(got[i].bgr.at<cv::Vec3b>(0, 0)[0], i + 1);
     const Clock::time_point on_time = due(*t0, stamps[i], stamps[0]);
     EXPECT_GE(got[i].arrival, on_time) << "frame " << i << " released early";
     EXPECT_LT(got[i].arrival - on_time, milliseconds(30)) << "frame " << i << " released late";
