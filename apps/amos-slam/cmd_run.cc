@@ -4,7 +4,7 @@
 // also masks/ and overlays/) and prints where the frames came from (delivered / processed / dropped, latency),
 // ATE / RPE when the sequence has ground truth and the dynamic mask's pixel precision / recall / IoU when it has
 // ground-truth mover masks. With the viewer module it also writes report.html, and --viewer serves a live view of
-// the run (run_watchers.h). All work is in amos::report / amos::system / amos::viewer.
+// the run (run_watchers.h). All work is in amos::run / amos::report / amos::system / amos::viewer.
 // Streams: progress and warnings on stderr, the summary on stdout. Exit status: 0, 1 for an error (before the run,
 // or one that ended it: the outputs of the frames processed are written first), 130 / 143 when SIGINT / SIGTERM
 // ended it (outputs written likewise).
@@ -30,7 +30,7 @@
 #include "amos/core/stage_timer.h"
 #include "amos/report/output_folder.h"
 #include "amos/report/run_report.h"
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 #include "commands.h"
 #include "run_watchers.h"
 
@@ -126,7 +126,7 @@ void printDamagedInput(const report::RunInfo& info) {
                            dropouts.frames, dropouts.tracked, dropouts.lost);
 }
 
-void printSummary(const report::SequenceRunResult& r, const std::string& output) {
+void printSummary(const run::SequenceRunResult& r, const std::string& output) {
   const system::SlamStats s = r.slam->stats();
   const auto stages = r.slam->times().summary();
   auto median = [&](const char* name) {
@@ -189,10 +189,10 @@ void runSlam(const RunArgs& args, int& exit_code) {
   report::prepareOutputFolder(args.output, args.overwrite);
   RunWatchers watchers(args.viewer);
   const bool tty = isatty(fileno(stderr)) != 0;
-  report::SequenceRunOptions options;
-  options.source = !args.camera.empty() ? report::FrameSourceKind::kCamera
-                   : args.realtime      ? report::FrameSourceKind::kRealtime
-                                        : report::FrameSourceKind::kFolder;
+  run::SequenceRunOptions options;
+  options.source = !args.camera.empty() ? run::FrameSourceKind::kCamera
+                   : args.realtime      ? run::FrameSourceKind::kRealtime
+                                        : run::FrameSourceKind::kFolder;
   options.sequence_dir = args.sequence;
   options.camera = args.camera;
   options.record_dir = args.record;
@@ -212,7 +212,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   // Progress goes to stderr: a live line on a terminal, else (a log file, a pipe) one line every --progress-every
   // frames and the last one.
   const std::size_t every = std::max<std::size_t>(1, args.progress_every);
-  options.on_frame = [tty, every, &line_open](const report::SequenceProgress& p) {
+  options.on_frame = [tty, every, &line_open](const run::SequenceProgress& p) {
     const auto& t = p.output->track;
     const std::string position = p.total > 0 ? fmt::format("{}/{}", p.frame, p.total) : std::to_string(p.frame);
     const std::string line =
@@ -227,11 +227,11 @@ void runSlam(const RunArgs& args, int& exit_code) {
   };
   const StopSignals signals;
   options.stop = signals.flag();
-  if (options.source == report::FrameSourceKind::kCamera)
+  if (options.source == run::FrameSourceKind::kCamera)
     spdlog::info("live session: Ctrl-C ends it and writes the outputs");
-  report::SequenceRunResult result;
+  run::SequenceRunResult result;
   try {
-    result = report::runSequence(settings, options);
+    result = run::runSequence(settings, options);
   } catch (...) {
     if (line_open) std::fprintf(stderr, "\n");
     throw;

@@ -1,6 +1,6 @@
 #pragma once
 // Runs the SLAM system over a whole TUM/Bonn-layout sequence: the loop shared by `amos-slam run`, the end-to-end
-// tests and the benchmarks. Settings come from the config module; ground truth, when the sequence has it, is
+// tests and the benchmarks. Settings come from the config module (config/slam_options.h); ground truth, when the sequence has it, is
 // evaluated with the eval module (Bonn marker poses converted to camera poses); ground-truth mover masks, when the
 // sequence has them (synthetic sequences: masks.txt, masks/, instances.json), score the front end's dynamic mask.
 //
@@ -22,19 +22,12 @@
 
 #include "amos/config/settings.h"
 #include "amos/io/trajectory.h"
-#include "amos/report/run_observer.h"
+#include "amos/run/run_observer.h"
 #include "amos/report/run_report.h"
 #include "amos/system/dynamic_pipeline.h"
 #include "amos/system/slam_system.h"
 
-namespace amos::report {
-
-// The SLAM options that follow from a settings file (camera, virtual baseline, ORB; defaults elsewhere).
-system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bool deterministic);
-// The vocabulary Place.vocabulary names (an existing path, else looked for in $AMOS_MODELS, ./models,
-// ../shared/models), or null, with a warning, when it is not found or the setting is "" (thumbnails then). A
-// file that is there but cannot be read is an error naming it.
-std::shared_ptr<const place::Vocabulary> loadPlaceVocabulary(const config::Settings& settings);
+namespace amos::run {
 
 struct SequenceProgress {
   std::size_t frame = 0, total = 0;  // frame: 1-based position of the processed frame in the stream; total 0 = live
@@ -95,7 +88,7 @@ struct SequenceRunOptions {
 struct SequenceRunResult {
   std::unique_ptr<system::SlamSystem> slam;  // finished (mapping stopped)
   std::unique_ptr<system::DynamicPipeline> pipeline;  // the front end around `slam` (declared after it: dies first)
-  RunInfo info;                              // wall time, evaluation when there is ground truth, how it ended
+  report::RunInfo info;                      // wall time, evaluation when there is ground truth, how it ended
   std::vector<io::StampedPose> trajectory;
   // The error that ended the run early (info.end.status kFailed), or null.
   std::exception_ptr failure;
@@ -108,4 +101,4 @@ struct SequenceRunResult {
 // SequenceRunResult::failure (rethrowFailure()) and RunInfo::end; so the caller can still write the outputs.
 SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options);
 
-}  // namespace amos::report
+}  // namespace amos::run

@@ -1,4 +1,4 @@
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "amos/config/slam_options.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
 #include "amos/segmentation/model_locator.h"
@@ -24,52 +25,14 @@
 #include "amos/io/realtime_replay.h"
 #include "amos/io/sequence_recorder.h"
 #include "amos/report/mask_outputs.h"
-#include "amos/report/paced_feeder.h"
+#include "amos/run/paced_feeder.h"
 #ifdef AMOS_HAVE_OPENNI2
 #include "amos/camera/openni2_source.h"
 #endif
 
-namespace amos::report {
+namespace amos::run {
 
 namespace fs = std::filesystem;
-
-system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bool deterministic) {
-  system::SlamOptions o;
-  o.camera = settings.camera;
-  o.sensor.bf = settings.bf;
-  o.sensor.th_depth = settings.th_depth;
-  o.orb = settings.orb;
-  o.tracking = settings.tracking;
-  o.mapping = settings.mapping;
-  o.loop = settings.loop;
-  o.covisibility = settings.covisibility;
-  o.deterministic = deterministic;
-  o.vocabulary = loadPlaceVocabulary(settings);
-  return o;
-}
-
-std::shared_ptr<const place::Vocabulary> loadPlaceVocabulary(const config::Settings& settings) {
-  const std::string& name = settings.place_vocabulary;
-  if (name.empty()) return nullptr;
-  std::vector<std::string> tried{name};
-  if (!fs::exists(name)) {
-    std::vector<std::string> dirs;
-    if (const char* env = std::getenv("AMOS_MODELS"); env != nullptr && *env != 0) dirs.emplace_back(env);
-    dirs.emplace_back("./models");
-    dirs.emplace_back("../shared/models");
-    for (const std::string& dir : dirs) tried.push_back(segmentation::joinPath(dir, name));
-  }
-  for (const std::string& path : tried) {
-    if (!fs::is_regular_file(path)) continue;
-    core::Stopwatch watch;
-    auto vocabulary = std::make_shared<const place::Vocabulary>(place::Vocabulary::load(path));
-    spdlog::info("place vocabulary {}: {} words, loaded in {:.0f} ms", path, vocabulary->numWords(), watch.elapsedMs());
-    return vocabulary;
-  }
-  spdlog::warn("Place.vocabulary {} not found (tried {}): keyframes are ranked by thumbnails", name,
-               fmt::format("{}", fmt::join(tried, ", ")));
-  return nullptr;
-}
 
 namespace {
 
@@ -205,7 +168,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   }
   const std::string gt_file = index ? index->groundtruth_file : std::string();
   if (index && !index->association.file.empty()) result.info.association = index->association;
-  system::SlamOptions slam_options = slamOptionsFromSettings(settings, options.deterministic);
+  system::SlamOptions slam_options = config::slamOptionsFromSettings(settings, options.deterministic);
   slam_options.after_keyframe = options.after_keyframe;
   slam_options.tracking.localization_only = options.localize;
   core::require(!options.localize || !options.load_map.empty(), "--localize needs a map to localize in (--load-map FILE)");
@@ -239,10 +202,10 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   const bool paced = options.source != FrameSourceKind::kFolder;
   // A paced or live source: a pose must not wait for a late person network (DynamicPipeline::setWaitForSegmentation).
   result.pipeline->setWaitForSegmentation(!paced || settings.dynamic.prior.live_wait);
-  std::optional<MaskOutputWriter> mask_writer;
+  std::optional<report::MaskOutputWriter> mask_writer;
   if (!options.masks_output_dir.empty())
     mask_writer.emplace(options.masks_output_dir, source->size(), options.overlay_count);
-  SourceReport source_report;
+  report::SourceReport source_report;
   source_report.kind = sourceKindName(options.source, options.camera);
   source_report.recorded_to = options.record_dir;
   eval::MaskAccuracyAccumulator mask_accuracy;
@@ -276,7 +239,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
       spdlog::debug("frame {}: {:.1f} ms from arrival to pose", frame.index, source_report.latency_ms.back());
     ++n;
     if (frame.depth_dropout) {
-      DepthDropouts& d = result.info.depth_dropouts;
+      report::DepthDropouts& d = result.info.depth_dropouts;
       ++d.frames;
       d.tracked += out.slam.track.state == tracking::TrackingState::kOk;
       d.lost += out.slam.track.state == tracking::TrackingState::kLost;
@@ -359,9 +322,9 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   }
   if (failure) {
     result.failure = failure;
-    result.info.end = {RunEnd::Status::kFailed, errorMessage(failure)};
+    result.info.end = {report::RunEnd::Status::kFailed, errorMessage(failure)};
   } else if (interrupted) {
-    result.info.end = {RunEnd::Status::kInterrupted, "stop requested"};
+    result.info.end = {report::RunEnd::Status::kInterrupted, "stop requested"};
   }
   const io::SourceStats stats = source->stats();
   source_report.delivered = stats.delivered;
@@ -397,4 +360,4 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   return result;
 }
 
-}  // namespace amos::report
+}  // namespace amos::run

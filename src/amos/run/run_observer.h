@@ -23,8 +23,10 @@
 #include "amos/tracking/tracker.h"
 
 namespace amos::report {
-
 struct RunInfo;
+}  // namespace amos::run
+
+namespace amos::run {
 
 struct RunStart {
   std::shared_ptr<const map::Map> map;
@@ -67,10 +69,10 @@ class RunObserver {
   // After the last frame: mapping stopped, `trajectory` is final (T_wc of every processed frame, with the map's
   // corrections), `info` has the evaluation when there was ground truth. Not called when the run ends by an
   // exception.
-  virtual void onEnd(const std::vector<io::StampedPose>& trajectory, const RunInfo& info) {
+  virtual void onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) {
     (void)trajectory;
     (void)info;
   }
 };
 
-}  // namespace amos::report
+}  // namespace amos::run
