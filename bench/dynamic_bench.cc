@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "amos/config/settings.h"
+#include "amos/config/slam_options.h"
 #include "amos/dynamic/dynamic_front_end.h"
 #include "amos/dynamic/motion_hold.h"
 #include "amos/dynamic/rigid_mover_depth.h"
@@ -29,7 +30,7 @@
 #include "amos/eval/bonn_ground_truth.h"
 #include "amos/eval/evaluate.h"
 #include "amos/io/dataset.h"
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 
 namespace {
 
@@ -463,7 +464,7 @@ void BM_FrontEndGeometry(benchmark::State& state) {
 }
 BENCHMARK(BM_FrontEndGeometry)->Unit(benchmark::kMillisecond);
 
-// The whole of `amos-slam run --mode full` on bonn_crowd_dev (configs/bonn.yaml), the loop of report::runSequence,
+// The whole of `amos-slam run --mode full` on bonn_crowd_dev (configs/bonn.yaml), the loop of run::runSequence,
 // with and without look-ahead (process(frame k, next = frame k+1): frame k+1 is segmented, and its features,
 // pyramid, corners and superpixels are prepared, while frame k is tracked), and with settings changed from the
 // file's: args {look_ahead 0/1, Segmentation.mask_input_size, Dynamic.LK.window, Dynamic.LK.maxIterations, LK
@@ -497,7 +498,7 @@ void BM_BonnFullSequence(benchmark::State& state) {
   double fps = 0, cpu_ms = 0, ate = 0, lost = 0, wait_ms = 0, keyframe_points_median = 0;
   std::map<std::string, double> stage_cpu_ms;  // median CPU per frame of the pipeline's cpu.* stages
   for (auto _ : state) {
-    system::SlamSystem slam(report::slamOptionsFromSettings(settings, deterministic));
+    system::SlamSystem slam(config::slamOptionsFromSettings(settings, deterministic));
     dynamic::DynamicOptions options = settings.dynamic;
     options.mode = DynamicMode::kFull;
     segmentation::ModelSources sources;

@@ -1,10 +1,11 @@
 // amos-slam run: SLAM over one RGB-D sequence, read as fast as possible, replayed at its recorded rate
 // (--realtime) or live from a camera (--camera openni2[:URI]; Ctrl-C ends the session), optionally recorded
-// (--record DIR). Writes trajectory.txt, keyframes.txt, map.ply and stats.json into --output (with --save-masks
-// also masks/ and overlays/) and prints where the frames came from (delivered / processed / dropped, latency),
-// ATE / RPE when the sequence has ground truth and the dynamic mask's pixel precision / recall / IoU when it has
-// ground-truth mover masks. With the viewer module it also writes report.html, and --viewer serves a live view of
-// the run (run_watchers.h). All work is in amos::report / amos::system / amos::viewer.
+// (--record DIR). Writes trajectory.txt, keyframes.txt, map.ply, stats.json and settings_used.yaml (the settings
+// it ran with) into --output (with --save-masks also masks/ and overlays/) and prints where the frames came from
+// (delivered / processed / dropped, latency), ATE / RPE when the sequence has ground truth and the dynamic mask's
+// pixel precision / recall / IoU when it has ground-truth mover masks. With the viewer module it also writes
+// report.html, and --viewer serves a live view of the run (run_watchers.h). All work is in amos::run /
+// amos::report / amos::config / amos::system / amos::viewer.
 // Streams: progress and warnings on stderr, the summary on stdout. Exit status: 0, 1 for an error (before the run,
 // or one that ended it: the outputs of the frames processed are written first), 130 / 143 when SIGINT / SIGTERM
 // ended it (outputs written likewise).
@@ -26,11 +27,12 @@
 #include <nlohmann/json.hpp>
 
 #include "amos/config/settings.h"
+#include "amos/config/settings_writer.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
 #include "amos/report/output_folder.h"
 #include "amos/report/run_report.h"
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 #include "commands.h"
 #include "run_watchers.h"
 
@@ -126,7 +128,7 @@ void printDamagedInput(const report::RunInfo& info) {
                            dropouts.frames, dropouts.tracked, dropouts.lost);
 }
 
-void printSummary(const report::SequenceRunResult& r, const std::string& output) {
+void printSummary(const run::SequenceRunResult& r, const std::string& output) {
   const system::SlamStats s = r.slam->stats();
   const auto stages = r.slam->times().summary();
   auto median = [&](const char* name) {
@@ -173,6 +175,17 @@ void printSummary(const report::SequenceRunResult& r, const std::string& output)
   std::cout << "outputs written to " << output << "\n";
 }
 
+// <output>/settings_used.yaml: every settings key as the run used it (--mode sets Dynamic.mode), below the command
+// line, so that `run --config <output>/settings_used.yaml` with the same other flags repeats the run.
+void writeSettingsUsed(const config::Settings& settings, const run::SequenceRunOptions& options,
+                       const RunArgs& args) {
+  config::writeSettingsFile(args.output + "/settings_used.yaml", run::effectiveSettings(settings, options),
+                            {"The settings this run used: every key at its effective value (configs/README.md).",
+                             "command line: " + commandLine(), "settings file: " + args.config,
+                             "set by the command line: Dynamic.mode (--mode " + args.mode + ")",
+                             "Repeat the run: the same command line with --config <this file>."});
+}
+
 // --save-map: the map as the run left it (mapping finished), with its size and the time it took.
 void saveMap(const system::SlamSystem& slam, const std::string& path) {
   core::Stopwatch watch;
@@ -181,18 +194,12 @@ void saveMap(const system::SlamSystem& slam, const std::string& path) {
                            saved.keyframes, saved.map_points, saved.bytes / 1e6, watch.elapsedMs());
 }
 
-void runSlam(const RunArgs& args, int& exit_code) {
-  core::require(!args.sequence.empty() || !args.camera.empty(),
-                "run: give --sequence DIR (a recorded sequence) or --camera openni2[:URI] (a live camera)");
-  const config::Settings settings = config::loadSettings(args.config);
-  // Before anything else runs (models, the camera, the first frame): a wrong --output is found at once.
-  report::prepareOutputFolder(args.output, args.overwrite);
-  RunWatchers watchers(args.viewer);
-  const bool tty = isatty(fileno(stderr)) != 0;
-  report::SequenceRunOptions options;
-  options.source = !args.camera.empty() ? report::FrameSourceKind::kCamera
-                   : args.realtime      ? report::FrameSourceKind::kRealtime
-                                        : report::FrameSourceKind::kFolder;
+// The run's options from the command line (all but the observers, the progress display and the stop flag).
+run::SequenceRunOptions sequenceRunOptions(const RunArgs& args) {
+  run::SequenceRunOptions options;
+  options.source = !args.camera.empty() ? run::FrameSourceKind::kCamera
+                   : args.realtime      ? run::FrameSourceKind::kRealtime
+                                        : run::FrameSourceKind::kFolder;
   options.sequence_dir = args.sequence;
   options.camera = args.camera;
   options.record_dir = args.record;
@@ -207,12 +214,24 @@ void runSlam(const RunArgs& args, int& exit_code) {
   options.models_dir = args.models;
   if (args.save_masks) options.masks_output_dir = args.output;
   options.overlay_count = args.overlays;
+  return options;
+}
+
+void runSlam(const RunArgs& args, int& exit_code) {
+  core::require(!args.sequence.empty() || !args.camera.empty(),
+                "run: give --sequence DIR (a recorded sequence) or --camera openni2[:URI] (a live camera)");
+  const config::Settings settings = config::loadSettings(args.config);
+  // Before anything else runs (models, the camera, the first frame): a wrong --output is found at once.
+  report::prepareOutputFolder(args.output, args.overwrite);
+  RunWatchers watchers(args.viewer);
+  const bool tty = isatty(fileno(stderr)) != 0;
+  run::SequenceRunOptions options = sequenceRunOptions(args);
   options.observers = watchers.observers();
   bool line_open = false;  // a progress line without its newline on the terminal
   // Progress goes to stderr: a live line on a terminal, else (a log file, a pipe) one line every --progress-every
   // frames and the last one.
   const std::size_t every = std::max<std::size_t>(1, args.progress_every);
-  options.on_frame = [tty, every, &line_open](const report::SequenceProgress& p) {
+  options.on_frame = [tty, every, &line_open](const run::SequenceProgress& p) {
     const auto& t = p.output->track;
     const std::string position = p.total > 0 ? fmt::format("{}/{}", p.frame, p.total) : std::to_string(p.frame);
     const std::string line =
@@ -227,11 +246,11 @@ void runSlam(const RunArgs& args, int& exit_code) {
   };
   const StopSignals signals;
   options.stop = signals.flag();
-  if (options.source == report::FrameSourceKind::kCamera)
+  if (options.source == run::FrameSourceKind::kCamera)
     spdlog::info("live session: Ctrl-C ends it and writes the outputs");
-  report::SequenceRunResult result;
+  run::SequenceRunResult result;
   try {
-    result = report::runSequence(settings, options);
+    result = run::runSequence(settings, options);
   } catch (...) {
     if (line_open) std::fprintf(stderr, "\n");
     throw;
@@ -240,6 +259,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   const int signal_number = signals.received();
   if (result.info.end.status == report::RunEnd::Status::kInterrupted) result.info.end.reason = signalName(signal_number);
   report::writeRunOutputs(args.output, *result.slam, result.info);
+  writeSettingsUsed(settings, options, args);
   watchers.writeReport(args.output, args.config, runOptionsJson(args));
   printSummary(result, args.output);
   if (!args.save_map.empty() && !result.failure) saveMap(*result.slam, args.save_map);
@@ -277,8 +297,9 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                   "Output folder (created if needed; checked for writing before anything else runs)")
       ->required();
   cmd->add_flag("--overwrite", args->overwrite,
-                "Replace an earlier run in --output: its trajectory.txt, keyframes.txt, map.ply, stats.json, masks/ "
-                "and overlays/ are removed first (nothing else). Without it such a folder is refused");
+                "Replace an earlier run in --output: its trajectory.txt, keyframes.txt, map.ply, stats.json, "
+                "settings_used.yaml, masks/, overlays/ and report.html are removed first (nothing else). Without it "
+                "such a folder is refused");
   cmd->add_option("--mode", args->mode, "Dynamic front end: none (plain SLAM) | prior (person masks) | geometry (superpixel clusters + epipolar) | full (both, default)")
       ->check(CLI::IsMember({"none", "prior", "geometry", "full"}));
   cmd->add_option("--models", args->models, "Folder with the segmentation models");

@@ -3,6 +3,8 @@
 // the command's exit code in `exit_code`; amos::core::Error thrown by the libraries is reported by main().
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace amos::app {
 
 void addRunCommand(CLI::App& app, int& exit_code);
@@ -13,5 +15,10 @@ void addConfigCommand(CLI::App& app, int& exit_code);
 void addDiagnoseMoversCommand(CLI::App& app, int& exit_code);
 void addVocabCommand(CLI::App& app, int& exit_code);
 void addViewCommand(CLI::App& app, int& exit_code);
+
+// The program's command line, each argument shell-quoted where it needs it (set by main() before parsing; what
+// settings_used.yaml records).
+void setCommandLine(int argc, char** argv);
+const std::string& commandLine();
 
 }  // namespace amos::app

@@ -43,8 +43,8 @@ RunWatchers::RunWatchers(const ViewerArgs& viewer) : parts_(std::make_unique<Par
 
 RunWatchers::~RunWatchers() = default;
 
-std::vector<report::RunObserver*> RunWatchers::observers() {
-  std::vector<report::RunObserver*> out{&parts_->recorder};
+std::vector<run::RunObserver*> RunWatchers::observers() {
+  std::vector<run::RunObserver*> out{&parts_->recorder};
   if (parts_->publisher) out.push_back(&*parts_->publisher);
   return out;
 }
@@ -74,7 +74,7 @@ RunWatchers::RunWatchers(const ViewerArgs& viewer) {
                                  "configure with -DAMOS_BUILD_VIEWER=ON)");
 }
 RunWatchers::~RunWatchers() = default;
-std::vector<report::RunObserver*> RunWatchers::observers() { return {}; }
+std::vector<run::RunObserver*> RunWatchers::observers() { return {}; }
 void RunWatchers::writeReport(const std::string&, const std::string&, const std::string&) {}
 void RunWatchers::holdIfAsked() {}
 #endif

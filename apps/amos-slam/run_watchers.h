@@ -1,12 +1,12 @@
 #pragma once
 // What watches `amos-slam run`: the live viewer (--viewer: server, LiveState, snapshot publisher) and the
-// report.html recorder, wired to the run as report::RunObservers. Without the viewer module (AMOS_BUILD_VIEWER off)
+// report.html recorder, wired to the run as run::RunObservers. Without the viewer module (AMOS_BUILD_VIEWER off)
 // --viewer is an error and no report.html is written.
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "amos/report/run_observer.h"
+#include "amos/run/run_observer.h"
 
 namespace amos::app {
 
@@ -22,7 +22,7 @@ class RunWatchers {
   // Starts the viewer's server (its address on stderr) when asked for; throws core::Error when it cannot.
   explicit RunWatchers(const ViewerArgs& viewer);
   ~RunWatchers();
-  std::vector<report::RunObserver*> observers();
+  std::vector<run::RunObserver*> observers();
   // Writes <output>/report.html from what was recorded and the run's stats.json (after writeRunOutputs).
   void writeReport(const std::string& output, const std::string& config_file, const std::string& options_json);
   // With --viewer-hold: serves until SIGINT / SIGTERM.

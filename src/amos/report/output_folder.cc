@@ -19,8 +19,8 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string>& runOutputNames() {
   static const std::vector<std::string> names = {"trajectory.txt", "keyframes.txt", "map.ply",
-                                                 "stats.json",     "masks",         "overlays",
-                                                 "report.html"};
+                                                 "stats.json",     "settings_used.yaml", "masks",
+                                                 "overlays",       "report.html"};
   return names;
 }
 

@@ -11,7 +11,7 @@
 namespace amos::report {
 
 // What a run leaves in its output folder (run_report.h, mask_outputs.h): trajectory.txt, keyframes.txt, map.ply,
-// stats.json, masks/, overlays/, report.html (viewer/report_html.h).
+// stats.json, settings_used.yaml (config/settings_writer.h), masks/, overlays/, report.html (viewer/report_html.h).
 const std::vector<std::string>& runOutputNames();
 
 // Makes `dir` ready for a run's outputs as described above. Throws core::Error with the reason and what to do.

@@ -51,7 +51,7 @@ nlohmann::json updateJson(const LiveUpdate& u, std::uint64_t seq) {
   return j;
 }
 
-nlohmann::json frameStatusJson(const report::FrameSnapshot& f, double fps) {
+nlohmann::json frameStatusJson(const run::FrameSnapshot& f, double fps) {
   const core::SE3 T_wc = f.T_cw.inverse();
   const Eigen::Quaterniond q(T_wc.rotation());
   const Eigen::Vector3d t = T_wc.translation();

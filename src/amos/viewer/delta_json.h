@@ -6,7 +6,7 @@
 //   trajectory point [t, x, y, z]
 #include <nlohmann/json.hpp>
 
-#include "amos/report/run_observer.h"
+#include "amos/run/run_observer.h"
 #include "amos/viewer/live_update.h"
 
 namespace amos::viewer {
@@ -23,6 +23,6 @@ nlohmann::json updateJson(const LiveUpdate& update, std::uint64_t seq);
 // {"index", "total", "processed", "timestamp", "state", "inliers", "keyframe", "keypoints", "removed", "fps",
 //  "times_ms": {"extract", "build", "track", "frame"}, "T_wc": [x, y, z, qx, qy, qz, qw]}; fps over the frames since
 // the previous status (`fps`, computed by the caller).
-nlohmann::json frameStatusJson(const report::FrameSnapshot& frame, double fps);
+nlohmann::json frameStatusJson(const run::FrameSnapshot& frame, double fps);
 
 }  // namespace amos::viewer

@@ -33,11 +33,11 @@ nlohmann::json dataOf(const std::string& html) {
 
 TEST(ReportHtml, HoldsTheRunAsParsableJsonAndNeedsNoNetwork) {
   ReportRecorder recorder(2);
-  report::RunStart start;
+  run::RunStart start;
   start.total_frames = 30;
   recorder.onStart(start);
   for (std::size_t i = 0; i < 30; ++i) {
-    report::FrameSnapshot f;
+    run::FrameSnapshot f;
     f.index = i;
     f.timestamp = 1.0 + 0.1 * i;
     f.bgr = cv::Mat(48, 64, CV_8UC3, cv::Scalar(40, 90, 160));

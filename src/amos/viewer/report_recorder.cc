@@ -9,13 +9,13 @@ namespace amos::viewer {
 ReportRecorder::ReportRecorder(std::size_t overlay_count, int overlay_width)
     : overlay_count_(overlay_count), overlay_width_(overlay_width) {}
 
-void ReportRecorder::onStart(const report::RunStart& start) {
+void ReportRecorder::onStart(const run::RunStart& start) {
   if (start.total_frames > 0) {
     overlay_frames_ = report::evenlySpacedFrames(start.total_frames, overlay_count_);
   }
 }
 
-void ReportRecorder::onFrame(const report::FrameSnapshot& f) {
+void ReportRecorder::onFrame(const run::FrameSnapshot& f) {
   ReportFrame r;
   r.index = f.index;
   r.timestamp = f.timestamp;

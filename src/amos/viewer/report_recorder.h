@@ -1,7 +1,7 @@
 #pragma once
 // Collects, while a run goes, what report.html shows per frame: stage times, keypoints removed by the dynamic
 // mask, tracking state, and a strip of small mask overlays of evenly spaced frames (JPEG, encoded when the frame
-// passes: 8 frames of the run, ~1 ms each). A report::RunObserver; everything else comes at the end (onEnd).
+// passes: 8 frames of the run, ~1 ms each). A run::RunObserver; everything else comes at the end (onEnd).
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "amos/eval/evaluate.h"
-#include "amos/report/run_observer.h"
+#include "amos/run/run_observer.h"
 
 namespace amos::viewer {
 
@@ -27,11 +27,11 @@ struct ReportOverlay {
   std::vector<unsigned char> jpeg;
 };
 
-class ReportRecorder : public report::RunObserver {
+class ReportRecorder : public run::RunObserver {
  public:
   explicit ReportRecorder(std::size_t overlay_count = 8, int overlay_width = 240);
-  void onStart(const report::RunStart& start) override;
-  void onFrame(const report::FrameSnapshot& frame) override;
+  void onStart(const run::RunStart& start) override;
+  void onFrame(const run::FrameSnapshot& frame) override;
   void onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) override;
 
   const std::vector<ReportFrame>& frames() const { return frames_; }

@@ -20,7 +20,7 @@ TrajectoryPoint centreOf(double timestamp, const core::SE3& T_cw) {
   return {timestamp, T_cw.inverse().translation().cast<float>()};
 }
 
-nlohmann::json infoJson(const report::RunStart& s) {
+nlohmann::json infoJson(const run::RunStart& s) {
   nlohmann::json map_source = nullptr;  // an empty map
   if (!s.loaded_map.empty()) {
     // What the run started from: the page shows it, so that the first map seen is known to be the loaded one.
@@ -49,7 +49,7 @@ SnapshotPublisher::SnapshotPublisher(LiveState& state, PublisherOptions options)
 
 SnapshotPublisher::~SnapshotPublisher() { stopThread(); }
 
-void SnapshotPublisher::onStart(const report::RunStart& start) {
+void SnapshotPublisher::onStart(const run::RunStart& start) {
   {
     std::lock_guard lock(map_mutex_);
     map_ = start.map;
@@ -61,7 +61,7 @@ void SnapshotPublisher::onStart(const report::RunStart& start) {
   thread_ = std::thread([this] { run(); });
 }
 
-void SnapshotPublisher::onFrame(const report::FrameSnapshot& frame) {
+void SnapshotPublisher::onFrame(const run::FrameSnapshot& frame) {
   {
     std::lock_guard lock(mutex_);
     if (latest_) ++dropped_;
@@ -88,7 +88,7 @@ void SnapshotPublisher::run() {
   while (true) {
     wake_.wait(lock, [&] { return stop_ || latest_.has_value(); });
     if (!latest_) break;  // stopped with nothing left
-    report::FrameSnapshot frame = std::move(*latest_);
+    run::FrameSnapshot frame = std::move(*latest_);
     latest_.reset();
     std::vector<TrajectoryPoint> poses = std::move(new_poses_);
     new_poses_.clear();
@@ -117,7 +117,7 @@ MapDelta SnapshotPublisher::mapDelta() {
   return delta;
 }
 
-void SnapshotPublisher::publishFrame(const report::FrameSnapshot& frame, std::vector<TrajectoryPoint> poses,
+void SnapshotPublisher::publishFrame(const run::FrameSnapshot& frame, std::vector<TrajectoryPoint> poses,
                                      bool with_map) {
   for (const TrajectoryPoint& p : poses) {
     io::StampedPose s;

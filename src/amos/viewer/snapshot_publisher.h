@@ -1,5 +1,5 @@
 #pragma once
-// The live viewer's side of a run: a report::RunObserver that turns the run's per-frame snapshots into updates of
+// The live viewer's side of a run: a run::RunObserver that turns the run's per-frame snapshots into updates of
 // a LiveState, in its own thread, at a bounded rate.
 //
 // onFrame (the run's thread) only stores the snapshot as the newest one, replacing a waiting older one (counted
@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "amos/report/run_observer.h"
+#include "amos/run/run_observer.h"
 #include "amos/viewer/live_state.h"
 #include "amos/viewer/map_delta.h"
 
@@ -28,15 +28,15 @@ struct PublisherOptions {
   int image_width = 640;
 };
 
-class SnapshotPublisher : public report::RunObserver {
+class SnapshotPublisher : public run::RunObserver {
  public:
   explicit SnapshotPublisher(LiveState& state, PublisherOptions options = {});
   ~SnapshotPublisher() override;
   SnapshotPublisher(const SnapshotPublisher&) = delete;
   SnapshotPublisher& operator=(const SnapshotPublisher&) = delete;
 
-  void onStart(const report::RunStart& start) override;
-  void onFrame(const report::FrameSnapshot& frame) override;
+  void onStart(const run::RunStart& start) override;
+  void onFrame(const run::FrameSnapshot& frame) override;
   // Publishes the final map, the corrected trajectory, the aligned ground truth and the summary, then the thread
   // ends (the LiveState stays as it is for the server).
   void onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) override;
@@ -48,14 +48,14 @@ class SnapshotPublisher : public report::RunObserver {
   using Clock = std::chrono::steady_clock;
   void run();
   void stopThread();
-  void publishFrame(const report::FrameSnapshot& frame, std::vector<TrajectoryPoint> poses, bool with_map);
+  void publishFrame(const run::FrameSnapshot& frame, std::vector<TrajectoryPoint> poses, bool with_map);
   MapDelta mapDelta();
 
   LiveState& state_;
   PublisherOptions options_;
   mutable std::mutex mutex_;  // guards the hand-off below
   std::condition_variable wake_;
-  std::optional<report::FrameSnapshot> latest_;
+  std::optional<run::FrameSnapshot> latest_;
   std::vector<TrajectoryPoint> new_poses_;
   bool stop_ = false;
   std::size_t dropped_ = 0;

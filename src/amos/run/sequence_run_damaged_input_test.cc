@@ -16,10 +16,10 @@
 #include "amos/core/error.h"
 #include "amos/io/dataset.h"
 #include "amos/report/run_report.h"
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 #include "amos/synth/sequence.h"
 
-namespace amos::report {
+namespace amos::run {
 namespace {
 
 namespace fs = std::filesystem;
@@ -88,7 +88,7 @@ TEST(SequenceRunDamagedInput, BadFramesAreSkippedAndCountedByReason) {
   EXPECT_LT(r.info.evaluation->ate_rmse_m, 0.01);
 
   const fs::path out = dir / "run";
-  writeRunOutputs(out.string(), *r.slam, r.info);
+  report::writeRunOutputs(out.string(), *r.slam, r.info);
   std::ifstream in(out / "stats.json");
   const nlohmann::json stats = nlohmann::json::parse(in);
   EXPECT_EQ(stats["skipped_frames"], nlohmann::json({{"missing", 1}, {"unreadable", 1}, {"wrong_size", 1},
@@ -102,7 +102,7 @@ TEST(SequenceRunDamagedInput, StrictMakesABadFrameAnError) {
   const auto frames = framesOf(dir);
   fs::resize_file(frames[8].rgb_file, fs::file_size(frames[8].rgb_file) / 3);
   const SequenceRunResult r = runOn(dir, "none", /*strict=*/true);
-  EXPECT_EQ(r.info.end.status, RunEnd::Status::kFailed);
+  EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kFailed);
   EXPECT_EQ(r.slam->stats().frames, 8u);
   EXPECT_EQ(r.trajectory.size(), 8u);
   try {
@@ -153,4 +153,4 @@ TEST(SequenceRunDamagedInput, DropoutsBeforeTheMapDelayItsStart) {
 }
 
 }  // namespace
-}  // namespace amos::report
+}  // namespace amos::run

@@ -8,12 +8,13 @@
 #include <vector>
 
 #include "amos/config/settings.h"
+#include "amos/config/slam_options.h"
 #include "amos/io/dataset.h"
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 #include "amos/system/slam_system.h"
 #include "amos/testing/shared_data.h"
 
-namespace amos::report {
+namespace amos::run {
 namespace {
 
 const std::string kFr2Data = "tum_fr2_desk_first50";
@@ -39,7 +40,7 @@ struct RecoveryRun {
 // Frames [blank_from, blank_to) are black (no features: tracking is lost there).
 RecoveryRun run(const config::Settings& settings, const std::vector<io::RgbdFrame>& frames, int recovery_frames,
                 std::size_t blank_from, std::size_t blank_to) {
-  system::SlamOptions options = slamOptionsFromSettings(settings, /*deterministic=*/true);
+  system::SlamOptions options = config::slamOptionsFromSettings(settings, /*deterministic=*/true);
   options.tracking.recovery_frames = recovery_frames;
   options.tracking.relocalization.min_inliers = 1000000;  // the global relocaliser never accepts a pose
   system::SlamSystem slam(options);
@@ -78,4 +79,4 @@ TEST(TrackingRecovery, LostFramesRecoverNearTheLastPoseWithoutTheRelocaliser) {
 }
 
 }  // namespace
-}  // namespace amos::report
+}  // namespace amos::run

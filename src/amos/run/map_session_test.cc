@@ -8,10 +8,10 @@
 
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 #include "amos/synth/sequence.h"
 
-namespace amos::report {
+namespace amos::run {
 namespace {
 
 namespace fs = std::filesystem;
@@ -97,4 +97,4 @@ TEST(MapSession, LocalizeNeedsAMapAndABadMapIsAnErrorBeforeTheFirstFrame) {
 }
 
 }  // namespace
-}  // namespace amos::report
+}  // namespace amos::run

@@ -1,14 +1,13 @@
 #pragma once
-// Runs the SLAM system over a whole TUM/Bonn-layout sequence: the loop shared by `amos-slam run`, the end-to-end
-// tests and the benchmarks. Settings come from the config module; ground truth, when the sequence has it, is
-// evaluated with the eval module (Bonn marker poses converted to camera poses); ground-truth mover masks, when the
-// sequence has them (synthetic sequences: masks.txt, masks/, instances.json), score the front end's dynamic mask.
+// Runs the SLAM system over a whole TUM/Bonn-layout sequence or a live camera: the run shared by `amos-slam run`,
+// the end-to-end tests and the benchmarks. Settings come from the config module (config/slam_options.h). The
+// run's loop is the controller's (controller.h); what is made of the frames is its observers': ground truth, when
+// the sequence has it, is evaluated (trajectory_evaluation.h); ground-truth mover masks, when the sequence has
+// them (synthetic sequences: masks.txt, masks/, instances.json), score the front end's dynamic mask
+// (mask_scoring.h); --save-masks writes the masks (mask_writing.h) and --record the frames (recording.h).
 //
 // Frames come from an io::FrameSource chosen by SequenceRunOptions::source: the folder read as fast as the
-// pipeline takes it (the default), the folder replayed at its recorded rate (realtime), or a live camera. With
-// the folder the next frame is always pushed into the pipeline's stage A while the current one is in stage B
-// (one frame of look-ahead, system/dynamic_pipeline.h); with a paced or live source a feeder thread pushes each
-// frame into stage A as soon as stage A is free (paced_feeder.h), and a frame
+// pipeline takes it (the default), the folder replayed at its recorded rate (realtime), or a live camera. A frame
 // that arrives while the pipeline is busy replaces the waiting one (the source counts it as dropped). The
 // trajectory holds the processed frames; RunInfo::source says how many were delivered, processed and dropped and
 // how long each processed frame took from its arrival to its pose.
@@ -22,26 +21,13 @@
 
 #include "amos/config/settings.h"
 #include "amos/io/trajectory.h"
-#include "amos/report/run_observer.h"
 #include "amos/report/run_report.h"
+#include "amos/run/controller.h"
+#include "amos/run/run_observer.h"
 #include "amos/system/dynamic_pipeline.h"
 #include "amos/system/slam_system.h"
 
-namespace amos::report {
-
-// The SLAM options that follow from a settings file (camera, virtual baseline, ORB; defaults elsewhere).
-system::SlamOptions slamOptionsFromSettings(const config::Settings& settings, bool deterministic);
-// The vocabulary Place.vocabulary names (an existing path, else looked for in $AMOS_MODELS, ./models,
-// ../shared/models), or null, with a warning, when it is not found or the setting is "" (thumbnails then). A
-// file that is there but cannot be read is an error naming it.
-std::shared_ptr<const place::Vocabulary> loadPlaceVocabulary(const config::Settings& settings);
-
-struct SequenceProgress {
-  std::size_t frame = 0, total = 0;  // frame: 1-based position of the processed frame in the stream; total 0 = live
-  std::size_t processed = 0;         // frames processed so far, this one included
-  const system::FrameOutput* output = nullptr;
-  double elapsed_s = 0;
-};
+namespace amos::run {
 
 enum class FrameSourceKind {
   kFolder,    // sequence_dir as fast as possible (io::SequenceReader)
@@ -92,10 +78,14 @@ struct SequenceRunOptions {
   std::vector<RunObserver*> observers;
 };
 
+// The settings as a run with `options` uses them: the options that are also settings keys replace those keys'
+// values (mode: Dynamic.mode; the CLI's --mode always sets it). What settings_used.yaml holds.
+config::Settings effectiveSettings(const config::Settings& settings, const SequenceRunOptions& options);
+
 struct SequenceRunResult {
   std::unique_ptr<system::SlamSystem> slam;  // finished (mapping stopped)
   std::unique_ptr<system::DynamicPipeline> pipeline;  // the front end around `slam` (declared after it: dies first)
-  RunInfo info;                              // wall time, evaluation when there is ground truth, how it ended
+  report::RunInfo info;                      // wall time, evaluation when there is ground truth, how it ended
   std::vector<io::StampedPose> trajectory;
   // The error that ended the run early (info.end.status kFailed), or null.
   std::exception_ptr failure;
@@ -108,4 +98,4 @@ struct SequenceRunResult {
 // SequenceRunResult::failure (rethrowFailure()) and RunInfo::end; so the caller can still write the outputs.
 SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options);
 
-}  // namespace amos::report
+}  // namespace amos::run

@@ -1,6 +1,6 @@
 // PacedFeeder: frames reach stage A while stage B works on the previous one, in order, until the source ends; a
 // source error reaches the loop.
-#include "amos/report/paced_feeder.h"
+#include "amos/run/paced_feeder.h"
 
 #include <gtest/gtest.h>
 
@@ -9,12 +9,13 @@
 #include <stdexcept>
 
 #include "amos/config/settings.h"
+#include "amos/config/slam_options.h"
 #include "amos/core/error.h"
 #include "amos/io/dataset.h"
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 #include "amos/testing/shared_data.h"
 
-namespace amos::report {
+namespace amos::run {
 namespace {
 
 const std::string kFr2Data = "tum_fr2_desk_first50";
@@ -58,7 +59,7 @@ struct Fed {
 
 Fed feed(io::FrameSource& source) {
   const config::Settings settings = config::loadSettings(kTum2);
-  system::SlamSystem slam(slamOptionsFromSettings(settings, true));
+  system::SlamSystem slam(config::slamOptionsFromSettings(settings, true));
   dynamic::DynamicOptions options = settings.dynamic;
   options.mode = dynamic::DynamicMode::kGeometry;
   system::DynamicPipeline pipeline(slam, options, nullptr);
@@ -90,4 +91,4 @@ TEST(PacedFeeder, ASourceErrorEndsTheLoopWithTheError) {
 }
 
 }  // namespace
-}  // namespace amos::report
+}  // namespace amos::run

@@ -1,4 +1,4 @@
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include "amos/synth/sequence.h"
 #include "amos/testing/shared_data.h"
 
-namespace amos::report {
+namespace amos::run {
 namespace {
 
 const std::string kFr2Data = "tum_fr2_desk_first50";
@@ -64,7 +64,7 @@ TEST(SequenceRun, DeterministicModeIsBitIdentical) {
   for (int run = 0; run < 2; ++run) {
     const SequenceRunResult r = runFr2(true);
     const std::string out = (dir / std::to_string(run)).string();
-    writeRunOutputs(out, *r.slam, r.info);
+    report::writeRunOutputs(out, *r.slam, r.info);
     bytes[run] = readFile(out + "/trajectory.txt");
     EXPECT_TRUE(std::filesystem::exists(out + "/keyframes.txt"));
     EXPECT_TRUE(std::filesystem::exists(out + "/map.ply"));
@@ -94,7 +94,7 @@ TEST(SequenceRun, SavesMasksAndScoresThemAgainstSyntheticGroundTruth) {
   options.masks_output_dir = (root / "run").string();
   options.overlay_count = 4;
   const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
-  writeRunOutputs((root / "run").string(), *r.slam, r.info);
+  report::writeRunOutputs((root / "run").string(), *r.slam, r.info);
 
   std::size_t masks = 0, overlays = 0;
   for (const auto& e : fs::directory_iterator(root / "sequence" / "rgb")) {
@@ -124,4 +124,4 @@ TEST(SequenceRun, SavesMasksAndScoresThemAgainstSyntheticGroundTruth) {
 }
 
 }  // namespace
-}  // namespace amos::report
+}  // namespace amos::run

@@ -1,9 +1,9 @@
-#include "amos/report/paced_feeder.h"
+#include "amos/run/paced_feeder.h"
 
 #include <optional>
 #include <utility>
 
-namespace amos::report {
+namespace amos::run {
 
 PacedFeeder::PacedFeeder(io::FrameSource& source, system::DynamicPipeline& pipeline)
     : source_(source), pipeline_(pipeline), thread_([this] { run(); }) {}
@@ -59,4 +59,4 @@ bool PacedFeeder::nextForStageB() {
   return false;
 }
 
-}  // namespace amos::report
+}  // namespace amos::run

@@ -1,6 +1,9 @@
 #pragma once
-// What a run shows to those who watch it while it goes (the live web viewer, the report.html recorder) without
-// the run depending on any of them: runSequence calls the observers named in SequenceRunOptions::observers.
+// What a run shows to those who watch it while it goes without the run depending on any of them: the run's own
+// outputs (evaluation, mask scoring, mask writing, recording: the other files of this module) and the caller's
+// observers (the live web viewer, the report.html recorder; SequenceRunOptions::observers). The controller
+// (controller.h) calls them in the order they were added: onStart, onFrame per processed frame, then, once the
+// stream has ended, onStreamEnd, addToInfo and onEnd.
 //
 // Contract (the run's speed must not depend on its observers):
 //   - onFrame is called in the run's thread after every processed frame and must return at once: copy what it
@@ -19,12 +22,12 @@
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
 #include "amos/io/trajectory.h"
+#include "amos/io/dataset.h"
 #include "amos/map/map.h"
+#include "amos/report/run_report.h"
 #include "amos/tracking/tracker.h"
 
-namespace amos::report {
-
-struct RunInfo;
+namespace amos::run {
 
 struct RunStart {
   std::shared_ptr<const map::Map> map;
@@ -50,11 +53,15 @@ struct FrameSnapshot {
   int inliers = 0;
   cv::Mat bgr;           // the colour image (shared pixels)
   cv::Mat dynamic_mask;  // CV_8U, 255 = dynamic; empty in mode none (shared pixels)
+  cv::Mat prior_mask;    // the undilated person mask; empty without segmentation (shared pixels)
   std::vector<cv::Point2f> keypoints;  // as detected (image pixels), before the mask removed any
   int keypoints_removed = 0;           // of those, removed by the dynamic mask
   double extract_ms = 0, build_ms = 0, track_ms = 0;  // SLAM stages of this frame
   double frame_ms = 0;     // wall time since the previous frame was done (1000 / instantaneous fps)
   double elapsed_s = 0;    // since the run started
+  // The frame as the source delivered it (colour and depth, time stamps; shared pixels), for the observers that
+  // write it out (recording).
+  io::RgbdFrame frame;
 };
 
 class RunObserver {
@@ -64,13 +71,23 @@ class RunObserver {
   virtual void onStart(const RunStart& start) { (void)start; }
   // In the run's thread after every processed frame; returns at once (see the contract above).
   virtual void onFrame(const FrameSnapshot& frame) = 0;
+  // After the last frame was processed and the pipeline finished: complete what this observer writes (the
+  // recording's queued frames). An exception here ends the run as failed (the first error is kept), with its
+  // outputs written as for any failure.
+  virtual void onStreamEnd() {}
+  // Then, with the final trajectory: add what this observer measured to the run's info (the evaluation, the mask
+  // accuracy). An exception here is the run's (runSequence throws it).
+  virtual void addToInfo(const std::vector<io::StampedPose>& trajectory, report::RunInfo& info) {
+    (void)trajectory;
+    (void)info;
+  }
   // After the last frame: mapping stopped, `trajectory` is final (T_wc of every processed frame, with the map's
   // corrections), `info` has the evaluation when there was ground truth. Not called when the run ends by an
   // exception.
-  virtual void onEnd(const std::vector<io::StampedPose>& trajectory, const RunInfo& info) {
+  virtual void onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) {
     (void)trajectory;
     (void)info;
   }
 };
 
-}  // namespace amos::report
+}  // namespace amos::run

@@ -23,7 +23,7 @@
 #include "amos/io/frame_source.h"
 #include "amos/system/dynamic_pipeline.h"
 
-namespace amos::report {
+namespace amos::run {
 
 class PacedFeeder {
  public:
@@ -53,4 +53,4 @@ class PacedFeeder {
   std::thread thread_;  // last: started once the rest exists
 };
 
-}  // namespace amos::report
+}  // namespace amos::run

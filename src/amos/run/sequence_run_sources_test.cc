@@ -11,10 +11,10 @@
 #include "amos/core/error.h"
 #include "amos/io/dataset.h"
 #include "amos/report/run_report.h"
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 #include "amos/testing/shared_data.h"
 
-namespace amos::report {
+namespace amos::run {
 namespace {
 
 namespace fs = std::filesystem;
@@ -30,7 +30,7 @@ fs::path outputDir(const std::string& name) {
 }
 
 nlohmann::json writeAndReadStats(const SequenceRunResult& r, const fs::path& dir) {
-  writeRunOutputs(dir.string(), *r.slam, r.info);
+  report::writeRunOutputs(dir.string(), *r.slam, r.info);
   std::ifstream in(dir / "stats.json");
   return nlohmann::json::parse(in);
 }
@@ -42,7 +42,7 @@ TEST(SequenceRunSources, FolderSourceDeliversAndProcessesEveryFrame) {
   options.max_frames = 20;
   const SequenceRunResult r = runSequence(config::loadSettings(kTum2), options);
   ASSERT_TRUE(r.info.source);
-  const SourceReport& s = *r.info.source;
+  const report::SourceReport& s = *r.info.source;
   EXPECT_EQ(s.kind, "folder");
   EXPECT_EQ(s.delivered, 20u);
   EXPECT_EQ(s.processed, 20u);
@@ -67,7 +67,7 @@ TEST(SequenceRunSources, RealtimeReplayProcessesOrDropsEveryFrame) {
   options.sequence_dir = kFr2;
   const SequenceRunResult r = runSequence(config::loadSettings(kTum2), options);
   ASSERT_TRUE(r.info.source);
-  const SourceReport& s = *r.info.source;
+  const report::SourceReport& s = *r.info.source;
   EXPECT_EQ(s.kind, "realtime");
   EXPECT_EQ(s.delivered, 50u);
   EXPECT_EQ(s.processed + s.dropped, s.delivered);
@@ -142,4 +142,4 @@ TEST(SequenceRunSources, CameraSpecNamesDriverAndUri) {
 }
 
 }  // namespace
-}  // namespace amos::report
+}  // namespace amos::run

@@ -14,10 +14,10 @@
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
 #include "amos/report/run_report.h"
-#include "amos/report/sequence_run.h"
+#include "amos/run/sequence_run.h"
 #include "amos/synth/sequence.h"
 
-namespace amos::report {
+namespace amos::run {
 namespace {
 
 namespace fs = std::filesystem;
@@ -37,7 +37,7 @@ SequenceRunOptions optionsFor(const std::string& mode) {
 nlohmann::json writtenStats(const SequenceRunResult& r, const std::string& name) {
   const fs::path out = fs::path(AMOS_BINARY_DIR) / "test_outputs" / "early_end" / name;
   fs::remove_all(out);
-  writeRunOutputs(out.string(), *r.slam, r.info);
+  report::writeRunOutputs(out.string(), *r.slam, r.info);
   EXPECT_TRUE(fs::exists(out / "trajectory.txt"));
   EXPECT_TRUE(fs::exists(out / "keyframes.txt"));
   EXPECT_TRUE(fs::exists(out / "map.ply"));
@@ -56,7 +56,7 @@ TEST(SequenceRunEarlyEnd, StopEndsTheRunAtTheNextFrameBoundary) {
       if (p.processed == 5) stop.store(true);
     };
     const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
-    EXPECT_EQ(r.info.end.status, RunEnd::Status::kInterrupted) << mode;
+    EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kInterrupted) << mode;
     EXPECT_FALSE(r.failure) << mode;
     EXPECT_EQ(r.slam->stats().frames, 5u) << mode;
     EXPECT_EQ(r.trajectory.size(), 5u) << mode;
@@ -74,7 +74,7 @@ TEST(SequenceRunEarlyEnd, StopBeforeTheFirstFrame) {
   SequenceRunOptions options = optionsFor("none");
   options.stop = &stop;
   const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
-  EXPECT_EQ(r.info.end.status, RunEnd::Status::kInterrupted);
+  EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kInterrupted);
   EXPECT_EQ(r.slam->stats().frames, 0u);
   EXPECT_TRUE(r.trajectory.empty());
   EXPECT_EQ(writtenStats(r, "stop_first")["end"]["status"], "interrupted");
@@ -89,7 +89,7 @@ TEST(SequenceRunEarlyEnd, MappingFailureEndsTheRunWithOutputsKept) {
     if (kf->id() == 2) throw std::runtime_error("injected failure");
   };
   const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
-  EXPECT_EQ(r.info.end.status, RunEnd::Status::kFailed);
+  EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kFailed);
   EXPECT_NE(r.info.end.reason.find("local mapping failed on keyframe 2: injected failure"), std::string::npos)
       << r.info.end.reason;
   ASSERT_TRUE(r.failure);
@@ -114,14 +114,14 @@ TEST(SequenceRunEarlyEnd, ThreadedMappingFailureIsReported) {
     if (kf->id() == 1) throw std::runtime_error("injected failure");
   };
   const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
-  EXPECT_EQ(r.info.end.status, RunEnd::Status::kFailed);
+  EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kFailed);
   EXPECT_NE(r.info.end.reason.find("injected failure"), std::string::npos) << r.info.end.reason;
   EXPECT_EQ(r.trajectory.size(), r.slam->stats().frames);
 }
 
 TEST(SequenceRunEarlyEnd, ACompleteRunSaysSo) {
   const SequenceRunResult r = runSequence(config::loadSettings(kTum3), optionsFor("none"));
-  EXPECT_EQ(r.info.end.status, RunEnd::Status::kComplete);
+  EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kComplete);
   EXPECT_TRUE(r.info.end.reason.empty());
   EXPECT_FALSE(r.failure);
   EXPECT_NO_THROW(r.rethrowFailure());
@@ -129,4 +129,4 @@ TEST(SequenceRunEarlyEnd, ACompleteRunSaysSo) {
 }
 
 }  // namespace
-}  // namespace amos::report
+}  // namespace amos::run

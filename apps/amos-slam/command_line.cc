@@ -1,0 +1,34 @@
+#include "commands.h"
+
+#include <string>
+
+namespace amos::app {
+
+namespace {
+
+std::string& storedCommandLine() {
+  static std::string line;
+  return line;
+}
+
+// `arg` as a POSIX shell reads it back: as it is when it has only safe characters, else in single quotes.
+std::string shellQuoted(const std::string& arg) {
+  if (!arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                                            "@%+=:,./_-") == std::string::npos)
+    return arg;
+  std::string out = "'";
+  for (const char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+void setCommandLine(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) line += (i > 0 ? " " : "") + shellQuoted(argv[i]);
+  storedCommandLine() = line;
+}
+
+const std::string& commandLine() { return storedCommandLine(); }
+
+}  // namespace amos::app
