@@ -43,7 +43,7 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
     : slam_(slam),
       options_(options),
       front_end_(slam.sensor()->camera(), options),
-      scheduler_(slam, options, std::move(segmentation)) {
+      scheduler_(slam.options().orb, options, std::move(segmentation)) {
   options_.check();
   if (scheduler_.tasks().segmentation)
     state_.person_masks.emplace(scheduler_.segmentation()->dilation(), options_.prior);

@@ -1,6 +1,5 @@
 #include "amos/system/slam_system.h"
 
-#include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
 #include <shared_mutex>
@@ -24,7 +23,6 @@ void SlamOptions::check() const {
 SlamSystem::SlamSystem(const SlamOptions& options)
     : options_(options),
       sensor_((options.check(), std::make_shared<map::Sensor>(options.camera, options.sensor, options.orb))),
-      extractor_(options.orb),
       map_(std::make_shared<map::Map>(options.covisibility)) {
   if (options_.vocabulary) places_ = std::make_shared<place::KeyFrameDatabase>(options_.vocabulary);
   loop_closer_ = std::make_unique<loop::LoopCloser>(options_.loop, map_, options_.loop.bag_of_words ? places_ : nullptr);
@@ -53,35 +51,6 @@ SlamSystem::SlamSystem(const SlamOptions& options)
 }
 
 SlamSystem::~SlamSystem() { finish(); }
-
-cv::Mat SlamSystem::toGray(const io::RgbdFrame& frame) {
-  core::require(frame.bgr.type() == CV_8UC3, "SlamSystem: colour image must be CV_8UC3");
-  cv::Mat gray;
-  cv::cvtColor(frame.bgr, gray, cv::COLOR_BGR2GRAY);
-  return gray;
-}
-
-ExtractedFeatures SlamSystem::extract(const io::RgbdFrame& frame) const {
-  core::Stopwatch watch;
-  const cv::Mat gray = toGray(frame);
-  const double convert_ms = watch.elapsedMs();
-  ExtractedFeatures out = extractGray(gray);
-  out.extract_ms += convert_ms;
-  return out;
-}
-
-ExtractedFeatures SlamSystem::extractGray(const cv::Mat& gray, const cv::Mat& allowed) const {
-  core::Stopwatch watch;
-  ExtractedFeatures out;
-  out.gray = gray;
-  extractor_.extract(out.gray, out.keypoints, out.descriptors, allowed);
-  out.extract_ms = watch.elapsedMs();
-  return out;
-}
-
-FrameOutput SlamSystem::processFrame(const io::RgbdFrame& frame, const FrameExtras& extras) {
-  return track(frame, extract(frame), extras);
-}
 
 FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeatures& features,
                               const FrameExtras& extras) {

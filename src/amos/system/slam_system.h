@@ -1,9 +1,8 @@
 #pragma once
-// The SLAM system as one object: processFrame() runs the per-frame pipeline in the caller's thread
-//   grey conversion -> ORB extraction -> frame build (undistortion, depth, dynamic-mask removal) -> tracking
-// while local mapping runs in its own thread. The pipeline is also available in two halves (extract() and
-// track()), so the caller can overlap other per-frame work (the person segmenter) with extraction and hand the
-// resulting dynamic mask to track().
+// The SLAM system as one object: track() takes a frame with its ORB features, already extracted (stage A of the
+// pipeline owns the extractor, frame_scheduler.h, so that extraction overlaps the other per-frame work), and the
+// dynamic front end's extras, builds the frame (undistortion, depth, dynamic-mask removal) and tracks it in the
+// caller's thread, while local mapping runs in its own thread.
 //
 // Every frame's pose is stored relative to its reference keyframe (T_cr), and trajectory() composes it with the
 // keyframe's current pose, so bundle-adjustment corrections made after a frame was tracked reach the output
@@ -37,7 +36,7 @@ namespace amos::system {
 struct SlamOptions {
   core::CameraIntrinsics camera;       // Camera.*
   map::SensorOptions sensor;           // Camera.bf, ThDepth
-  feature::OrbOptions orb;             // ORBextractor.*
+  feature::OrbOptions orb;             // ORBextractor.*: the scale pyramid of the features track() is given
   map::CovisibilityOptions covisibility;  // Mapping.covisibilityMinWeight
   tracking::TrackerOptions tracking;   // Tracking.*, Matching.*, Relocalization.*
   mapping::LocalMappingOptions mapping;  // Mapping.*, LocalBA.*
@@ -61,7 +60,7 @@ struct FrameExtras {
 };
 
 struct ExtractedFeatures {
-  cv::Mat gray;
+  cv::Mat gray;                         // the grey image they were detected in (CV_8U)
   std::vector<cv::KeyPoint> keypoints;  // distorted, as detected
   cv::Mat descriptors;
   double extract_ms = 0;
@@ -87,13 +86,7 @@ class SlamSystem {
   SlamSystem(const SlamSystem&) = delete;
   SlamSystem& operator=(const SlamSystem&) = delete;
 
-  FrameOutput processFrame(const io::RgbdFrame& frame, const FrameExtras& extras = {});
-  // The two halves of processFrame(): extraction needs only the image; track() takes the rest.
-  ExtractedFeatures extract(const io::RgbdFrame& frame) const;
-  // extract() on a frame already converted to grey (CV_8U). `allowed` (optional, CV_8U, image size, 0 = do not
-  // detect there) keeps keypoints out of known dynamic regions, so that the feature budget goes to the rest.
-  ExtractedFeatures extractGray(const cv::Mat& gray, const cv::Mat& allowed = cv::Mat()) const;
-  static cv::Mat toGray(const io::RgbdFrame& frame);
+  // `features`: extracted from the frame's grey image with SlamOptions::orb.
   FrameOutput track(const io::RgbdFrame& frame, const ExtractedFeatures& features, const FrameExtras& extras = {});
 
   // Starts from a saved map (mapio/map_file.h) instead of an empty one; call before the first frame. The first
@@ -121,6 +114,7 @@ class SlamSystem {
   const core::StageTimes& times() const { return times_; }
 
   const tracking::Tracker& tracker() const { return *tracker_; }
+  const SlamOptions& options() const { return options_; }
   map::Map& map() { return *map_; }
   const map::Map& map() const { return *map_; }
   // The map for observers that may outlive this system (the viewer's publisher thread; report/run_observer.h).
@@ -139,7 +133,6 @@ class SlamSystem {
 
   SlamOptions options_;
   std::shared_ptr<const map::Sensor> sensor_;
-  feature::OrbExtractor extractor_;
   std::shared_ptr<map::Map> map_;
   core::StageTimes times_;
   std::shared_ptr<place::KeyFrameDatabase> places_;  // null without a vocabulary
