@@ -49,7 +49,7 @@ RecoveryRun run(const config::Settings& settings, const std::vector<io::RgbdFram
   for (std::size_t i = 0; i < frames.size(); ++i) {
     io::RgbdFrame frame = frames[i];
     if (i >= blank_from && i < blank_to) frame.bgr = cv::Mat::zeros(frame.bgr.size(), frame.bgr.type());
-    const system::FrameOutput o = slam.track(frame, testing::extractFeatures(orb, frame));
+    const system::FrameOutput o = slam.track(testing::trackInput(orb, frame));
     out.states.push_back(o.track.state);
     out.T_cw.push_back(o.track.T_cw);
   }

@@ -52,26 +52,33 @@ SlamSystem::SlamSystem(const SlamOptions& options)
 
 SlamSystem::~SlamSystem() { finish(); }
 
-FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeatures& features,
-                              const FrameExtras& extras) {
+FrameOutput SlamSystem::track(const TrackInput& input) {
   core::require(!finished_, "SlamSystem: frame given after finish()");
   mapper_->rethrowIfFailed();  // the frame boundary where a mapping failure reaches the caller
-  core::require(frame.depth.type() == CV_32F, "SlamSystem: depth image must be CV_32F metres");
+  core::require(input.depth.type() == CV_32F, "SlamSystem: depth image must be CV_32F metres");
   core::require(map_loaded_ || !options_.tracking.localization_only,
                 "SlamSystem: localization mode needs a loaded map (--load-map FILE)");
+  const ExtractedFeatures& features = input.features;
   core::Stopwatch total, watch;
   FrameOutput out;
   out.extract_ms = features.extract_ms;
   map::FrameBuildStats build;
-  auto built = map::buildFrameFeatures(*sensor_, features.keypoints, features.descriptors, frame.depth,
-                                       extras.dynamic_mask, &build);
-  map::Frame f = map::makeFrame(next_frame_id_++, frame.timestamp, sensor_, std::move(built),
-                                map::makeThumbnail(features.gray), extras.dynamic_mask);
-  if (!extras.dynamic_mask.empty()) f.depth_image = frame.depth;
+  auto built = map::buildFrameFeatures(*sensor_, features.keypoints, features.descriptors, input.depth,
+                                       input.dynamic_mask, &build);
+  map::Frame f = map::makeFrame(next_frame_id_++, input.timestamp, sensor_, std::move(built),
+                                map::makeThumbnail(features.gray), input.dynamic_mask);
+  if (!input.dynamic_mask.empty()) f.depth_image = input.depth;
   out.build_ms = watch.elapsedMs();
   watch.restart();
-  out.track = tracker_->track(std::move(f), extras.initial_T_cw);
+  out.track = tracker_->track(std::move(f), input.initial_T_cw);
   out.track_ms = watch.elapsedMs();
+  out.view.state = tracker_->state();
+  out.view.velocity = tracker_->velocity();
+  out.view.reference_kf = tracker_->referenceKeyFrameId();
+  if (input.reference_keyframe_view) {
+    out.view.reference_keyframe =
+        std::make_shared<const tracking::ReferenceKeyFrameView>(tracker_->referenceKeyFrameView());
+  }
   out.keypoints = build.extracted - build.removed_dynamic;
   out.removed_dynamic = build.removed_dynamic;
   out.with_depth = build.with_depth;
@@ -91,7 +98,7 @@ FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeature
   stats_.relocalized += out.track.relocalized;
   stats_.keyframes_created += out.track.new_keyframe;
   FrameRecord record;
-  record.timestamp = frame.timestamp;
+  record.timestamp = input.timestamp;
   record.state = out.track.state;
   record.reference_kf = out.track.reference_kf;
   record.T_cr = out.track.T_cr;

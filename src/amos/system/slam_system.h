@@ -1,8 +1,11 @@
 #pragma once
-// The SLAM system as one object: track() takes a frame with its ORB features, already extracted (stage A of the
-// pipeline owns the extractor, frame_scheduler.h, so that extraction overlaps the other per-frame work), and the
-// dynamic front end's extras, builds the frame (undistortion, depth, dynamic-mask removal) and tracks it in the
-// caller's thread, while local mapping runs in its own thread.
+// The SLAM core as one object, fed by one call: track() takes a frame whose ORB features were already extracted
+// (stage A of the pipeline, frame_scheduler.h, owns the extractor) together with what the dynamic front end made of
+// it (the dynamic mask, an initial pose), builds the frame (undistortion, depth, removal of the dynamic keypoints)
+// and tracks it in the caller's thread, while local mapping runs in its own thread. It returns the pose and a
+// TrackingView: the tracking state the front end needs for the next frame (state, velocity, reference keyframe),
+// as values. Nothing outside reaches into the tracker, so the tracker's state can change only through track(), and
+// the front end sees exactly what the core chose to show it.
 //
 // Every frame's pose is stored relative to its reference keyframe (T_cr), and trajectory() composes it with the
 // keyframe's current pose, so bundle-adjustment corrections made after a frame was tracked reach the output
@@ -53,12 +56,6 @@ struct SlamOptions {
   void check() const;
 };
 
-// Per-frame extras from the dynamic front end (paper Sec. III).
-struct FrameExtras {
-  cv::Mat dynamic_mask;                    // CV_8U, 255 = dynamic; keypoints there are removed before matching
-  std::optional<core::SE3> initial_T_cw;   // initial pose from outside (replaces / competes with the motion model)
-};
-
 struct ExtractedFeatures {
   cv::Mat gray;                         // the grey image they were detected in (CV_8U)
   std::vector<cv::KeyPoint> keypoints;  // distorted, as detected
@@ -66,8 +63,33 @@ struct ExtractedFeatures {
   double extract_ms = 0;
 };
 
+// One frame as the pipeline hands it to the core: its depth, the ORB features of its grey image, and the dynamic
+// front end's results (paper Sec. III).
+struct TrackInput {
+  double timestamp = 0;
+  cv::Mat depth;                          // CV_32F metres
+  ExtractedFeatures features;             // extracted with SlamOptions::orb (the sensor's scale pyramid)
+  cv::Mat dynamic_mask;                   // CV_8U, 255 = dynamic; keypoints there are removed before matching
+  std::optional<core::SE3> initial_T_cw;  // initial pose from outside (replaces / competes with the motion model)
+  // Whether the output's view carries the reference keyframe's keypoints and points: a copy of each keypoint
+  // under the map's lock, so only for a caller that reads them (the geometric stage's initial-pose models).
+  bool reference_keyframe_view = false;
+};
+
+// The tracking state after a frame, as values (nothing in it refers into the tracker or the map): what the dynamic
+// front end reads of the core before it judges and tracks the next frame.
+struct TrackingView {
+  tracking::TrackingState state = tracking::TrackingState::kNotInitialized;
+  std::optional<core::SE3> velocity;                // constant-velocity motion (T_cur_last), when known
+  map::KeyFrameId reference_kf = map::kNoKeyFrame;  // the tracker's reference keyframe
+  // Its keypoints and map points (when TrackInput::reference_keyframe_view asked for them, else null). Immutable,
+  // so shared: the pipeline keeps it for the next frame while the caller reads the frame's output.
+  std::shared_ptr<const tracking::ReferenceKeyFrameView> reference_keyframe;
+};
+
 struct FrameOutput {
   tracking::TrackResult track;
+  TrackingView view;
   int keypoints = 0, removed_dynamic = 0, with_depth = 0;
   double extract_ms = 0, build_ms = 0, track_ms = 0, total_ms = 0;
 };
@@ -86,8 +108,9 @@ class SlamSystem {
   SlamSystem(const SlamSystem&) = delete;
   SlamSystem& operator=(const SlamSystem&) = delete;
 
-  // `features`: extracted from the frame's grey image with SlamOptions::orb.
-  FrameOutput track(const io::RgbdFrame& frame, const ExtractedFeatures& features, const FrameExtras& extras = {});
+  // The one entry point for frames: builds the input's frame and tracks it (see the header comment). Throws
+  // core::Error after finish(), for a depth image that is not CV_32F, and with the mapping thread's failure.
+  FrameOutput track(const TrackInput& input);
 
   // Starts from a saved map (mapio/map_file.h) instead of an empty one; call before the first frame. The first
   // frame is then relocalised in it (cold start). Without options.tracking.localization_only the map is extended
@@ -113,7 +136,6 @@ class SlamSystem {
   SlamStats stats() const;
   const core::StageTimes& times() const { return times_; }
 
-  const tracking::Tracker& tracker() const { return *tracker_; }
   const SlamOptions& options() const { return options_; }
   map::Map& map() { return *map_; }
   const map::Map& map() const { return *map_; }

@@ -40,10 +40,8 @@ SlamRun runSlam(const testing::SyntheticSequence& seq, bool with_mask) {
   SlamRun run;
   for (int i = 0; i < seq.size(); ++i) {
     const testing::SyntheticView view = seq.view(i);
-    FrameExtras extras;
-    if (with_mask) extras.dynamic_mask = view.mover_mask;
     const io::RgbdFrame frame = testing::SyntheticSequence::toRgbdFrame(view, i, seq.timestamp(i));
-    run.frames.push_back(slam.track(frame, testing::extractFeatures(orb, frame), extras));
+    run.frames.push_back(slam.track(testing::trackInput(orb, frame, with_mask ? view.mover_mask : cv::Mat())));
   }
   slam.finish();
   EXPECT_FALSE(slam.workerFailure());
