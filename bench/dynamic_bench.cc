@@ -522,10 +522,10 @@ void BM_BonnFullSequence(benchmark::State& state) {
     feed();
     while (pipeline.waiting() > 0) {
       if (look_ahead) feed();
-      pipeline.processNext();
+      const system::ProcessedFrame out = pipeline.processNext();
       if (!look_ahead) feed();
       ++frames;
-      const auto view = slam.tracker().referenceKeyFrameView();
+      const auto& view = *out.slam.view.reference_keyframe;
       keyframe_points.push_back(static_cast<double>(std::count(view.has_point.begin(), view.has_point.end(), true)));
     }
     keyframe_points_median = core::percentile(keyframe_points, 0.5);

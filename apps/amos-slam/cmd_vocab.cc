@@ -14,7 +14,7 @@
 #include "amos/feature/orb_extractor.h"
 #include "amos/io/dataset.h"
 #include "amos/place/vocabulary.h"
-#include "amos/system/slam_system.h"
+#include "amos/system/frame_scheduler.h"
 #include "commands.h"
 
 namespace amos::app {
@@ -42,7 +42,7 @@ void trainVocabulary(const VocabArgs& args) {
       if (k++ % args.every != 0) continue;
       std::vector<cv::KeyPoint> keys;
       cv::Mat d;
-      extractor.extract(system::SlamSystem::toGray(*frame), keys, d);
+      extractor.extract(system::toGray(*frame), keys, d);
       if (d.rows == 0) continue;
       descriptors += d.rows;
       images.push_back(d);

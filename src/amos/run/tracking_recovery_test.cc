@@ -13,6 +13,7 @@
 #include "amos/run/sequence_run.h"
 #include "amos/system/slam_system.h"
 #include "amos/testing/shared_data.h"
+#include "amos/testing/slam_input.h"
 
 namespace amos::run {
 namespace {
@@ -44,11 +45,12 @@ RecoveryRun run(const config::Settings& settings, const std::vector<io::RgbdFram
   options.tracking.recovery_frames = recovery_frames;
   options.tracking.relocalization.min_inliers = 1000000;  // the global relocaliser never accepts a pose
   system::SlamSystem slam(options);
+  const feature::OrbExtractor orb(options.orb);
   RecoveryRun out;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     io::RgbdFrame frame = frames[i];
     if (i >= blank_from && i < blank_to) frame.bgr = cv::Mat::zeros(frame.bgr.size(), frame.bgr.type());
-    const system::FrameOutput o = slam.processFrame(frame);
+    const system::FrameOutput o = slam.track(testing::trackInput(orb, frame));
     out.states.push_back(o.track.state);
     out.T_cw.push_back(o.track.T_cw);
   }

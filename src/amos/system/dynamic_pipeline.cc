@@ -43,7 +43,7 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
     : slam_(slam),
       options_(options),
       front_end_(slam.sensor()->camera(), options),
-      scheduler_(slam, options, std::move(segmentation)) {
+      scheduler_(slam.options().orb, options, std::move(segmentation)) {
   options_.check();
   if (scheduler_.tasks().segmentation)
     state_.person_masks.emplace(scheduler_.segmentation()->dilation(), options_.prior);
@@ -91,9 +91,10 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
   const core::PinholeCamera& camera = slam_.sensor()->camera();
   // Model 1: the reference keyframe's keypoints that carry map points, tracked by LK into this frame.
   dynamic::PoseCorrespondences from_keyframe;
-  const tracking::ReferenceKeyFrameView view = slam_.tracker().referenceKeyFrameView();
+  const std::shared_ptr<const tracking::ReferenceKeyFrameView> reference = state_.tracking_view.reference_keyframe;
   for (const auto& [id, keyframe] : state_.keyframe_pyramids) {
-    if (id != view.id) continue;
+    if (!reference || id != reference->id) continue;
+    const tracking::ReferenceKeyFrameView& view = *reference;
     std::vector<std::size_t> with_point;
     for (std::size_t i = 0; i < view.keypoints.size(); ++i)
       if (view.has_point[i]) with_point.push_back(i);
@@ -124,7 +125,7 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
     const auto lifted = dynamic::backProjectTracks(fit_tracks, last.depth, last.T_cw, camera, options_.reprojection);
     from_last = dynamic::lastFrameCorrespondences(fit_tracks, lifted, camera);
     T_cw_last = last.T_cw;
-    velocity = slam_.tracker().velocity();
+    velocity = state_.tracking_view.velocity;
   }
   const dynamic::InitialPoseResult result = dynamic::estimateInitialPose(from_keyframe, from_last, T_cw_last, velocity,
                                                                          camera, options_.initial_pose);
@@ -185,10 +186,9 @@ DynamicPipeline::Judgement DynamicPipeline::judge(dynamic::FrontEndInput input) 
   return {std::move(judged.mask), std::move(judged.hold_score)};
 }
 
-void DynamicPipeline::track(const FrameSlot& slot, const ExtractedFeatures& features, const FrameExtras& extras,
-                            ProcessedFrame& out) {
+void DynamicPipeline::track(const TrackInput& input, ProcessedFrame& out) {
   const double cpu = threadCpuMs();
-  out.slam = slam_.track(slot.frame, features, extras);
+  out.slam = slam_.track(input);
   times_.add("cpu.track", threadCpuMs() - cpu);
   const int extracted = out.slam.keypoints + out.slam.removed_dynamic;
   if (extracted > 0) out.removed_fraction = static_cast<double>(out.slam.removed_dynamic) / extracted;
@@ -196,6 +196,7 @@ void DynamicPipeline::track(const FrameSlot& slot, const ExtractedFeatures& feat
 }
 
 void DynamicPipeline::remember(const ProcessedFrame& out, FrameMotionInput motion, cv::Mat hold_score) {
+  state_.tracking_view = out.slam.view;  // also after a lost frame: the next frame's initial pose starts from it
   const tracking::TrackResult& result = out.slam.track;
   if (result.state != tracking::TrackingState::kOk) {
     state_.last.reset();  // a lost frame's pose would poison the reprojection test of the next one
@@ -208,7 +209,7 @@ void DynamicPipeline::remember(const ProcessedFrame& out, FrameMotionInput motio
                             tracks ? motion.pyramid : dynamic::ImagePyramid(), result.T_cw});
   const bool geometry = scheduler_.tasks().geometry;
   if (geometry && (result.new_keyframe || result.initialized_map)) {
-    state_.keyframe_pyramids.emplace_back(slam_.tracker().referenceKeyFrameView().id, motion.pyramid);
+    state_.keyframe_pyramids.emplace_back(out.slam.view.reference_kf, motion.pyramid);
     if (state_.keyframe_pyramids.size() > kKeyFrameImages) state_.keyframe_pyramids.pop_front();
   }
   state_.last = LastFrame{std::move(motion.gray),    out.frame.depth,           out.dynamic_mask,
@@ -234,7 +235,11 @@ ProcessedFrame DynamicPipeline::processNext() {
   double stage_a_cpu = motion.cpu_ms;
   FrameCornerTracks corner_tracks;
   if (scheduler_.tasks().geometry) corner_tracks = takeCornerTracks(slot);  // 2
-  FrameExtras extras;
+  TrackInput track_input;
+  track_input.timestamp = slot.frame.timestamp;
+  track_input.depth = slot.frame.depth;
+  // The initial-pose models (step 4) of the next frame read the reference keyframe's points.
+  track_input.reference_keyframe_view = tasks.geometry;
   cv::Mat hold_score;
   if (options_.mode != dynamic::DynamicMode::kNone) {
     dynamic::FrontEndInput input;
@@ -277,9 +282,9 @@ ProcessedFrame DynamicPipeline::processNext() {
     if (tasks.geometry) {
       // After a lost frame (no last frame) the reference keyframe's model stands alone.
       std::optional<dynamic::PoseModel> model;
-      extras.initial_T_cw = initialPose(motion.pyramid, tracks, model);  // 4
+      track_input.initial_T_cw = initialPose(motion.pyramid, tracks, model);  // 4
       out.initial_pose_model = model;
-      if (extras.initial_T_cw && state_.last) input.T_cw_initial = *extras.initial_T_cw;
+      if (track_input.initial_T_cw && state_.last) input.T_cw_initial = *track_input.initial_T_cw;
     }
     std::optional<FramePartition> partition;
     if (tasks.geometry) {
@@ -290,20 +295,21 @@ ProcessedFrame DynamicPipeline::processNext() {
       input.partition = &partition->partition;
     }
     Judgement judgement = judge(std::move(input));  // 5
-    extras.dynamic_mask = judgement.mask;
+    track_input.dynamic_mask = judgement.mask;
     hold_score = std::move(judgement.hold_score);
-    out.dynamic_mask = extras.dynamic_mask;
+    out.dynamic_mask = track_input.dynamic_mask;
   }
   core::Stopwatch wait;
-  const SlotOrbFeatures features = slot.features.get();
+  SlotOrbFeatures features = slot.features.get();
   times_.add("dynamic.features_wait", wait.elapsedMs());
   out.keypoints.reserve(features.features.keypoints.size());
   for (const cv::KeyPoint& k : features.features.keypoints) out.keypoints.push_back(k.pt);
   stage_a_cpu += features.cpu_ms;
   if (tasks.masked_extraction) times_.add("dynamic.extraction_handoff_wait", features.handoff_wait_ms);
   times_.add("cpu.prepare", stage_a_cpu);
-  track(slot, features.features, extras, out);  // 6
-  slot.map_ready.set_value(slam_.tracker().state() != tracking::TrackingState::kNotInitialized);
+  track_input.features = std::move(features.features);
+  track(track_input, out);  // 6
+  slot.map_ready.set_value(out.slam.view.state != tracking::TrackingState::kNotInitialized);
   remember(out, std::move(motion), std::move(hold_score));  // 7
   ++state_.processed;
   processed_.store(state_.processed);

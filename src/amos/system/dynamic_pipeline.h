@@ -2,6 +2,12 @@
 // The full per-frame pipeline of the paper (Fig. 1): the anti-dynamics front end wrapped around SlamSystem, in
 // two explicit stages.
 //
+// The seam with the SLAM core runs one way. Stage A extracts the ORB features (the core extracts nothing), and
+// stage B hands the core each frame once, through its one entry point (SlamSystem::track: the features, the dynamic
+// mask, the initial pose); it reads nothing of the core but what that call returns, the pose and a TrackingView
+// (state, velocity, reference keyframe) as values, which it keeps for the next frame. So the front end depends on
+// what the core chose to show, not on the tracker's internals, and the core can be driven and tested alone.
+//
 // Stage A, push(frame): the pure per-frame work, scheduled ahead into the frame's slot by the FrameScheduler
 // (frame_scheduler.h: which tasks a mode schedules, and the dependencies they declare on earlier frames):
 // person segmentation (Sec. III-A) in its own lane; grey image, ORB features, LK pyramid, corners and superpixel
@@ -17,14 +23,15 @@
 //                          -> hand-off: the dilated mask, for stage A of the next frame (made before the
 //                          initial pose, which does not need it, so that the next frame's extraction waits less)
 //   4. initialPose         three models (Sec. III-D): reference-keyframe LK + EPnP,       (geometry)
-//                          last-frame corners + EPnP, constant velocity; most inliers wins; after a lost
+//                          last-frame corners + EPnP, constant velocity (the reference keyframe and the
+//                          velocity from the last frame's TrackingView); most inliers wins; after a lost
 //                          frame the keyframe model alone (the tracker's recovery searches around its pose)
 //   5. judge               the dynamic mask (DynamicFrontEnd, Sec. III-B/C), once the     (not in none)
 //                          slot's superpixel partition is there
-//   6. track               tracking without the dynamic keypoints, with the initial pose, once the slot's ORB
-//                          features are there
+//   6. track               SlamSystem::track, once the slot's ORB features are there: the features, the dynamic
+//                          mask and the initial pose in; the pose and the TrackingView out
 //                          -> hand-off: whether a map exists, for stage A two frames on
-//   7. remember            what the next frame needs from this one (StageBState)
+//   7. remember            what the next frame needs from this one, the TrackingView too (StageBState)
 // A mode is the set of stage-A tasks scheduled and the stage-B steps that run: none = 1, 6, 7; prior adds 3 and 5;
 // geometry adds 2, 4, 5; full all.
 //
@@ -140,6 +147,9 @@ class DynamicPipeline {
     // Depth and pose of the last tracked frames, the depth evidence's baseline (emptied when a frame is lost, like
     // `last`).
     dynamic::BaselineHistory baseline_history;  // the frames the longer comparisons need
+    // The core's tracking state after the last frame (SlamSystem::track's view; before the first frame: not
+    // initialised, no reference keyframe), which the initial-pose models of the next frame start from.
+    TrackingView tracking_view;
   };
 
   // The steps of stage B (see the header comment), in order.
@@ -154,8 +164,7 @@ class DynamicPipeline {
     cv::Mat mask, hold_score;
   };
   Judgement judge(dynamic::FrontEndInput input);
-  void track(const FrameSlot& slot, const ExtractedFeatures& features, const FrameExtras& extras,
-             ProcessedFrame& out);
+  void track(const TrackInput& input, ProcessedFrame& out);
   void remember(const ProcessedFrame& out, FrameMotionInput motion, cv::Mat hold_score);
 
   // The slots that stage B will still read from (the segmentation that serves the next frame, and on).

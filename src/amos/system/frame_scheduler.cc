@@ -1,5 +1,7 @@
 #include "amos/system/frame_scheduler.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include <string>
 #include <utility>
 
@@ -19,11 +21,18 @@ StageATasks StageATasks::forMode(const dynamic::DynamicOptions& options) {
   return t;
 }
 
+cv::Mat toGray(const io::RgbdFrame& frame) {
+  core::require(frame.bgr.type() == CV_8UC3, "toGray: colour image must be CV_8UC3");
+  cv::Mat gray;
+  cv::cvtColor(frame.bgr, gray, cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
 FrameMotionInput prepareMotion(const io::RgbdFrame& frame, const StageATasks& tasks,
                                const dynamic::DynamicOptions& options) {
   const double cpu_start = core::threadCpuMs();
   FrameMotionInput motion;
-  motion.gray = SlamSystem::toGray(frame);
+  motion.gray = toGray(frame);
   if (tasks.geometry) {
     core::Stopwatch watch;
     motion.pyramid = dynamic::buildPyramid(motion.gray, options.tracking);
@@ -49,7 +58,7 @@ FrameCornerTracks trackFrameCorners(const FrameMotionInput& previous, const Fram
 }
 
 SlotOrbFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
-                              const SlamSystem& slam, const PreparationInputs& inputs) {
+                                const feature::OrbExtractor& extractor, const PreparationInputs& inputs) {
   const double cpu_start = core::threadCpuMs();
   SlotOrbFeatures out;
   // The previous frame's mask rather than this frame's: waiting for this frame's segmentation would put the
@@ -68,7 +77,10 @@ SlotOrbFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, c
       if (large || !map_ready) allowed = dynamic == 0;
     }
   }
-  out.features = slam.extractGray(gray, allowed);
+  core::Stopwatch watch;
+  out.features.gray = gray;
+  extractor.extract(out.features.gray, out.features.keypoints, out.features.descriptors, allowed);
+  out.features.extract_ms = watch.elapsedMs();
   out.cpu_ms = core::threadCpuMs() - cpu_start;
   return out;
 }
@@ -84,9 +96,9 @@ FramePartition partitionFrame(const io::RgbdFrame& frame, const dynamic::Dynamic
   return out;
 }
 
-FrameScheduler::FrameScheduler(const SlamSystem& slam, const dynamic::DynamicOptions& options,
+FrameScheduler::FrameScheduler(const feature::OrbOptions& orb, const dynamic::DynamicOptions& options,
                                std::unique_ptr<segmentation::SegmentationWorker> segmentation)
-    : slam_(slam),
+    : extractor_(orb),
       options_(options),
       tasks_(StageATasks::forMode(options)),
       segmentation_(std::move(segmentation)),
@@ -136,7 +148,7 @@ FrameNumber FrameScheduler::push(io::RgbdFrame frame, FrameNumber processed) {
   });
   last_motion_ = slot->motion;
   slot->features = frame_lane_->submit([motion = slot->motion, inputs, tasks = tasks_, this] {
-    return extractFeatures(motion.get().gray, tasks, options_, slam_, inputs);
+    return extractFeatures(motion.get().gray, tasks, options_, extractor_, inputs);
   });
   if (partition_lane_) slot->partition = partition_lane_->submit([frame = f, this] { return partitionFrame(frame, options_); });
   recent_handoffs_.push_back(slot->handoff);

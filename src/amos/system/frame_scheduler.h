@@ -16,6 +16,8 @@
 // features are still being made, and a frame's stage A costs the time of its longest lane, not of their sum. The
 // corner tracks of frame k depend on stage A of frame k-1 only (its grey pyramid and corners), so they are made
 // here, beside stage B of frame k-1, instead of on stage B's own critical path.
+// Stage A owns the ORB extractor (built from the SLAM core's ORB options, whose scale pyramid the core's frames
+// use): the core is handed the features with each frame (SlamSystem::track) and extracts nothing itself.
 // Declared dependencies on stage B of earlier frames (StageBHandoff), used only by the masked ORB extraction
 // (Dynamic.priorMaskedExtraction; see extractFeatures):
 //   features(k)  <- the dilated person mask of frame k-1
@@ -36,9 +38,10 @@
 
 #include "amos/core/serial_executor.h"
 #include "amos/dynamic/dynamic_options.h"
+#include "amos/feature/orb_extractor.h"
+#include "amos/io/rgbd_frame.h"
 #include "amos/segmentation/segmentation_worker.h"
 #include "amos/system/frame_slot.h"
-#include "amos/system/slam_system.h"
 
 namespace amos::system {
 
@@ -56,11 +59,14 @@ struct PreparationInputs {
   std::shared_future<bool> map_ready_two_back;        // after frame k-2
 };
 
+// The grey image of the frame's colour image (CV_8UC3 -> CV_8U): what ORB extraction and the LK pyramid read.
+cv::Mat toGray(const io::RgbdFrame& frame);
+
 // The tasks of stage A, each a pure function of the frame, the options and its declared inputs.
 FrameMotionInput prepareMotion(const io::RgbdFrame& frame, const StageATasks& tasks,
                                const dynamic::DynamicOptions& options);
 SlotOrbFeatures extractFeatures(const cv::Mat& gray, const StageATasks& tasks, const dynamic::DynamicOptions& options,
-                              const SlamSystem& slam, const PreparationInputs& inputs);
+                                const feature::OrbExtractor& extractor, const PreparationInputs& inputs);
 FramePartition partitionFrame(const io::RgbdFrame& frame, const dynamic::DynamicOptions& options);
 // The corners of `previous` tracked into `current` (both from prepareMotion with the geometric stage on).
 FrameCornerTracks trackFrameCorners(const FrameMotionInput& previous, const FrameMotionInput& current,
@@ -68,8 +74,9 @@ FrameCornerTracks trackFrameCorners(const FrameMotionInput& previous, const Fram
 
 class FrameScheduler {
  public:
-  // `segmentation` is required when the mode segments (StageATasks::segmentation) and ignored otherwise.
-  FrameScheduler(const SlamSystem& slam, const dynamic::DynamicOptions& options,
+  // `orb`: the options the features are extracted with (the SLAM core's, SlamOptions::orb). `segmentation` is
+  // required when the mode segments (StageATasks::segmentation) and ignored otherwise.
+  FrameScheduler(const feature::OrbOptions& orb, const dynamic::DynamicOptions& options,
                  std::unique_ptr<segmentation::SegmentationWorker> segmentation);
   // Drops the slots still waiting (their hand-offs are broken, so no task waits for them), then stops the lanes.
   ~FrameScheduler();
@@ -100,7 +107,7 @@ class FrameScheduler {
   // The frame's segmentation task(s), when the schedule (or the audit) names it.
   void scheduleSegmentation(FrameSlot& slot);
 
-  const SlamSystem& slam_;
+  const feature::OrbExtractor extractor_;  // used by the frame lane only
   dynamic::DynamicOptions options_;
   StageATasks tasks_;
   std::unique_ptr<segmentation::SegmentationWorker> segmentation_;

@@ -8,21 +8,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
-#include "amos/testing/test_camera.h"
 
 namespace amos::system {
 namespace {
 
 using dynamic::DynamicMode;
-
-SlamOptions testOptions() {
-  SlamOptions o;
-  o.camera = testing::testIntrinsics();
-  o.sensor.bf = 40.0;
-  o.sensor.th_depth = 40.0;
-  o.deterministic = true;
-  return o;
-}
 
 // A textured frame (random blocks: corners and ORB features everywhere), depth 2 m.
 io::RgbdFrame texturedFrame(std::size_t index) {
@@ -57,7 +47,7 @@ TEST(StageATasks, EachModeSchedulesItsTasks) {
 // Frame 1's preparation waits for frame 0's dilated person mask (declared hand-off), then detects ORB features only
 // outside it when it covers at least Dynamic.priorMaskedExtractionCoverage of the view.
 TEST(FrameScheduler, MaskedExtractionWaitsForThePreviousFramesMask) {
-  SlamSystem slam(testOptions());
+  const feature::OrbExtractor orb(feature::OrbOptions{});
   dynamic::DynamicOptions options;
   options.mode = DynamicMode::kGeometry;  // no segmenter needed; the dependency is what is tested
   StageATasks tasks = StageATasks::forMode(options);
@@ -71,7 +61,7 @@ TEST(FrameScheduler, MaskedExtractionWaitsForThePreviousFramesMask) {
   const FrameMotionInput motion = prepareMotion(frame, tasks, options);
   EXPECT_FALSE(motion.pyramid.empty());
   EXPECT_FALSE(motion.corners.empty());
-  auto prepared = lane.submit([&] { return extractFeatures(motion.gray, tasks, options, slam, inputs); });
+  auto prepared = lane.submit([&] { return extractFeatures(motion.gray, tasks, options, orb, inputs); });
   EXPECT_EQ(prepared.wait_for(std::chrono::milliseconds(300)), std::future_status::timeout)
       << "the preparation did not wait for the previous frame's mask";
   cv::Mat left(480, 640, CV_8U, cv::Scalar(0));
@@ -85,10 +75,9 @@ TEST(FrameScheduler, MaskedExtractionWaitsForThePreviousFramesMask) {
 
 // Mode geometry: no segmentation lane; slots are found by number until released; at most kMaxAhead wait.
 TEST(FrameScheduler, SlotsByNumber) {
-  SlamSystem slam(testOptions());
   dynamic::DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  FrameScheduler scheduler(slam, options, nullptr);
+  FrameScheduler scheduler(feature::OrbOptions{}, options, nullptr);
   EXPECT_EQ(scheduler.push(texturedFrame(10), 0), 0u);
   EXPECT_EQ(scheduler.push(texturedFrame(11), 0), 1u);
   EXPECT_EQ(scheduler.slot(1).frame.index, 11u);
@@ -105,10 +94,9 @@ TEST(FrameScheduler, SlotsByNumber) {
 // The corner tracks are a stage-A task of the later frame: frame 0 has none, frame 1 gets frame 0's corners tracked
 // into it, exactly what tracking them from the two frames' motion inputs gives; in mode none nothing is tracked.
 TEST(FrameScheduler, CornerTracksComeFromTheFramePushedBefore) {
-  SlamSystem slam(testOptions());
   dynamic::DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  FrameScheduler scheduler(slam, options, nullptr);
+  FrameScheduler scheduler(feature::OrbOptions{}, options, nullptr);
   scheduler.push(texturedFrame(0), 0);
   io::RgbdFrame shifted = texturedFrame(1);
   const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, 3, 0, 1, 2);  // the view moved by (3, 2) px
@@ -130,17 +118,16 @@ TEST(FrameScheduler, CornerTracksComeFromTheFramePushedBefore) {
   EXPECT_NEAR(tracks.tracks[0].current.y - tracks.tracks[0].last.y, 2.0, 0.5);
 
   options.mode = DynamicMode::kNone;
-  FrameScheduler plain(slam, options, nullptr);
+  FrameScheduler plain(feature::OrbOptions{}, options, nullptr);
   plain.push(texturedFrame(0), 0);
   plain.push(texturedFrame(1), 0);
   EXPECT_FALSE(plain.slot(1).corner_tracks.get().made);
 }
 
 TEST(FrameScheduler, ModesThatSegmentNeedASegmenter) {
-  SlamSystem slam(testOptions());
   dynamic::DynamicOptions options;
   options.mode = DynamicMode::kFull;
-  EXPECT_THROW(FrameScheduler(slam, options, nullptr), core::Error);
+  EXPECT_THROW(FrameScheduler(feature::OrbOptions{}, options, nullptr), core::Error);
 }
 
 }  // namespace

@@ -1,6 +1,5 @@
 #include "amos/system/slam_system.h"
 
-#include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
 #include <shared_mutex>
@@ -24,7 +23,6 @@ void SlamOptions::check() const {
 SlamSystem::SlamSystem(const SlamOptions& options)
     : options_(options),
       sensor_((options.check(), std::make_shared<map::Sensor>(options.camera, options.sensor, options.orb))),
-      extractor_(options.orb),
       map_(std::make_shared<map::Map>(options.covisibility)) {
   if (options_.vocabulary) places_ = std::make_shared<place::KeyFrameDatabase>(options_.vocabulary);
   loop_closer_ = std::make_unique<loop::LoopCloser>(options_.loop, map_, options_.loop.bag_of_words ? places_ : nullptr);
@@ -54,55 +52,33 @@ SlamSystem::SlamSystem(const SlamOptions& options)
 
 SlamSystem::~SlamSystem() { finish(); }
 
-cv::Mat SlamSystem::toGray(const io::RgbdFrame& frame) {
-  core::require(frame.bgr.type() == CV_8UC3, "SlamSystem: colour image must be CV_8UC3");
-  cv::Mat gray;
-  cv::cvtColor(frame.bgr, gray, cv::COLOR_BGR2GRAY);
-  return gray;
-}
-
-ExtractedFeatures SlamSystem::extract(const io::RgbdFrame& frame) const {
-  core::Stopwatch watch;
-  const cv::Mat gray = toGray(frame);
-  const double convert_ms = watch.elapsedMs();
-  ExtractedFeatures out = extractGray(gray);
-  out.extract_ms += convert_ms;
-  return out;
-}
-
-ExtractedFeatures SlamSystem::extractGray(const cv::Mat& gray, const cv::Mat& allowed) const {
-  core::Stopwatch watch;
-  ExtractedFeatures out;
-  out.gray = gray;
-  extractor_.extract(out.gray, out.keypoints, out.descriptors, allowed);
-  out.extract_ms = watch.elapsedMs();
-  return out;
-}
-
-FrameOutput SlamSystem::processFrame(const io::RgbdFrame& frame, const FrameExtras& extras) {
-  return track(frame, extract(frame), extras);
-}
-
-FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeatures& features,
-                              const FrameExtras& extras) {
+FrameOutput SlamSystem::track(const TrackInput& input) {
   core::require(!finished_, "SlamSystem: frame given after finish()");
   mapper_->rethrowIfFailed();  // the frame boundary where a mapping failure reaches the caller
-  core::require(frame.depth.type() == CV_32F, "SlamSystem: depth image must be CV_32F metres");
+  core::require(input.depth.type() == CV_32F, "SlamSystem: depth image must be CV_32F metres");
   core::require(map_loaded_ || !options_.tracking.localization_only,
                 "SlamSystem: localization mode needs a loaded map (--load-map FILE)");
+  const ExtractedFeatures& features = input.features;
   core::Stopwatch total, watch;
   FrameOutput out;
   out.extract_ms = features.extract_ms;
   map::FrameBuildStats build;
-  auto built = map::buildFrameFeatures(*sensor_, features.keypoints, features.descriptors, frame.depth,
-                                       extras.dynamic_mask, &build);
-  map::Frame f = map::makeFrame(next_frame_id_++, frame.timestamp, sensor_, std::move(built),
-                                map::makeThumbnail(features.gray), extras.dynamic_mask);
-  if (!extras.dynamic_mask.empty()) f.depth_image = frame.depth;
+  auto built = map::buildFrameFeatures(*sensor_, features.keypoints, features.descriptors, input.depth,
+                                       input.dynamic_mask, &build);
+  map::Frame f = map::makeFrame(next_frame_id_++, input.timestamp, sensor_, std::move(built),
+                                map::makeThumbnail(features.gray), input.dynamic_mask);
+  if (!input.dynamic_mask.empty()) f.depth_image = input.depth;
   out.build_ms = watch.elapsedMs();
   watch.restart();
-  out.track = tracker_->track(std::move(f), extras.initial_T_cw);
+  out.track = tracker_->track(std::move(f), input.initial_T_cw);
   out.track_ms = watch.elapsedMs();
+  out.view.state = tracker_->state();
+  out.view.velocity = tracker_->velocity();
+  out.view.reference_kf = tracker_->referenceKeyFrameId();
+  if (input.reference_keyframe_view) {
+    out.view.reference_keyframe =
+        std::make_shared<const tracking::ReferenceKeyFrameView>(tracker_->referenceKeyFrameView());
+  }
   out.keypoints = build.extracted - build.removed_dynamic;
   out.removed_dynamic = build.removed_dynamic;
   out.with_depth = build.with_depth;
@@ -122,7 +98,7 @@ FrameOutput SlamSystem::track(const io::RgbdFrame& frame, const ExtractedFeature
   stats_.relocalized += out.track.relocalized;
   stats_.keyframes_created += out.track.new_keyframe;
   FrameRecord record;
-  record.timestamp = frame.timestamp;
+  record.timestamp = input.timestamp;
   record.state = out.track.state;
   record.reference_kf = out.track.reference_kf;
   record.T_cr = out.track.T_cr;

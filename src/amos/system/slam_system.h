@@ -1,9 +1,11 @@
 #pragma once
-// The SLAM system as one object: processFrame() runs the per-frame pipeline in the caller's thread
-//   grey conversion -> ORB extraction -> frame build (undistortion, depth, dynamic-mask removal) -> tracking
-// while local mapping runs in its own thread. The pipeline is also available in two halves (extract() and
-// track()), so the caller can overlap other per-frame work (the person segmenter) with extraction and hand the
-// resulting dynamic mask to track().
+// The SLAM core as one object, fed by one call: track() takes a frame whose ORB features were already extracted
+// (stage A of the pipeline, frame_scheduler.h, owns the extractor) together with what the dynamic front end made of
+// it (the dynamic mask, an initial pose), builds the frame (undistortion, depth, removal of the dynamic keypoints)
+// and tracks it in the caller's thread, while local mapping runs in its own thread. It returns the pose and a
+// TrackingView: the tracking state the front end needs for the next frame (state, velocity, reference keyframe),
+// as values. Nothing outside reaches into the tracker, so the tracker's state can change only through track(), and
+// the front end sees exactly what the core chose to show it.
 //
 // Every frame's pose is stored relative to its reference keyframe (T_cr), and trajectory() composes it with the
 // keyframe's current pose, so bundle-adjustment corrections made after a frame was tracked reach the output
@@ -37,7 +39,7 @@ namespace amos::system {
 struct SlamOptions {
   core::CameraIntrinsics camera;       // Camera.*
   map::SensorOptions sensor;           // Camera.bf, ThDepth
-  feature::OrbOptions orb;             // ORBextractor.*
+  feature::OrbOptions orb;             // ORBextractor.*: the scale pyramid of the features track() is given
   map::CovisibilityOptions covisibility;  // Mapping.covisibilityMinWeight
   tracking::TrackerOptions tracking;   // Tracking.*, Matching.*, Relocalization.*
   mapping::LocalMappingOptions mapping;  // Mapping.*, LocalBA.*
@@ -54,21 +56,40 @@ struct SlamOptions {
   void check() const;
 };
 
-// Per-frame extras from the dynamic front end (paper Sec. III).
-struct FrameExtras {
-  cv::Mat dynamic_mask;                    // CV_8U, 255 = dynamic; keypoints there are removed before matching
-  std::optional<core::SE3> initial_T_cw;   // initial pose from outside (replaces / competes with the motion model)
-};
-
 struct ExtractedFeatures {
-  cv::Mat gray;
+  cv::Mat gray;                         // the grey image they were detected in (CV_8U)
   std::vector<cv::KeyPoint> keypoints;  // distorted, as detected
   cv::Mat descriptors;
   double extract_ms = 0;
 };
 
+// One frame as the pipeline hands it to the core: its depth, the ORB features of its grey image, and the dynamic
+// front end's results (paper Sec. III).
+struct TrackInput {
+  double timestamp = 0;
+  cv::Mat depth;                          // CV_32F metres
+  ExtractedFeatures features;             // extracted with SlamOptions::orb (the sensor's scale pyramid)
+  cv::Mat dynamic_mask;                   // CV_8U, 255 = dynamic; keypoints there are removed before matching
+  std::optional<core::SE3> initial_T_cw;  // initial pose from outside (replaces / competes with the motion model)
+  // Whether the output's view carries the reference keyframe's keypoints and points: a copy of each keypoint
+  // under the map's lock, so only for a caller that reads them (the geometric stage's initial-pose models).
+  bool reference_keyframe_view = false;
+};
+
+// The tracking state after a frame, as values (nothing in it refers into the tracker or the map): what the dynamic
+// front end reads of the core before it judges and tracks the next frame.
+struct TrackingView {
+  tracking::TrackingState state = tracking::TrackingState::kNotInitialized;
+  std::optional<core::SE3> velocity;                // constant-velocity motion (T_cur_last), when known
+  map::KeyFrameId reference_kf = map::kNoKeyFrame;  // the tracker's reference keyframe
+  // Its keypoints and map points (when TrackInput::reference_keyframe_view asked for them, else null). Immutable,
+  // so shared: the pipeline keeps it for the next frame while the caller reads the frame's output.
+  std::shared_ptr<const tracking::ReferenceKeyFrameView> reference_keyframe;
+};
+
 struct FrameOutput {
   tracking::TrackResult track;
+  TrackingView view;
   int keypoints = 0, removed_dynamic = 0, with_depth = 0;
   double extract_ms = 0, build_ms = 0, track_ms = 0, total_ms = 0;
 };
@@ -87,14 +108,9 @@ class SlamSystem {
   SlamSystem(const SlamSystem&) = delete;
   SlamSystem& operator=(const SlamSystem&) = delete;
 
-  FrameOutput processFrame(const io::RgbdFrame& frame, const FrameExtras& extras = {});
-  // The two halves of processFrame(): extraction needs only the image; track() takes the rest.
-  ExtractedFeatures extract(const io::RgbdFrame& frame) const;
-  // extract() on a frame already converted to grey (CV_8U). `allowed` (optional, CV_8U, image size, 0 = do not
-  // detect there) keeps keypoints out of known dynamic regions, so that the feature budget goes to the rest.
-  ExtractedFeatures extractGray(const cv::Mat& gray, const cv::Mat& allowed = cv::Mat()) const;
-  static cv::Mat toGray(const io::RgbdFrame& frame);
-  FrameOutput track(const io::RgbdFrame& frame, const ExtractedFeatures& features, const FrameExtras& extras = {});
+  // The one entry point for frames: builds the input's frame and tracks it (see the header comment). Throws
+  // core::Error after finish(), for a depth image that is not CV_32F, and with the mapping thread's failure.
+  FrameOutput track(const TrackInput& input);
 
   // Starts from a saved map (mapio/map_file.h) instead of an empty one; call before the first frame. The first
   // frame is then relocalised in it (cold start). Without options.tracking.localization_only the map is extended
@@ -120,7 +136,7 @@ class SlamSystem {
   SlamStats stats() const;
   const core::StageTimes& times() const { return times_; }
 
-  const tracking::Tracker& tracker() const { return *tracker_; }
+  const SlamOptions& options() const { return options_; }
   map::Map& map() { return *map_; }
   const map::Map& map() const { return *map_; }
   // The map for observers that may outlive this system (the viewer's publisher thread; report/run_observer.h).
@@ -139,7 +155,6 @@ class SlamSystem {
 
   SlamOptions options_;
   std::shared_ptr<const map::Sensor> sensor_;
-  feature::OrbExtractor extractor_;
   std::shared_ptr<map::Map> map_;
   core::StageTimes times_;
   std::shared_ptr<place::KeyFrameDatabase> places_;  // null without a vocabulary

@@ -1,4 +1,4 @@
-// The whole SLAM system (extraction, tracking, local mapping, loop closing in lock-step) on short synthetic
+// The whole SLAM system (frame building, tracking, local mapping, loop closing in lock-step) on short synthetic
 // sequences with known trajectories: the trajectory it reports is the true one, and a dynamic mask that covers a
 // mover keeps the mover out of the map and out of the pose.
 #include "amos/system/slam_system.h"
@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "amos/testing/pose_matchers.h"
+#include "amos/testing/slam_input.h"
 #include "amos/testing/synthetic_scene.h"
 #include "amos/testing/test_camera.h"
 
@@ -35,12 +36,12 @@ struct SlamRun {
 // Runs every frame of seq; with_mask: each frame's mover mask is its dynamic mask.
 SlamRun runSlam(const testing::SyntheticSequence& seq, bool with_mask) {
   SlamSystem slam(testOptions());
+  const feature::OrbExtractor orb(slam.options().orb);
   SlamRun run;
   for (int i = 0; i < seq.size(); ++i) {
     const testing::SyntheticView view = seq.view(i);
-    FrameExtras extras;
-    if (with_mask) extras.dynamic_mask = view.mover_mask;
-    run.frames.push_back(slam.processFrame(testing::SyntheticSequence::toRgbdFrame(view, i, seq.timestamp(i)), extras));
+    const io::RgbdFrame frame = testing::SyntheticSequence::toRgbdFrame(view, i, seq.timestamp(i));
+    run.frames.push_back(slam.track(testing::trackInput(orb, frame, with_mask ? view.mover_mask : cv::Mat())));
   }
   slam.finish();
   EXPECT_FALSE(slam.workerFailure());

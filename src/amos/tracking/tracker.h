@@ -6,7 +6,8 @@
 // Hooks for the dynamic front end (paper Sec. III): keypoints inside the frame's dynamic mask are removed when the
 // frame is built (map::buildFrameFeatures) and map points that project into the mask are counted
 // (MapPoint::dynamicHits); an externally supplied initial pose can replace or compete with the constant-velocity
-// prediction; lastPose(), velocity() and referenceKeyFrameView() expose what the front end needs.
+// prediction; state(), velocity(), referenceKeyFrameId() and referenceKeyFrameView() expose what the front end
+// needs, which the SLAM system hands it as values (system::TrackingView).
 //
 // A tracker given a map that already has keyframes (a loaded map) starts lost: the first frame is relocalised in
 // that map (cold start) instead of initialising a new one.
@@ -150,6 +151,8 @@ class Tracker {
   // Pose of the last tracked frame, the constant-velocity motion (T_cur_last), if known.
   std::optional<core::SE3> lastPose() const;
   std::optional<core::SE3> velocity() const { return velocity_; }
+  // The reference keyframe's id (map::kNoKeyFrame before the map exists), and the keyframe as the front end sees it.
+  map::KeyFrameId referenceKeyFrameId() const { return reference_kf_ ? reference_kf_->id() : map::kNoKeyFrame; }
   ReferenceKeyFrameView referenceKeyFrameView() const;
   const map::Frame& lastFrame() const { return last_frame_; }
 
