@@ -22,8 +22,6 @@
 #include "amos/config/settings.h"
 #include "amos/config/slam_options.h"
 #include "amos/dynamic/dynamic_front_end.h"
-#include "amos/dynamic/motion_hold.h"
-#include "amos/dynamic/rigid_mover_depth.h"
 #include "amos/segmentation/model_locator.h"
 #include "amos/segmentation/segmenter_factory.h"
 #include "amos/dynamic/superpixel_metrics.h"
@@ -190,38 +188,6 @@ void BM_DepthEvidence(benchmark::State& state) {
 }
 BENCHMARK(BM_DepthEvidence)->Unit(benchmark::kMillisecond);
 
-// The temporal hold (motion_hold.h) of one Bonn frame pair, as the front end runs it with Dynamic.Temporal.holdFrames:
-// the last frame's scores carried into the current frame under the initial pose. Evidence on every third superpixel
-// and a score of 5 everywhere in the last frame, so that raising, carrying and holding all have work.
-void BM_MotionHold(benchmark::State& state) {
-  const BenchData& d = data();
-  const SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
-  const int count = static_cast<int>(seg.superpixels.size());
-  cv::Mat evidence(seg.labels.size(), CV_8U, cv::Scalar(0));
-  for (int y = 0; y < seg.labels.rows; ++y)
-    for (int x = 0; x < seg.labels.cols; ++x)
-      if (seg.labels.at<int>(y, x) % 3 == 0) evidence.at<std::uint8_t>(y, x) = 255;
-  const DepthSampleGrid grid(d.camera, 4);
-  MotionHoldInput in;
-  in.evidence_mask = &evidence;
-  in.labels = &seg.labels;
-  in.count = count;
-  in.depth = &d.current.depth;
-  in.T_cw = d.T_cw_initial;
-  const MotionHold first = holdMotion(in, d.camera, grid, DepthEvidenceOptions{}, 30, 3);
-  const cv::Mat last_score(first.score.size(), CV_8U, cv::Scalar(5));
-  in.last_score = &last_score;
-  in.last_depth = &d.last.depth;
-  MotionHold h;
-  for (auto _ : state) {
-    h = holdMotion(in, d.camera, grid, DepthEvidenceOptions{}, 30, 3);
-    benchmark::DoNotOptimize(h.held_superpixels);
-  }
-  state.counters["superpixels"] = count;
-  state.counters["held"] = h.held_superpixels;
-}
-BENCHMARK(BM_MotionHold)->Unit(benchmark::kMillisecond);
-
 // The long-baseline tracks (baseline_tracks.h) of one Bonn frame's tracked points, as the front end runs them with
 // Dynamic.BaselineTracks.enabled (both pyramids built inside, as there), here against the last frame, whose pose
 // (identity) is known: the frame 10 back would cost the same.
@@ -288,26 +254,6 @@ void BM_RigidMovers(benchmark::State& state) {
 }
 BENCHMARK(BM_RigidMovers)->Unit(benchmark::kMillisecond);
 
-// The rigid movers' depth votes (rigid_mover_depth.h, Dynamic.RigidMovers.depthVotes) for the mover of
-// BM_RigidMovers' frame: every baseline depth sample lifted, moved by each hypothesis and read in the current depth.
-void BM_RigidMoverDepthVotes(benchmark::State& state) {
-  const BenchData& d = data();
-  const DynamicOptions options;
-  const RigidMoverFrame f = rigidMoverFrame(d, options);
-  const RigidMoverVerdict v = rigidMovers(d, f, options);
-  const DepthSampleGrid grid(d.camera, options.depth.sample_step_px);
-  std::vector<RigidSampleVote> votes;
-  for (auto _ : state) {
-    votes = rigidMoverDepthVotes(v.movers, v.T_bc_static, d.current.depth, d.current.depth, d.camera, grid,
-                                 f.segmentation.labels, f.count, options.rigid_movers.region_reach_px,
-                                 options.reprojection.depth_edge_ratio, options.depth);
-    benchmark::DoNotOptimize(votes.data());
-  }
-  state.counters["movers"] = static_cast<double>(v.movers.size());
-  state.counters["votes"] = static_cast<double>(votes.size());
-}
-BENCHMARK(BM_RigidMoverDepthVotes)->Unit(benchmark::kMillisecond);
-
 void BM_CornerTracking(benchmark::State& state) {
   const BenchData& d = data();
   const CornerTrackingOptions options;
@@ -317,16 +263,15 @@ void BM_CornerTracking(benchmark::State& state) {
 }
 BENCHMARK(BM_CornerTracking)->Unit(benchmark::kMillisecond);
 
-// Corner detection alone on the real frame. Arg: Dynamic.Corners.gridCells (1 = the image's strongest only).
+// Corner detection alone on the real frame.
 void BM_DetectCorners(benchmark::State& state) {
   const BenchData& d = data();
-  CornerTrackingOptions options;
-  options.grid_cells = static_cast<int>(state.range(0));
+  const CornerTrackingOptions options;
   std::vector<cv::Point2f> corners;
   for (auto _ : state) corners = detectCorners(d.last.gray, options);
   state.counters["corners"] = static_cast<double>(corners.size());
 }
-BENCHMARK(BM_DetectCorners)->ArgName("grid")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DetectCorners)->Unit(benchmark::kMillisecond);
 
 // One frame pair's LK pyramids (both frames, with derivatives), the part of BM_CornerTracking that can be reused.
 void BM_BuildPyramids(benchmark::State& state) {
@@ -469,7 +414,7 @@ BENCHMARK(BM_FrontEndGeometry)->Unit(benchmark::kMillisecond);
 // pyramid, corners and superpixels are prepared, while frame k is tracked), and with settings changed from the
 // file's: args {look_ahead 0/1, Segmentation.mask_input_size, Dynamic.LK.window, Dynamic.LK.maxIterations, LK
 // epsilon in 1/1000 px, OpenCV threads (0 = OpenCV's default), System.deterministic 0/1, Segmentation.input_shape
-// 0 = square / 1 = frame, Dynamic.InitialPose.keyframeForwardBackward 0/1}. One iteration = one pass over
+// 0 = square / 1 = frame}. One iteration = one pass over
 // the 270 frames. Counters: fps (wall), cpu_ms per frame (all threads of the
 // process, from getrusage), ATE RMSE in metres, lost frames, and the median wait for the masks. Run it from the
 // repository root (it reads configs/bonn.yaml):
@@ -492,7 +437,6 @@ void BM_BonnFullSequence(benchmark::State& state) {
   const int cv_threads = static_cast<int>(state.range(5));
   const bool deterministic = state.range(6) != 0;
   settings.segmentation.input_shape = state.range(7) == 0 ? "square" : "frame";
-  settings.dynamic.initial_pose.keyframe_forward_backward = state.range(8) != 0;
   const int default_threads = cv::getNumThreads();
   settings.segmentation.threads = cv_threads;  // applied by the segmenter; 0 leaves OpenCV's default
   double fps = 0, cpu_ms = 0, ate = 0, lost = 0, wait_ms = 0, keyframe_points_median = 0;
@@ -551,18 +495,17 @@ void BM_BonnFullSequence(benchmark::State& state) {
   cv::setNumThreads(default_threads);
 }
 BENCHMARK(BM_BonnFullSequence)
-    ->Args({0, 256, 15, 30, 10, 0, 0, 0, 1})  // the front end as it was: no look-ahead, export shapes, OpenCV threads
-    ->Args({1, 160, 15, 30, 10, 1, 0, 0, 0})  // defaults (with the look-ahead runSequence needs to pass)
-    ->Args({0, 256, 15, 30, 10, 0, 1, 0, 1})
-    ->Args({1, 256, 15, 30, 10, 0, 1, 0, 1})
-    ->Args({1, 256, 15, 30, 10, 1, 1, 0, 1})
-    ->Args({1, 256, 15, 30, 10, 1, 1, 1, 1})
-    ->Args({1, 160, 15, 30, 10, 1, 1, 0, 1})
-    ->Args({1, 160, 15, 30, 10, 1, 1, 1, 1})
-    ->Args({1, 160, 11, 30, 10, 1, 0, 0, 0})  // LK window 11 (proposed for configs/bonn.yaml)
-    ->Args({1, 160, 11, 30, 10, 1, 0, 0, 1})  // ... with model 1's backward LK pass (the default before)
+    ->Args({0, 256, 15, 30, 10, 0, 0, 0})  // the front end as it was: no look-ahead, export shapes, OpenCV threads
+    ->Args({1, 160, 15, 30, 10, 1, 0, 0})  // defaults (with the look-ahead runSequence needs to pass)
+    ->Args({0, 256, 15, 30, 10, 0, 1, 0})
+    ->Args({1, 256, 15, 30, 10, 0, 1, 0})
+    ->Args({1, 256, 15, 30, 10, 1, 1, 0})
+    ->Args({1, 256, 15, 30, 10, 1, 1, 1})
+    ->Args({1, 160, 15, 30, 10, 1, 1, 0})
+    ->Args({1, 160, 15, 30, 10, 1, 1, 1})
+    ->Args({1, 160, 11, 30, 10, 1, 0, 0})  // LK window 11 (proposed for configs/bonn.yaml)
     ->ArgNames({"look_ahead", "mask_input", "lk_window", "lk_iters", "lk_eps_milli", "cv_threads", "deterministic",
-                "frame_shape", "keyframe_fb"})
+                "frame_shape"})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kSecond);

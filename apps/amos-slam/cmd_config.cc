@@ -1,6 +1,7 @@
 // amos-slam config: what the settings files can say. --keys-markdown prints the key tables of configs/README.md
-// (every key with its default and meaning, made from the key lists in amos::config); --update-readme FILE writes
-// them into FILE between its marker lines; --check FILE loads a settings file as a run would.
+// (every key with its default and meaning, made from the key lists in amos::config; experimental keys are marked);
+// --keys prints one line per key (name, default, "experimental" when it is one); --update-readme FILE writes the
+// tables into FILE between its marker lines; --check FILE loads a settings file as a run would.
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -16,11 +17,21 @@ namespace {
 
 struct ConfigArgs {
   bool keys_markdown = false;
+  bool keys = false;
   std::string readme, check;
 };
 
 void runConfig(const ConfigArgs& args, int& exit_code) {
   if (args.keys_markdown) std::cout << config::keysMarkdown();
+  if (args.keys) {
+    config::Settings defaults;
+    for (const auto& section : config::settingsKeys(defaults)) {
+      for (const auto& key : section.keys) {
+        std::cout << key.name() << " " << (key.isRequired() ? "required" : key.defaultValue())
+                  << (key.isExperimental() ? " experimental" : "") << "\n";
+      }
+    }
+  }
   if (!args.readme.empty()) {
     std::ifstream in(args.readme);
     core::require(in.good(), "cannot read " + args.readme);
@@ -49,6 +60,9 @@ void addConfigCommand(CLI::App& app, int& exit_code) {
       app.add_subcommand("config", "The settings keys: print their tables, update configs/README.md, check a file");
   cmd->add_flag("--keys-markdown", args->keys_markdown,
                 "Print every settings key with its default and meaning, as the markdown tables of configs/README.md");
+  cmd->add_flag("--keys", args->keys,
+                "Print every settings key on a line of its own: name, default, and \"experimental\" for an experiment's "
+                "switch");
   cmd->add_option("--update-readme", args->readme,
                   "Write those tables into this file (configs/README.md) between its key-table marker lines")
       ->check(CLI::ExistingFile);

@@ -20,9 +20,6 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.mode", &o.mode, dynamicModes(),
         "which stages make the dynamic mask: none (plain SLAM), prior (person segmentation), geometry (superpixel "
         "clusters judged by reprojection and epipolar tests), full (both, the paper's system)");
-  s.add("Dynamic.judgePriorRegions", &o.judge_prior_regions,
-        "1 = a segmented region stays masked only with `Dynamic.Epipolar.minDynamicPoints` epipolar violators; 0 = "
-        "every one is masked (the paper)");
   s.add("Dynamic.priorMaskedExtraction", &o.prior_masked_extraction,
         "ORB features are detected outside the (previous frame's) person masks in the first place");
   s.add("Dynamic.priorMaskedExtractionCoverage", &o.prior_masked_extraction_coverage,
@@ -62,9 +59,6 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.Corners.minDistance", &o.tracking.min_distance_px, "distance between corners at least (px)");
   s.add("Dynamic.Corners.detectionScale", &o.tracking.detection_scale,
         "corners are detected on the image scaled by this, and tracked at full resolution");
-  s.add("Dynamic.Corners.gridCells", &o.tracking.grid_cells,
-        "G > 1: half of the corners spread over a G x G grid (each cell ranked on its own), the rest the strongest; "
-        "1: the strongest only");
   s.add("Dynamic.LK.window", &o.tracking.lk_window, "side of the LK window (px, odd)");
   s.add("Dynamic.LK.pyramidLevels", &o.tracking.lk_levels, "LK pyramid levels above the image");
   s.add("Dynamic.LK.maxIterations", &o.tracking.lk_max_iterations, "LK iterations per level at most");
@@ -115,25 +109,12 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "1 = the mask is decided per superpixel, 0 = it is the union of the dynamic clusters");
   s.add("Dynamic.Boundary.seedOutsideClusters", &o.boundary.seed_outside_clusters,
         "superpixels outside the dynamic clusters whose own tracks move under the refitted pose are seeds too");
-  s.add("Dynamic.Boundary.stillSigmas", &o.boundary.still_sigmas,
-        "with a pose refit, a dynamic cluster's motion, which the tracks that move with it follow, counts from this "
-        "many times the static tracks' noise scale (if below the confirmation threshold); 0 = from the threshold");
-  s.add("Dynamic.Boundary.maxDynamicStep", &o.boundary.max_dynamic_step,
-        "the mask grows into a trackless superpixel only from a neighbour at most this dissimilar (Eq. 1 without "
-        "the position term); 0 = any");
-  s.add("Dynamic.Boundary.growFromConfirmed", &o.boundary.grow_from_confirmed,
-        "a dynamic cluster whose mean error under the refitted pose is at least this many times the confirmation "
-        "threshold seeds the growth over unmeasured superpixels of the same surface; 0 = off");
   s.add("Dynamic.Temporal.excludeFromFits", &o.temporal.exclude_last_mask_from_fits,
         "tracks starting in the last frame's mask take no part in the last-frame initial-pose model, the pose refit "
         "and the F fit");
-  s.add("Dynamic.Temporal.holdFrames", &o.temporal.hold_frames,
-        "0 = off; else a surface found moving in n frames stays dynamic for the n - 1 frames after it was last found, "
-        "at most this many");
-  s.add("Dynamic.Temporal.holdMinFrames", &o.temporal.hold_min_frames,
-        "only a surface found moving in at least this many frames is held (for n - this + 1 frames after n)");
   s.add("Dynamic.Depth.enabled", &o.depth.enabled,
-        "superpixels whose depth moved against the last frame's (under the judged pose) are dynamic evidence too");
+        "superpixels whose depth moved against the last frame's (under the judged pose) are dynamic evidence too")
+      .experimental();
   s.add("Dynamic.Depth.sampleStep", &o.depth.sample_step_px, "every step-th pixel in x and y is a depth sample");
   s.add("Dynamic.Depth.noiseBase", &o.depth.noise_base_m, "axial depth noise sigma(z) = base + quadratic (z - offset)^2 (m)");
   s.add("Dynamic.Depth.noiseQuadratic", &o.depth.noise_quadratic, "... its quadratic term (1/m)");
@@ -154,16 +135,14 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "a cluster too poor in tracks to be scored is dynamic with this many moving superpixels");
   s.add("Dynamic.Depth.baselineFrames", &o.depth.baseline_frames,
         "the depth is also compared with that of the frame this many frames back, for slow movers (0 = off)");
-  s.add("Dynamic.Depth.baselineMinFrames", &o.depth.baseline_min_frames,
-        "while fewer frames are kept (a sequence's start, after a loss), the oldest serves once this many back (0 = "
-        "off)");
   s.add("Dynamic.Depth.baselineRelativeResidual", &o.depth.baseline_relative_residual,
         "minRelativeResidual of that comparison");
   s.add("Dynamic.Depth.clusterShare", &o.depth.cluster_share,
         "a cluster is dynamic when this share of its depth samples lies in moving superpixels");
   s.add("Dynamic.BaselineTracks.enabled", &o.baseline_tracks.enabled,
         "the current frame's points are also tracked into the frame Dynamic.Depth.baselineFrames back and judged "
-        "by their reprojection error there, for movers too slow for one frame");
+        "by their reprojection error there, for movers too slow for one frame")
+      .experimental();
   s.add("Dynamic.BaselineTracks.sigmas", &o.baseline_tracks.sigmas,
         "a point moves when its error (less the median error of all points) exceeds this many noise scales ...");
   s.add("Dynamic.BaselineTracks.minMotion", &o.baseline_tracks.min_motion_px, "... and this many pixels");
@@ -171,28 +150,15 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
         "moving points a superpixel or a cluster needs to move");
   s.add("Dynamic.BaselineTracks.clusterShare", &o.baseline_tracks.cluster_share,
         "a cluster is dynamic when this share of its points moves");
-  s.add("Dynamic.BaselineTracks.poolNeighbours", &o.baseline_tracks.pool_neighbours,
-        "a superpixel's vote also counts the points of its neighbours on the same surface (no occlusion edge "
-        "between them), unless its own points are mostly static");
-  s.add("Dynamic.BaselineTracks.pooledVotes", &o.baseline_tracks.pooled_votes,
-        "moving points such a pooled count needs (and more than its static ones)");
-  s.add("Dynamic.BaselineTracks.densifyPoints", &o.baseline_tracks.densify_points,
-        "where a point moved, up to this many more points are followed in its superpixel and its neighbours on "
-        "the same surface (0 = off)");
-  s.add("Dynamic.BaselineTracks.densifyGrid", &o.baseline_tracks.densify_grid_px,
-        "grid step of those points' candidate pixels [px]");
-  s.add("Dynamic.BaselineTracks.densifyMinGradient", &o.baseline_tracks.densify_min_gradient,
-        "RMS intensity gradient such a candidate needs in its weakest direction [grey levels per px]");
-  s.add("Dynamic.BaselineTracks.growOverSurface", &o.baseline_tracks.grow_over_surface,
-        "the mask may grow from superpixels whose long-baseline points move over unmeasured superpixels of the same "
-        "surface, outside the dynamic clusters too");
   s.add("Dynamic.BaselineTracks.growDissimilarity", &o.baseline_tracks.grow_dissimilarity,
-        "largest Eq. 1 dissimilarity (no position term) of one step of that growth");
+        "largest Eq. 1 dissimilarity (no position term) of one step of the surface growth from the rigid movers' "
+        "superpixels (`Dynamic.RigidMovers.growOverSurface`)");
 
   s.add("Dynamic.RigidMovers.enabled", &o.rigid_movers.enabled,
         "the rigid motions of the moving long-baseline points are fitted and every textured sample of the frame is "
         "judged by which motion, the static world's or a mover's, explains it over the baseline (acts only with "
-        "Dynamic.BaselineTracks.enabled)");
+        "Dynamic.BaselineTracks.enabled)")
+      .experimental();
   s.add("Dynamic.RigidMovers.minInliers", &o.rigid_movers.min_inliers, "moving points one rigid motion must explain");
   s.add("Dynamic.RigidMovers.inlierPx", &o.rigid_movers.inlier_px,
         "reprojection error of such a point over the baseline [px]");
@@ -211,19 +177,14 @@ KeySection dynamicKeys(dynamic::DynamicOptions& o) {
   s.add("Dynamic.RigidMovers.growOverSurface", &o.rigid_movers.grow_over_surface,
         "the mask may grow from the superpixels that follow a rigid mover over unmeasured superpixels of the same "
         "surface (steps of at most Dynamic.BaselineTracks.growDissimilarity), outside the dynamic clusters too, within "
-        "Dynamic.RigidMovers.regionReach of the movers' points");
-  s.add("Dynamic.RigidMovers.depthVotes", &o.rigid_movers.depth_votes,
-        "the baseline frame's depth samples vote too: for a mover where its motion matches the current depth and the "
-        "current frame sees through the static world's prediction, and the other way round (needs "
-        "Dynamic.Depth.enabled for the sample grid and the noise model)");
+        "Dynamic.RigidMovers.regionReach of the movers' points")
+      .experimental();
 
   s.add("Dynamic.InitialPose.selectByCoverage", &o.initial_pose.select_by_coverage,
         "1 = of the initial-pose hypotheses and models with at least half the most inliers, the one whose inliers "
         "cover the most image cells wins; 0 = the most inliers");
   s.add("Dynamic.InitialPose.inlierThreshold", &o.initial_pose.inlier_threshold_px,
         "reprojection error of an inlier of the initial-pose models (px)");
-  s.add("Dynamic.InitialPose.keyframeForwardBackward", &o.initial_pose.keyframe_forward_backward,
-        "the reference-keyframe model's tracks pass the forward-backward check too");
   s.add("Dynamic.InitialPose.keyframeMaxPoints", &o.initial_pose.keyframe_max_points,
         "reference-keyframe points that model tracks at most (0 = all)");
   s.add("Dynamic.InitialPose.minimalSolver", &o.initial_pose.pnp.minimal_solver,

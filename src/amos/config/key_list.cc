@@ -74,6 +74,11 @@ SettingsKey& SettingsKey::defaultIs(std::string text) {
   return *this;
 }
 
+SettingsKey& SettingsKey::experimental() {
+  experimental_ = true;
+  return *this;
+}
+
 std::string SettingsKey::nameIn(const YamlReader& in) const {
   std::string found = in.has(name_) ? name_ : std::string();
   for (const auto& old : former_) {
@@ -120,7 +125,7 @@ std::string keyTablesMarkdown(const std::vector<KeySection>& sections) {
   for (const auto& section : sections) {
     out += fmt::format("### {}\n\n| key | default | meaning |\n|---|---|---|\n", section.title);
     for (const auto& key : section.keys) {
-      std::string meaning = key.description();
+      std::string meaning = key.isExperimental() ? "*experimental:* " + key.description() : key.description();
       if (key.kind() == SettingsKey::Kind::kChoice) {
         meaning += fmt::format(" (`{}`)", fmt::join(key.choices(), "`, `"));
       }

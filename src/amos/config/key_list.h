@@ -30,12 +30,17 @@ class SettingsKey {
   SettingsKey& required();
   // The default as documented, when it is not the member's value when the list is made (it follows another key).
   SettingsKey& defaultIs(std::string text);
+  // The key switches on an experiment (e.g. an evidence source added after the paper): off by default, on in at
+  // least one shipped config (a test checks that), marked as such in the key tables. An experiment that no shipped
+  // config turns on is deleted, with a record in docs/experiments/.
+  SettingsKey& experimental();
 
   const std::string& name() const { return name_; }
   const std::string& description() const { return description_; }
   const std::string& defaultValue() const { return default_; }
   const std::vector<std::string>& formerNames() const { return former_; }
   bool isRequired() const { return required_; }
+  bool isExperimental() const { return experimental_; }
   Kind kind() const { return kind_; }
   const std::vector<std::string>& choices() const { return choices_; }
   const void* member() const { return member_; }
@@ -57,6 +62,7 @@ class SettingsKey {
   std::string name_, description_, default_;
   std::vector<std::string> former_, choices_;
   bool required_ = false;
+  bool experimental_ = false;
   Kind kind_;
   const void* member_;
   Reader read_;
@@ -86,7 +92,8 @@ struct KeySection {
 
 // The key of `member` in `sections`, or nullptr when no key sets it.
 const SettingsKey* keyOf(const std::vector<KeySection>& sections, const void* member);
-// One markdown table (key, default, meaning) per section, each under a "### title" heading.
+// One markdown table (key, default, meaning) per section, each under a "### title" heading; an experimental key's
+// meaning starts with "*experimental:*".
 std::string keyTablesMarkdown(const std::vector<KeySection>& sections);
 
 // Throws core::Error "file:line: key 'K' must be one of a, b, got 'text'".

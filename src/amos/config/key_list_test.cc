@@ -178,9 +178,6 @@ TEST(SettingsKeys, ARuleRelatingTwoKeysNamesBoth) {
   const std::pair<std::string, std::string> cases[] = {
       {"Dynamic.Prior.lag: 5\n", "t.yaml:5: Dynamic.Prior.lag (5) must not exceed Dynamic.Prior.interval (3)"},
       {"Dynamic.Prior.interval: 1\n", "t.yaml:5: Dynamic.Prior.lag (2) must not exceed Dynamic.Prior.interval (1)"},
-      {"Dynamic.Temporal.holdFrames: 250\nDynamic.Temporal.holdMinFrames: 10\n",
-       "t.yaml:6: Dynamic.Temporal.holdMinFrames must be >= 2 and at most 256 - holdFrames (250), got 10 (see "
-       "Dynamic.Temporal.holdFrames at t.yaml:5)"},
       {"Tracking.localMinInliers: 60\n",
        "t.yaml:5: Tracking.relocMinInliers must be >= Tracking.localMinInliers = 60, got 50"},
       {"Camera.width: 300\n",
@@ -270,6 +267,32 @@ TEST(SettingsKeys, EveryShippedConfigLoadsWithoutAWarning) {
   EXPECT_GE(configs, 4u);
 }
 
+// An experiment stays only while a shipped config turns it on (sets it to a value other than its default); one that
+// no config uses is deleted, with a record in docs/experiments/ (the style guide's "options that end").
+TEST(SettingsKeys, EveryExperimentalKeyIsTurnedOnInAShippedConfig) {
+  Settings defaults;
+  const std::map<std::string, std::string> default_values = valuesOf(defaults);
+  std::map<std::string, std::vector<std::string>> turned_on;  // experimental key -> the configs that turn it on
+  for (const auto& section : settingsKeys(defaults)) {
+    for (const auto& key : section.keys)
+      if (key.isExperimental()) turned_on[key.name()];
+  }
+  ASSERT_FALSE(turned_on.empty());
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(AMOS_SOURCE_DIR) + "/configs")) {
+    if (entry.path().extension() != ".yaml") continue;
+    Settings loaded = loadSettings(entry.path().string());
+    const std::map<std::string, std::string> values = valuesOf(loaded);
+    for (auto& [name, configs] : turned_on)
+      if (values.at(name) != default_values.at(name)) configs.push_back(entry.path().filename().string());
+  }
+  for (const auto& [name, configs] : turned_on) {
+    EXPECT_FALSE(configs.empty()) << name << " is experimental but every shipped config leaves it at its default ("
+                                  << default_values.at(name)
+                                  << "): turn it on in a config, make it a plain option, or delete it with a record "
+                                     "in docs/experiments/";
+  }
+}
+
 std::string readmeText() {
   std::ifstream in(std::string(AMOS_SOURCE_DIR) + "/configs/README.md");
   std::stringstream text;
@@ -314,6 +337,7 @@ TEST(SettingsKeys, TheTablesShowDefaultsChoicesAndFormerNames) {
            "| `Segmentation.modelsDir` | `\"\"` |",
            "; formerly `Segmentation.models_dir` |",
            "| `LocalBA.enabled` | `1` |",
+           "| `Dynamic.Depth.enabled` | `0` | *experimental:* superpixels",
        }) {
     EXPECT_NE(tables.find(row), std::string::npos) << row;
   }

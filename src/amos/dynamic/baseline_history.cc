@@ -11,7 +11,7 @@ void BaselineHistory::add(BaselineFrame frame) {
 }
 
 const BaselineFrame* BaselineHistory::baseline() const {
-  return frames_ > 0 && frames_back_.size() >= min_frames_ ? &frames_back_.front() : nullptr;
+  return frames_ > 0 && frames_back_.size() >= frames_ ? &frames_back_.front() : nullptr;
 }
 
 }  // namespace amos::dynamic

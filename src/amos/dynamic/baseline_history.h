@@ -23,23 +23,17 @@ struct BaselineFrame {
 
 class BaselineHistory {
  public:
-  // Keeps nothing when frames is 0 or 1 (the last frame is compared anyway). With 1 < min_frames < frames, the oldest
-  // kept frame is the baseline as soon as it lies min_frames back (Dynamic.Depth.baselineMinFrames).
-  explicit BaselineHistory(int frames = 0, int min_frames = 0)
-      : frames_(frames > 1 ? static_cast<std::size_t>(frames) : 0),
-        min_frames_(min_frames > 1 && static_cast<std::size_t>(min_frames) < frames_
-                        ? static_cast<std::size_t>(min_frames)
-                        : frames_) {}
+  // Keeps nothing when frames is 0 or 1 (the last frame is compared anyway).
+  explicit BaselineHistory(int frames = 0) : frames_(frames > 1 ? static_cast<std::size_t>(frames) : 0) {}
   // A frame processed with its pose (the oldest beyond `frames` is dropped).
   void add(BaselineFrame frame);
   // After a lost frame: its pose would poison the comparison, so the history starts again.
   void clear() { frames_back_.clear(); }
-  // The frame `frames` back from the next one, once that many were added (the oldest, once min_frames were); else
-  // null.
+  // The frame `frames` back from the next one, once that many were added; else null.
   const BaselineFrame* baseline() const;
 
  private:
-  std::size_t frames_, min_frames_;
+  std::size_t frames_;
   std::deque<BaselineFrame> frames_back_;  // oldest first
 };
 

@@ -18,10 +18,6 @@ void BaselineTrackOptions::check() const {
   core::requireAtLeast(min_motion_px, "min_motion_px", 0.0);
   core::requireAtLeast(min_votes, "min_votes", 1);
   core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
-  core::requireAtLeast(pooled_votes, "pooled_votes", 1);
-  core::requireAtLeast(densify_points, "densify_points", 0);
-  core::requireAtLeast(densify_grid_px, "densify_grid_px", 1);
-  core::requireAtLeast(densify_min_gradient, "densify_min_gradient", 0.0);
   core::requireAtLeast(grow_dissimilarity, "grow_dissimilarity", 0.0);
 }
 
@@ -31,10 +27,9 @@ namespace {
 struct LabelVotes {
   std::vector<int> moving, all;
 };
-LabelVotes votesPerLabel(const BaselineMotion& motion, const cv::Mat& labels, int count, bool with_densified = true) {
+LabelVotes votesPerLabel(const BaselineMotion& motion, const cv::Mat& labels, int count) {
   LabelVotes votes{std::vector<int>(count, 0), std::vector<int>(count, 0)};
   for (const BaselinePoint& p : motion.points) {
-    if (p.densified && !with_densified) continue;
     const int label = labelAt(labels, p.current);
     if (label < 0 || label >= count) continue;
     ++votes.all[label];
@@ -82,24 +77,12 @@ struct FollowedPoint {
   Eigen::Vector2d residual;
 };
 
-// Whether the baseline frame saw the point predicted at `at` with depth `z` there: its measured depth is not nearer
-// by more than max(2 cm, 4 % of z) (the depth evidence's free-space floor over the baseline, depth_evidence.h), i.e.
-// nothing stood in front of it (a walker who has since uncovered it), and it is measured at all.
-bool visibleInBaseline(const cv::Mat& baseline_depth, cv::Point2f at, double z) {
-  const int u = cvRound(at.x), v = cvRound(at.y);
-  if (u < 0 || v < 0 || u >= baseline_depth.cols || v >= baseline_depth.rows) return false;
-  const float measured = baseline_depth.at<float>(v, u);
-  return measured > 0 && measured >= z - std::max(0.02, 0.04 * z);
-}
-
-// Steps 1 and 2 of the header for `points`, and their residuals. With baseline_depth (CV_32F metres), only points
-// that the baseline frame saw (visibleInBaseline) are followed.
+// Steps 1 and 2 of the header for `points`, and their residuals.
 std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
                                               const cv::Mat& depth, const core::SE3& T_cw,
                                               const ImagePyramid& baseline_pyramid, const core::SE3& T_cw_baseline,
                                               const core::PinholeCamera& camera, const CornerTrackingOptions& lk,
-                                              const ReprojectionOptions& reprojection,
-                                              const cv::Mat& baseline_depth = cv::Mat()) {
+                                              const ReprojectionOptions& reprojection) {
   const cv::Mat& gray = pyramid.front();
   std::vector<FollowedPoint> out;
   // 1. The static world's prediction: lifted with the current depth, projected into the baseline frame.
@@ -109,7 +92,6 @@ std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& po
       backProjectTracks(lifted, depth, T_cw, camera, reprojection);
   std::vector<cv::Point2f> from, predicted_undistorted;
   std::vector<Eigen::Vector3d> world;
-  std::vector<double> predicted_z;  // depth in the baseline frame
   const int window_radius = lk.lk_window / 2;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!points_w[i] || windowOnDepthEdge(depth, points[i], window_radius, reprojection.depth_edge_ratio)) continue;
@@ -119,7 +101,6 @@ std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& po
     predicted_undistorted.emplace_back(static_cast<float>(uv.x()), static_cast<float>(uv.y()));
     from.push_back(points[i]);
     world.push_back(*points_w[i]);
-    predicted_z.push_back(p_b.z());
   }
   if (from.empty()) return out;
   const std::vector<cv::Point2f> predicted = camera.distort(predicted_undistorted);
@@ -132,7 +113,6 @@ std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& po
   std::vector<Eigen::Vector3d> start_world;
   for (std::size_t k = 0; k < from.size(); ++k) {
     if (!inside.contains(predicted[k])) continue;
-    if (!baseline_depth.empty() && !visibleInBaseline(baseline_depth, predicted[k], predicted_z[k])) continue;
     start.push_back(from[k]);
     guess.push_back(predicted[k]);
     start_world.push_back(world[k]);
@@ -170,7 +150,7 @@ std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& po
 }
 
 // Step 4 for followed points, against the common shift and bar of `motion`, appended to it.
-void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& motion, bool densified = false) {
+void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& motion) {
   motion.points.reserve(motion.points.size() + followed.size());
   for (const FollowedPoint& f : followed) {
     BaselinePoint p;
@@ -178,7 +158,6 @@ void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& mo
     p.found = f.found;
     p.residual_px = (f.residual - motion.shift_px).norm();
     p.moving = p.residual_px > motion.bar_px;
-    p.densified = densified;
     motion.moving_points += p.moving;
     motion.points.push_back(p);
   }
@@ -201,11 +180,6 @@ WindowStructure windowStructure(const cv::Mat& gray, int u, int v) {
   }
   w.xx /= 49, w.xy /= 49, w.yy /= 49;
   return w;
-}
-
-double windowTexture(const cv::Mat& gray, int u, int v) {
-  const WindowStructure w = windowStructure(gray, u, v);
-  return 0.5 * (w.xx + w.yy) - std::sqrt(0.25 * (w.xx - w.yy) * (w.xx - w.yy) + w.xy * w.xy);
 }
 
 BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
@@ -239,112 +213,14 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
   return out;
 }
 
-int densifyBaselineMotion(BaselineMotion& motion, const ImagePyramid& pyramid, const cv::Mat& depth,
-                          const core::SE3& T_cw, const ImagePyramid& baseline_pyramid, const cv::Mat& baseline_depth,
-                          const core::SE3& T_cw_baseline, const core::PinholeCamera& camera, const cv::Mat& labels,
-                          int count, const SuperpixelGraph* graph, const CornerTrackingOptions& lk,
-                          const ReprojectionOptions& reprojection, const BaselineTrackOptions& options) {
-  core::require(labels.type() == CV_32S && !pyramid.empty() && labels.size() == pyramid.front().size(),
-                "densifyBaselineMotion: labels must be CV_32S of the image size");
-  core::require(baseline_depth.empty() || (baseline_depth.type() == CV_32F && baseline_depth.size() == labels.size()),
-                "densifyBaselineMotion: baseline_depth must be empty or CV_32F metres of the image size");
-  core::require(graph == nullptr || static_cast<int>(graph->neighbours.size()) == count,
-                "densifyBaselineMotion: the graph must be of these superpixels");
-  if (!motion.ok || motion.moving_points == 0 || options.densify_points <= 0) return 0;
-  // The superpixels to measure: those holding a moving point, and their neighbours on the same surface.
-  std::vector<bool> target(count, false);
-  std::vector<std::vector<cv::Point2f>> taken(count);  // points already followed there
-  for (const BaselinePoint& p : motion.points) {
-    const int s = labelAt(labels, p.current);
-    if (s < 0 || s >= count) continue;
-    taken[s].push_back(p.current);
-    if (!p.moving || target[s]) continue;
-    target[s] = true;
-  }
-  if (graph != nullptr) {
-    const std::vector<bool> seeds = target;
-    for (int s = 0; s < count; ++s) {
-      if (!seeds[s]) continue;
-      const std::vector<int>& neighbours = graph->neighbours[s];
-      for (std::size_t k = 0; k < neighbours.size(); ++k)
-        if (!graph->occlusion_edges[s][k]) target[neighbours[k]] = true;
-    }
-  }
-  // Candidates on a grid, the best textured first, per target superpixel.
-  const cv::Mat& gray = pyramid.front();
-  const double min_texture = options.densify_min_gradient * options.densify_min_gradient;
-  const int margin = lk.lk_window / 2 + 4;
-  std::vector<std::vector<std::pair<double, cv::Point2f>>> candidates(count);
-  for (int v = margin; v < gray.rows - margin; v += options.densify_grid_px) {
-    const int* row = labels.ptr<int>(v);
-    for (int u = margin; u < gray.cols - margin; u += options.densify_grid_px) {
-      const int s = row[u];
-      if (s < 0 || s >= count || !target[s]) continue;
-      const double texture = windowTexture(gray, u, v);
-      if (texture >= min_texture) candidates[s].emplace_back(texture, cv::Point2f(static_cast<float>(u), static_cast<float>(v)));
-    }
-  }
-  // Up to densify_points per superpixel, apart from each other and from the points already there by the LK
-  // window's radius, so that each is an independent measurement.
-  const float spacing2 = static_cast<float>((lk.lk_window / 2) * (lk.lk_window / 2));
-  std::vector<cv::Point2f> extra;
-  for (int s = 0; s < count; ++s) {
-    if (candidates[s].empty()) continue;
-    std::sort(candidates[s].begin(), candidates[s].end(),
-              [](const auto& a, const auto& b) { return a.first > b.first; });
-    int added = 0;
-    for (const auto& [texture, p] : candidates[s]) {
-      if (added >= options.densify_points) break;
-      const bool near = std::any_of(taken[s].begin(), taken[s].end(), [&](const cv::Point2f& q) {
-        const cv::Point2f d = p - q;
-        return d.dot(d) < spacing2;
-      });
-      if (near) continue;
-      taken[s].push_back(p);
-      extra.push_back(p);
-      ++added;
-    }
-  }
-  if (extra.empty()) return 0;
-  const std::vector<FollowedPoint> followed = followIntoBaseline(extra, pyramid, depth, T_cw, baseline_pyramid,
-                                                                 T_cw_baseline, camera, lk, reprojection,
-                                                                 baseline_depth);
-  classifyInto(followed, motion, /*densified=*/true);
-  return static_cast<int>(followed.size());
-}
-
 std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
-                                            const BaselineTrackOptions& options, const SuperpixelGraph* graph) {
+                                            const BaselineTrackOptions& options) {
   core::require(labels.type() == CV_32S, "baselineMovingSuperpixels: labels must be CV_32S");
-  const bool pool = options.pool_neighbours && graph != nullptr;
-  core::require(!pool || (static_cast<int>(graph->neighbours.size()) == count &&
-                          static_cast<int>(graph->occlusion_edges.size()) == count),
-                "baselineMovingSuperpixels: the graph must be of these superpixels");
-  const auto decide = [&](const LabelVotes& votes) {
-    std::vector<bool> out(count, false);
-    for (int s = 0; s < count; ++s) {
-      const int own_moving = votes.moving[s], own_still = votes.all[s] - own_moving;
-      int moving = own_moving, still = own_still;
-      if (pool) {
-        if (own_still > own_moving) continue;  // its own points say static: the neighbours do not overrule them
-        const std::vector<int>& neighbours = graph->neighbours[s];
-        for (std::size_t k = 0; k < neighbours.size(); ++k) {
-          if (graph->occlusion_edges[s][k]) continue;  // another surface
-          const int n = neighbours[k];
-          moving += votes.moving[n];
-          still += votes.all[n] - votes.moving[n];
-        }
-      }
-      out[s] = moving >= (pool ? options.pooled_votes : options.min_votes) && moving > still;
-    }
-    return out;
-  };
-  std::vector<bool> out = decide(votesPerLabel(motion, labels, count, /*with_densified=*/false));
-  // Densified points only add moving superpixels: where the corners alone move a superpixel, static densified
-  // points (its textured static part, or a mover the tracked pose half follows) do not outvote them.
-  if (std::any_of(motion.points.begin(), motion.points.end(), [](const BaselinePoint& p) { return p.densified; })) {
-    const std::vector<bool> dense = decide(votesPerLabel(motion, labels, count));
-    for (int s = 0; s < count; ++s) out[s] = out[s] || dense[s];
+  const LabelVotes votes = votesPerLabel(motion, labels, count);
+  std::vector<bool> out(count, false);
+  for (int s = 0; s < count; ++s) {
+    const int moving = votes.moving[s], still = votes.all[s] - moving;
+    out[s] = moving >= options.min_votes && moving > still;
   }
   return out;
 }
@@ -354,22 +230,10 @@ std::vector<int> baselinePointsPerSuperpixel(const BaselineMotion& motion, const
   return votesPerLabel(motion, labels, count).all;
 }
 
-std::vector<bool> baselineStaticSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
-                                           const BaselineTrackOptions& options) {
-  core::require(labels.type() == CV_32S, "baselineStaticSuperpixels: labels must be CV_32S");
-  const LabelVotes votes = votesPerLabel(motion, labels, count, /*with_densified=*/false);
-  std::vector<bool> out(static_cast<std::size_t>(std::max(count, 0)), false);
-  for (int s = 0; s < count; ++s) {
-    const int still = votes.all[s] - votes.moving[s];
-    out[static_cast<std::size_t>(s)] = still >= options.min_votes && still > votes.moving[s];
-  }
-  return out;
-}
-
 std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,
                                          const BaselineTrackOptions& options) {
   core::require(decision_map.type() == CV_32S, "baselineMovingClusters: the decision map must be CV_32S");
-  const LabelVotes votes = votesPerLabel(motion, decision_map, num_clusters, /*with_densified=*/false);
+  const LabelVotes votes = votesPerLabel(motion, decision_map, num_clusters);
   std::vector<bool> out(num_clusters, false);
   for (int c = 0; c < num_clusters; ++c)
     out[c] = votes.moving[c] >= options.min_votes && votes.moving[c] >= options.cluster_share * votes.all[c];

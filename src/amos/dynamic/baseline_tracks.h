@@ -15,9 +15,8 @@
 //      median length, as refitPose). Not a 6-DoF refit: where the scene is two planes (a door and its wall) a
 //      translation and a rotation together explain a mover's sideways shift exactly, and a refit would absorb it;
 //   4. a point moves when its residual exceeds max(minMotion, sigmas * sigma).
-// Per superpixel: moving when at least minVotes of its points move and they outnumber its static ones, the points
-// counted over the superpixel and its neighbours on the same surface (Dynamic.BaselineTracks.poolNeighbours); per
-// decision cluster: dynamic when at least minVotes of its points move and they make up clusterShare of them. A moving
+// Per superpixel: moving when at least minVotes of its points move and they outnumber its static ones; per decision
+// cluster: dynamic when at least minVotes of its points move and they make up clusterShare of them. A moving
 // superpixel seeds the mask even where the one-frame votes call it static (mask_building.h): over ten frames its
 // motion is measured, over one it is within the noise.
 #include <Eigen/Core>
@@ -50,40 +49,9 @@ struct BaselineTrackOptions {
   // mover and the static surface beside it (a door leaf in front of its wall) is dynamic when the mover holds most of
   // its points.
   double cluster_share = 0.5;
-  // Dynamic.BaselineTracks.poolNeighbours: a superpixel's vote also counts the points of its neighbours across
-  // borders that are not occlusion edges (the superpixel graph, boundary_assignment.h), and a superpixel whose own
-  // points are mostly static never moves. The points that survive ten frames are sparse: on a door leaf ~1 per
-  // superpixel (objects_xyz, diagnose-movers: 26-36 moving points on a 40000 px door that spans ~40 superpixels),
-  // so two votes on one superpixel are rare even where every point of the surface moves. Off by default: it is a
-  // trade, not a gain (session 17, README "Movers no detector knows"): door recall 0.44 -> 0.56 on objects_xyz
-  // seeds 5-7, but the floor beside a pushed box pools the box's points (box_push seed 4 precision 0.83 -> 0.79)
-  // and walking_rpy seed 4 / walking_static seed 3 go from 1.41x / 1.49x to 1.96x / 1.59x their static twins.
-  bool pool_neighbours = false;
-  // Dynamic.BaselineTracks.pooledVotes: moving points such a pooled count needs (and more than its static ones):
-  // one more than minVotes, as it draws on ~6 superpixels instead of one (on the first 50 frames of TUM fr2/desk,
-  // static, 2 gave 3.2 % of the pixels marked against 2.6 % without pooling, 3 gave 2.8 %).
-  int pooled_votes = 3;
-  // Dynamic.BaselineTracks.densifyPoints: where a point moved, more points are followed: in the superpixel of every
-  // moving point and in its neighbours on the same surface (no occlusion edge between them), up to this many each,
-  // the best textured first (densifyBaselineMotion). The corners are ~1 per superpixel on a door leaf, too sparse
-  // for two votes; pooling the neighbours' votes instead (poolNeighbours) lent a mover's points to the static floor
-  // beside it, whereas a measured floor superpixel votes with its own points. 0 = off.
-  int densify_points = 0;
-  // Dynamic.BaselineTracks.densifyGrid: candidate pixels lie on a grid of this step [px].
-  int densify_grid_px = 4;
-  // Dynamic.BaselineTracks.densifyMinGradient: a candidate needs at least this RMS intensity gradient [grey levels
-  // per px] in its weakest direction over 7x7 px (Shi-Tomasi's smaller eigenvalue, square-rooted): at 4 the image
-  // noise of a few grey levels moves LK by well under the 2 px bar over an 11x11 window; flat or edge-only patches
-  // (the aperture problem) are left out.
-  double densify_min_gradient = 4.0;
-  // Dynamic.BaselineTracks.growOverSurface: the mask may grow from a superpixel the long-baseline points move over
-  // the superpixels of the same surface that nothing measured (no track vote, no long-baseline point), through
-  // borders that are not occlusion edges and between superpixels at most growDissimilarity apart, even outside
-  // the dynamic clusters (mask_building.h). The plain panel of a door gives no point to follow and shares its
-  // decision clusters with the wall it swings in front of, so only its sign and edges were marked.
-  bool grow_over_surface = false;
-  // Dynamic.BaselineTracks.growDissimilarity: Eq. 1 without the position term (superpixelDissimilarity); 1 = a colour
-  // difference of colourScale Lab units, or a depth step of depthScale (10 cm), the unit of SLIC's own distance.
+  // Dynamic.BaselineTracks.growDissimilarity: the largest step of the surface growth from the rigid movers'
+  // superpixels (Dynamic.RigidMovers.growOverSurface, mask_building.h): Eq. 1 without the position term
+  // (superpixelDissimilarity); 1 = a colour difference of colourScale Lab units, or a depth step of depthScale (10 cm), the unit of SLIC's own distance.
   double grow_dissimilarity = 1.0;
   void check() const;
 };
@@ -93,9 +61,6 @@ struct BaselinePoint {
   cv::Point2f found;      // raw pixel where LK found it in the baseline frame
   double residual_px = 0;  // |found - prediction - common shift| (undistorted pixels)
   bool moving = false;
-  // Added by densifyBaselineMotion: chosen where motion was already found, so not a fair sample of a cluster (they
-  // vote per superpixel, not in baselineMovingClusters' share).
-  bool densified = false;
 };
 
 struct BaselineMotion {
@@ -123,20 +88,6 @@ BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const Imag
                               const CornerTrackingOptions& lk, const ReprojectionOptions& reprojection,
                               const BaselineTrackOptions& options);
 
-// Where `motion` found moving points, more points: in each superpixel (labels: CV_32S, count labels) holding a moving
-// point and its neighbours across non-occlusion borders (graph; null: the superpixel alone), up to
-// options.densify_points grid pixels of enough texture, apart from the points there by LK's window radius; followed
-// into the baseline frame as in baselineMotion and judged against its shift and bar (not re-estimated: the first
-// points are spread over the image, these are not). With baseline_depth (CV_32F metres; empty: no check) only points
-// the baseline frame saw are followed: its depth where the point is predicted is not nearer by more than max(2 cm,
-// 4 %) (a walker stood in front of the floor he has since uncovered; LK would follow him and call the floor moving).
-// Appended to motion.points; returns how many were followed.
-int densifyBaselineMotion(BaselineMotion& motion, const ImagePyramid& pyramid, const cv::Mat& depth,
-                          const core::SE3& T_cw, const ImagePyramid& baseline_pyramid, const cv::Mat& baseline_depth,
-                          const core::SE3& T_cw_baseline, const core::PinholeCamera& camera, const cv::Mat& labels,
-                          int count, const SuperpixelGraph* graph, const CornerTrackingOptions& lk,
-                          const ReprojectionOptions& reprojection, const BaselineTrackOptions& options);
-
 // The structure tensor of the 7x7 window around (u, v) of a CV_8UC1 image: the mean products of the intensity
 // gradient's components (grey levels^2 per px^2); its quadratic form in a unit direction is the mean squared
 // gradient along it, i.e. how well the window tells a shift along that direction from none. (u, v) must lie at
@@ -147,31 +98,16 @@ struct WindowStructure {
 };
 WindowStructure windowStructure(const cv::Mat& gray, int u, int v);
 
-// Its smaller eigenvalue: the weakest direction's mean squared gradient, what LK's precision there depends on (Shi
-// and Tomasi's "good features to track").
-double windowTexture(const cv::Mat& gray, int u, int v);
-
 // Per superpixel (labels: CV_32S, count labels): whether at least options.min_votes of its points move and they
-// outnumber its static ones, counting the densified points or not (a superpixel is moving either way: they add
-// evidence of motion, they do not outvote the corners). With options.pool_neighbours and a graph of these
-// superpixels, the points of its neighbours across non-occlusion borders count too, unless its own points are
-// mostly static.
+// outnumber its static ones.
 std::vector<bool> baselineMovingSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
-                                            const BaselineTrackOptions& options,
-                                            const SuperpixelGraph* graph = nullptr);
-
-// Per superpixel (labels: CV_32S, count labels): whether at least options.min_votes of its points (the corners'
-// own, not densified ones) stayed where the static world puts them over the baseline and they outnumber its moving
-// ones: positive evidence that it is static (the temporal hold releases such a superpixel, motion_hold.h).
-std::vector<bool> baselineStaticSuperpixels(const BaselineMotion& motion, const cv::Mat& labels, int count,
                                             const BaselineTrackOptions& options);
 
 // Per superpixel (labels: CV_32S, count labels): how many of motion's points lie on it.
 std::vector<int> baselinePointsPerSuperpixel(const BaselineMotion& motion, const cv::Mat& labels, int count);
 
 // Per cluster (decision_map: CV_32S, -1 = takes no part; num_clusters): whether at least options.min_votes of its
-// points move and they are at least options.cluster_share of its points. Densified points do not count: the share
-// is of the corners, spread over the cluster independently of where it moves.
+// points move and they are at least options.cluster_share of its points.
 std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,
                                          const BaselineTrackOptions& options);
 

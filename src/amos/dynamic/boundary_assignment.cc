@@ -17,9 +17,6 @@ namespace amos::dynamic {
 void BoundaryOptions::check() const {
   core::requireAtLeast(search_radius_px, "search_radius_px", 0);
   core::requireAtLeast(border_margin_px, "border_margin_px", 0);
-  core::requireAtLeast(max_dynamic_step, "max_dynamic_step", 0.0);
-  core::requireAtLeast(grow_from_confirmed, "grow_from_confirmed", 0.0);
-  core::requireAtLeast(still_sigmas, "still_sigmas", 0.0);
 }
 
 std::vector<bool> borderSuperpixels(const cv::Mat& superpixel_labels, int count, int margin_px) {
@@ -238,8 +235,7 @@ double superpixelDissimilarity(const Superpixel& a, const Superpixel& b, double 
 std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
                                      const std::vector<std::vector<int>>& neighbours, std::vector<RegionLabel> labels,
                                      const std::vector<bool>& may_be_dynamic, double colour_scale,
-                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding,
-                                     double max_dynamic_step) {
+                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding) {
   const std::size_t n = superpixels.size();
   core::require(neighbours.size() == n && labels.size() == n && may_be_dynamic.size() == n,
                 "growRegions: superpixels, neighbours, seeds and flags differ in number");
@@ -255,7 +251,6 @@ std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
       if (labels[b] != RegionLabel::kUnlabelled) continue;
       if (l == RegionLabel::kDynamic && (!may_be_dynamic[b] || (!occluding.empty() && occluding[a][k]))) continue;
       const double cost = superpixelDissimilarity(superpixels[a], superpixels[b], colour_scale, depth_scale_m);
-      if (l == RegionLabel::kDynamic && max_dynamic_step > 0 && cost > max_dynamic_step) continue;
       offers.emplace(cost, b, static_cast<int>(l));
     }
   };
@@ -281,7 +276,6 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
   const int n = static_cast<int>(superpixels.size());
   const int clusters = static_cast<int>(dynamic_cluster.size());
   core::require(labels.type() == CV_32S, "seedSuperpixels: labels must be CV_32S");
-  const double still_px = options.still_px > 0 ? std::min(options.still_px, static_px) : static_px;
   core::require(static_cast<int>(neighbours.size()) == n && static_cast<int>(border.size()) == n,
                 "seedSuperpixels: superpixels, neighbours and border flags differ in number");
   auto clusterOf = [&](int s) {
@@ -319,7 +313,7 @@ std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vecto
   for (int c = 0; c < clusters; ++c) {
     if (rx[c].empty()) continue;
     const Eigen::Vector2d m(upperMedian(std::move(rx[c])), upperMedian(std::move(ry[c])));
-    if (m.norm() >= still_px) motion[c] = m;
+    if (m.norm() >= static_px) motion[c] = m;
   }
   std::vector<int> dynamic_votes(n, 0), static_votes(n, 0);
   std::vector<bool> in_zone(n, false);

@@ -32,12 +32,9 @@ struct BoundaryOptions {
   // borderMargin) take no part in the decisions. false = the rule is applied per track: only a track whose last or
   // current pixel lies within half an LK window (+1 px) of the edge abstains (DynamicFrontEnd::edgeBand), i.e. one
   // whose finest-level window was cut by the frame, which is the reason the paper gives for the rule; border blocks
-  // are judged like any other. Issue 16:
-  // a mover near the camera on the floor (a pushed box, a chair) or entering the view touches the image edge for
-  // most of its time in view, and a superpixel is ~32 px wide, so the block rule discards the tracks up to ~40 px
-  // in: box_starts seed 4, frames 150-170, every track on the box (4-6 px of motion, 10-30 px from the edge) lay in
-  // a border block and the box was missed. The forward-backward check already rejects the tracks that the frame
-  // spoiled.
+  // are judged like any other. A mover near the camera on the floor (a pushed box, a chair) or entering the view
+  // touches the image edge for most of its time in view, and a superpixel is ~32 px wide, so the block rule discards
+  // its tracks up to ~40 px in; the forward-backward check already rejects the tracks that the frame spoiled.
   bool border_blocks = true;
   // Dynamic.Boundary.superpixelMask: true = the mask is decided per superpixel inside and around the dynamic
   // clusters (seeded region growing, see above); false = the mask is the union of the dynamic clusters.
@@ -48,32 +45,6 @@ struct BoundaryOptions {
   // dynamic seed too. A deformable walker is split across the position-only clusters, and where it is a minority
   // of a cluster that cluster's mean stays low; its superpixels' own tracks still move.
   bool seed_outside_clusters = true;
-  // Dynamic.Boundary.stillSigmas: with a successful pose refit, a dynamic cluster's motion (the median of its
-  // tracks' residuals), which the tracks that move with it follow when they seed, counts from this many times the
-  // static tracks' noise scale (PoseRefit::sigma_px) on, when that is below the confirmation threshold; 0 = from
-  // the threshold. The threshold's 1 px floor is there for a cluster's mean error; as the bar for a cluster's
-  // motion it lets a mover that slows down seed static inside the very cluster that the depth or the long baseline
-  // found dynamic: a pushed box gliding to a stop or a door easing shut moves 0.2-0.6 px per frame, 2-6 times the
-  // 0.1 px noise of clean images (box_push seed 8, frames 160-190: 10-30 % of the box marked). 3: the median of a
-  // static cluster's residuals stays within 3 sigma, and a static track follows a motion of 3 sigma (is nearer it
-  // than zero) with p ~ 7 %.
-  double still_sigmas = 0;
-  // Dynamic.Boundary.maxDynamicStep: in the region growing, the dynamic label enters an unlabelled (trackless)
-  // superpixel only from a neighbour at most this dissimilar (Eq. 1 without the position term: 1 = colourScale Lab
-  // units or a depth step of depthScale); 0 = any step, the plain seeded region growing. Without a bar a trackless
-  // surface that touches a mover (the floor under a walker's feet, the desk front behind his legs, the desk and
-  // the floor it stands on) takes the mover's label whenever no static seed reaches it first, however unlike the
-  // mover it looks: what nothing measured is static unless it continues the mover's own surface.
-  double max_dynamic_step = 0;
-  // Dynamic.Boundary.growFromConfirmed: a dynamic cluster whose Eq. 5 mean under the refitted pose is at least this
-  // many times the confirmation threshold seeds the surface growth (Dynamic.RigidMovers.growOverSurface's rule:
-  // over unmeasured superpixels of the same surface) with its dynamic superpixels; 0 = off. A mover's plain part
-  // (a chair's fabric back, a door's panel) holds no track and, moving in its own plane, no depth change either,
-  // and k-means may give it a cluster of its own beside the textured part whose tracks move. The growth stays near
-  // the cluster's seeds or in clusters no tracks judged (mask_building.cc). 2 (a robust mean at twice the bar is no
-  // noise): objects_xyz seed 5's chair 0.74 -> 0.82 of its pixels, other movers' precision 0-0.01 lower; off until
-  // the walking presets are measured with it (README, "Movers no detector knows").
-  double grow_from_confirmed = 0;
   void check() const;
 };
 
@@ -117,14 +88,12 @@ enum class RegionLabel : std::int8_t { kUnlabelled = -1, kStatic = 0, kDynamic =
 // with the smallest dissimilarity to it takes that neighbour's label. A superpixel with may_be_dynamic false
 // never takes the dynamic label (it can still be reached by the static one), and the dynamic label does not cross
 // an occlusion edge (occluding, laid out as neighbours; empty = none): a trackless background surface that looks
-// like the mover (the desk behind a cardboard box) is not part of it. With max_dynamic_step > 0 the dynamic label
-// also takes no step between superpixels more dissimilar than that. Superpixels no label reaches are static.
+// like the mover (the desk behind a cardboard box) is not part of it. Superpixels no label reaches are static.
 // Deterministic (ties broken by superpixel id).
 std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
                                      const std::vector<std::vector<int>>& neighbours, std::vector<RegionLabel> seeds,
                                      const std::vector<bool>& may_be_dynamic, double colour_scale,
-                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding = {},
-                                     double max_dynamic_step = 0);
+                                     double depth_scale_m, const std::vector<std::vector<bool>>& occluding = {});
 
 // What one last->current track says about the superpixel it ends in.
 struct TrackEvidence {
@@ -152,9 +121,6 @@ struct SeedOptions {
   // Votes such a superpixel needs (and more than its static votes): two independent tracks, as for an epipolar
   // region (one may be an LK slip).
   int min_outside_votes = 2;
-  // When > 0 and below static_px: a dynamic cluster's motion counts from this size on (Dynamic.Boundary.stillSigmas
-  // x the refit's noise scale), so the tracks that move with a slow dynamic cluster vote for it.
-  double still_px = 0;
 };
 
 std::vector<RegionLabel> seedSuperpixels(const cv::Mat& superpixel_labels, const std::vector<Superpixel>& superpixels,

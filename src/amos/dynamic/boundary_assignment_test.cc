@@ -118,33 +118,6 @@ TEST(SuperpixelRegions, GrowingFollowsTheCheapestEdges) {
   EXPECT_EQ(blocked[2], RegionLabel::kStatic);
 }
 
-TEST(SuperpixelRegions, TheDynamicLabelTakesNoStepBeyondTheBar) {
-  // A chain 0-1-2-3 with L = 0, 5, 40, 45, seeded dynamic at 0 and nothing else (a trackless surface touching a
-  // mover): plain growing gives the mover's label to all of it; with a bar of 1 (colour scale 10) the dynamic label
-  // takes 1 (0.5 away) and stops at the step to 2 (3.5), which nothing else reaches: static. The static label is
-  // not barred.
-  std::vector<Superpixel> sp = {superpixel(0, 0), superpixel(5, 0), superpixel(40, 0), superpixel(45, 0)};
-  const std::vector<std::vector<int>> neighbours = {{1}, {0, 2}, {1, 3}, {2}};
-  std::vector<RegionLabel> seeds(4, RegionLabel::kUnlabelled);
-  seeds[0] = RegionLabel::kDynamic;
-  const std::vector<bool> anywhere(4, true);
-  const auto plain = growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1);
-  EXPECT_EQ(plain, std::vector<RegionLabel>(4, RegionLabel::kDynamic));
-  const auto barred = growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1, {}, 1.0);
-  const std::vector<RegionLabel> expected = {RegionLabel::kDynamic, RegionLabel::kDynamic, RegionLabel::kStatic,
-                                             RegionLabel::kStatic};
-  EXPECT_EQ(barred, expected);
-  seeds[3] = RegionLabel::kStatic;  // a static seed beyond the step reaches 2 over it
-  EXPECT_EQ(growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1, {}, 1.0)[2], RegionLabel::kStatic);
-  // A depth step counts too: 1 at 2.0 m, 2 at 2.3 m (3 depth units) with the same colour.
-  sp = {superpixel(0, 2.0), superpixel(0, 2.0), superpixel(0, 2.3), superpixel(0, 2.3)};
-  seeds.assign(4, RegionLabel::kUnlabelled);
-  seeds[0] = RegionLabel::kDynamic;
-  const auto depth_barred = growRegions(sp, neighbours, seeds, anywhere, 10.0, 0.1, {}, 1.0);
-  EXPECT_EQ(depth_barred[1], RegionLabel::kDynamic);
-  EXPECT_EQ(depth_barred[2], RegionLabel::kStatic);
-}
-
 TEST(SuperpixelRegions, OcclusionEdgesAreDepthStepsAlongTheSharedBorder) {
   // 3 x 3 blocks; the left column stands at 1 m in front of a 2 m wall, the right column is a slanted surface
   // (1 cm per pixel, about 0.5% of the depth: no step).
@@ -276,37 +249,6 @@ TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
   const auto quiet = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, still, 2.0, 2.0);
   EXPECT_EQ(quiet[6], U);
   EXPECT_EQ(quiet[12], S);
-}
-
-TEST(SuperpixelRegions, ASlowDynamicClustersTracksFollowItFromTheStillBar) {
-  // Cluster 0 is dynamic (found by other evidence) and glides by (0.5, 0) px, a quarter of static_px = 2: without a
-  // still bar its tracks seed static; with still_px = 0.3 (3 sigma of 0.1 px noise) they move with it. A still
-  // background track in it (0.02 px) stays static either way, and so does one next to it that moves by 0.8 px
-  // across the cluster's motion (it does not follow it, and stays below static_px).
-  const FiveByFiveBlocks b;
-  const auto& [labels, sp, neighbours, border] = b;
-  const std::vector<bool> dynamic_cluster = {true, false};
-  auto at = &FiveByFiveBlocks::at;
-  const std::vector<TrackEvidence> tracks = {
-      {at(6), Eigen::Vector2d(0.5, 0.0), 0.1},   {at(7), Eigen::Vector2d(0.45, 0.05), 0.1},
-      {at(11), Eigen::Vector2d(0.55, 0.0), 0.1}, {at(12), Eigen::Vector2d(0.02, 0.0), 0.1},
-      {at(13), Eigen::Vector2d(0.0, 0.8), 0.1},
-  };
-  const RegionLabel D = RegionLabel::kDynamic, S = RegionLabel::kStatic;
-  const auto plain = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0);
-  EXPECT_EQ(plain[6], S);
-  EXPECT_EQ(plain[11], S);
-  SeedOptions options;
-  options.still_px = 0.3;
-  const auto slow = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0, options);
-  EXPECT_EQ(slow[6], D);
-  EXPECT_EQ(slow[7], D);
-  EXPECT_EQ(slow[11], D);
-  EXPECT_EQ(slow[12], S);
-  EXPECT_EQ(slow[13], S);
-  // A bar above static_px changes nothing.
-  options.still_px = 5.0;
-  EXPECT_EQ(seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0, options), plain);
 }
 
 TEST(SuperpixelRegions, TracksOutsideTheDynamicClustersSeedOnlyWhenAskedAndInPairs) {

@@ -12,7 +12,7 @@
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
 #include "amos/dynamic/corner_tracking.h"
-#include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/front_end_types.h"
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/reprojection_scoring.h"
 

@@ -31,9 +31,9 @@ DynamicOptions noReassignment() {
 
 // voteClusters on leftRightClusters().
 ClusterVoting vote(const std::vector<cv::Point2f>& violators, const std::vector<ClusterScore>& scores,
-                   const std::vector<bool>& confirmed, DynamicDiagnostics& diag, const PriorRegions& prior = {},
+                   const std::vector<bool>& confirmed, DynamicDiagnostics& diag,
                    const DynamicOptions& options = noReassignment()) {
-  return voteClusters(violators, leftRightClusters(), scores, confirmed, prior, options, diag);
+  return voteClusters(violators, leftRightClusters(), scores, confirmed, options, diag);
 }
 
 TEST(ClusterVoting, ACandidateNeedsVotesAConfirmedClusterDoesNot) {
@@ -58,35 +58,17 @@ TEST(ClusterVoting, AViolatorNearABorderVotesForTheNeighbourWithTheLargerError) 
   DynamicDiagnostics diag;
   // 10 and 5 px left of the 0|1 border: both go to cluster 1, whose mean error is larger.
   const ClusterVoting voting =
-      vote({{50, 10}, {55, 40}}, {score(1, true), score(5, true)}, {false, false}, diag, PriorRegions{}, options);
+      vote({{50, 10}, {55, 40}}, {score(1, true), score(5, true)}, {false, false}, diag, options);
   EXPECT_EQ(voting.cluster_votes, (std::vector<int>{0, 2}));
   EXPECT_EQ(voting.dynamic_cluster, (std::vector<bool>{false, true}));
 }
 
-TEST(ClusterVoting, ViolatorsInBorderBlocksVoteOnlyForPriorRegions) {
-  // Prior region 1 covers the bottom-left corner (in the border strip), region 2 the top right.
-  PriorRegions prior;
-  prior.count = 2;
-  prior.components = cv::Mat(100, 120, CV_32S, cv::Scalar(0));
-  prior.components(cv::Rect(0, 70, 40, 30)).setTo(1);
-  prior.components(cv::Rect(80, 0, 40, 40)).setTo(2);
+TEST(ClusterVoting, ViolatorsInBorderBlocksDoNotVote) {
   DynamicDiagnostics diag;
   const ClusterVoting voting =
-      vote({{10, 90}, {20, 95}, {100, 10}}, {score(5, true), score(5, true)}, {false, false}, diag, prior);
+      vote({{10, 90}, {20, 95}, {100, 10}}, {score(5, true), score(5, true)}, {false, false}, diag);
   EXPECT_EQ(voting.cluster_votes, (std::vector<int>{0, 1}));  // the two in the strip vote for no cluster
-  EXPECT_EQ(voting.prior_votes, (std::vector<int>{0, 2, 1}));
-  EXPECT_EQ(voting.dynamic_prior_region, (std::vector<bool>{false, true, false}));
-  EXPECT_EQ(diag.dynamic_prior_regions, 1);
   EXPECT_EQ(diag.dynamic_clusters, 0);
-}
-
-TEST(ClusterVoting, UnjudgedPriorRegionsAreLeftToTheCaller) {
-  DynamicDiagnostics diag;
-  diag.dynamic_prior_regions = 3;  // every region kept without a vote, as the front end counts them
-  const ClusterVoting voting = vote({{10, 10}, {20, 30}}, {score(5, true), score(5, true)}, {false, false}, diag);
-  EXPECT_EQ(voting.prior_votes, (std::vector<int>{0}));
-  EXPECT_EQ(voting.dynamic_prior_region, (std::vector<bool>{false}));
-  EXPECT_EQ(diag.dynamic_prior_regions, 3);
 }
 
 TEST(ClusterVoting, WithoutViolatorsOnlyTheConfirmationJudges) {

@@ -19,31 +19,11 @@ struct CornerTrackingOptions {
   // pixels at 0.5) and tracked at full resolution. LK needs a well-textured window, not a precisely localised
   // corner, and the forward-backward check rejects the windows that track badly.
   double detection_scale = 0.5;
-  // Dynamic.Corners.gridCells: G > 1 gives every cell of a G x G grid its own share of the corners first (half of
-  // maxCorners, evenly, each cell's corners ranked against that cell's best), then the strongest corners of the
-  // whole image fill the budget as before; 1 = the strongest corners of the whole image only. Issue 16: with one
-  // image-wide ranking a low-contrast mover (a dark fabric chair beside printed posters) got 1-7 of the 500
-  // corners although it covered 12 % of the view, too few for a cluster to score, while LK tracks such a window
-  // well: its accuracy follows the window's own gradients against the image noise, not the strongest corner
-  // elsewhere. A cell counts only if its best corner reaches 1e-3 of the image's best (the min eigenvalue grows
-  // with the square of the contrast: ~8 grey levels, about 4x the noise of an 8-bit sensor), so flat cells (a
-  // blank wall) get no corners made of noise. The number tracked, and so LK's cost, stays maxCorners.
-  // objects_xyz, geometric front end with the true poses (amos-slam diagnose-movers), chair recall with 4:
-  // 0.25 -> 0.51, 0.12 -> 0.30, 0.05 -> 0.51 on seeds 4, 5, 6 (box and door unchanged); with the per-track border
-  // rule (Dynamic.Boundary.borderBlocks 0): rolling chair 0.36 -> 0.55 (seed 4) and 0.04 -> 0.65 (seed 2), the
-  // chair of chair_push 0.35 -> 0.46 (seed 4). The selection is one eigenvalue pass with the per-cell choice made
-  // on it, so it costs about one goodFeaturesToTrack call (bench_dynamic BM_DetectCorners on a Bonn frame, median
-  // of 5: 0.89 against 0.75 ms CPU). Off by default: on the Bonn crowd slice (full, --deterministic) it loses 7
-  // frames (15 with the per-track border rule) against none without, although ATE is as good (1.63 / 1.51 cm
-  // against 1.78 / 1.71); why is not diagnosed yet, so it is not shown to be harmless on real data.
-  int grid_cells = 1;
   // Dynamic.LK.window: 15x15 px: with 3 pyramid levels it follows flows up to 7 * 2^3 = 56 px per frame, above
   // a person walking 1.5 m/s at 1.5 m (~18 px at 30 Hz, f ~ 540 px) or a camera turning 1 rad/s (~18 px), at
   // half the cost of OpenCV's default 21x21 window. 11 (5 * 2^3 = 40 px, still twice those flows) halves LK's cost
-  // again, which grows with the window's area: corner tracks + reference-keyframe model 20 -> 12 ms CPU per frame
-  // on Bonn crowd, end points moved by a median 0.09 px (bench_dynamic TrackPointsOnPyramids), full-mode ATE as
-  // good (1.61-2.03 cm, median 1.65 over 6 runs, against 1.86-2.35 with 15 over 5 runs at the same time; lost
-  // frames 22-25): set in the configs; the default stays 15 for the synthetic front-end tests built on it.
+  // again, which grows with the window's area, at the same accuracy on real data (docs/experiments/
+  // front-end-defaults.md): set in the configs; the default stays 15 for the synthetic front-end tests built on it.
   int lk_window = 15;
   // Dynamic.LK.pyramidLevels: 3 extra levels (1/8 scale), see the window.
   int lk_levels = 3;
@@ -58,7 +38,8 @@ struct CornerTrackingOptions {
   double forward_backward_px = 1.0;
   // Whether trackPoints runs the backward pass at all (it doubles the LK cost). Off, every forward track that
   // converged inside the image is kept: for callers that reject outliers themselves (the reference-keyframe pose
-  // model's RANSAC, see InitialPoseOptions::keyframe_forward_backward). Dynamic.LK.forwardBackward (for the corner tracks).
+  // model's EPnP RANSAC, which rejects the tracks that went astray as it rejects wrong matches, at half the LK cost).
+  // Dynamic.LK.forwardBackward (for the corner tracks).
   bool forward_backward_check = true;
   void check() const;
 };

@@ -24,7 +24,6 @@ void DepthEvidenceOptions::check() const {
   core::requireAtLeast(min_violations, "min_violations", 1);
   core::requireAtLeast(unscored_cluster_superpixels, "unscored_cluster_superpixels", 1);
   core::requireAtLeast(baseline_frames, "baseline_frames", 0);
-  core::requireAtLeast(baseline_min_frames, "baseline_min_frames", 0);
   core::requireInRange(baseline_relative_residual, "baseline_relative_residual", 0.0, 1.0);
 }
 

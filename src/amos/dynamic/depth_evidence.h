@@ -17,8 +17,7 @@
 // DynamicFrontEnd compares with the last frame and, for movers too slow for one frame, with the frame
 // baselineFrames back (free space only: over many frames a receding surface is mostly background uncovered
 // meanwhile). Moving superpixels seed the mask (mask_building.h) and make their clusters dynamic
-// (depthMovingClusters). Measured on issue 16's objects_xyz (geometry, seeds 5-7): the plain chair's recall
-// 0.20 -> ~0.8; on TUM fr2/desk (static, real Kinect) the marked share rises from 2.1 to 2.3 %.
+// (depthMovingClusters). Measurements: docs/experiments/front-end-defaults.md.
 #include <opencv2/core.hpp>
 #include <utility>
 #include <vector>
@@ -84,11 +83,6 @@ struct DepthEvidenceOptions {
   // do: a door easing into its stops, a chair starting to roll (2-3 px per frame at 1 m). The price: a mover that
   // stops stays marked for up to this many frames. 0 = the last frame only.
   int baseline_frames = 10;
-  // Dynamic.Depth.baselineMinFrames: while fewer frames than that are kept (the start of a sequence, after a lost
-  // frame), the oldest kept frame serves as the baseline once it lies at least this many frames back; 0 = only the
-  // frame baselineFrames back. The first ten frames of a sequence otherwise see one frame only: a door easing open
-  // at 0.5-1.2 px per frame (objects_xyz seed 9, frames 1-9) stays below the one-frame bar, and 4 frames make 2-5 px.
-  int baseline_min_frames = 0;
   // Dynamic.Depth.baselineRelativeResidual: minRelativeResidual for that comparison. The sensor's depth bias varies
   // over the image, and over 10 frames a surface moves across more of it than over one: TUM fr2/desk's static
   // floor and walls at 3.5-3.8 m read 2 % (6-8 cm) farther than 10 frames before. 0.04: twice the one-frame floor.

@@ -12,8 +12,8 @@
 #include "amos/dynamic/epipolar_evidence.h"
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/mask_building.h"
-#include "amos/dynamic/motion_hold.h"
 #include "amos/dynamic/pose_confirmation.h"
+#include "amos/dynamic/rigid_movers.h"
 
 namespace amos::dynamic {
 
@@ -21,8 +21,6 @@ DynamicFrontEnd::DynamicFrontEnd(const core::PinholeCamera& camera, const Dynami
     : camera_(camera), options_(options) {
   options_.check();
   if (options_.depth.enabled) depth_grid_ = DepthSampleGrid(camera_, options_.depth.sample_step_px);
-  // Every 4th pixel: a superpixel of a few hundred pixels gets tens of samples for its median.
-  if (options_.temporal.hold_frames > 0) hold_grid_ = DepthSampleGrid(camera_, 4);
 }
 
 namespace {
@@ -51,237 +49,236 @@ void checkInput(const FrontEndInput& in) {
 
 }  // namespace
 
+// What the stages of one process() call hand on to each other. References to the input and the result, which the
+// stages fill; the intermediate results by value (moved into the result at the end, never copied).
+struct DynamicFrontEnd::Frame {
+  Frame(const FrontEndInput& input, FrontEndResult& result) : in(input), out(result), diag(result.diagnostics) {}
+
+  const FrontEndInput& in;
+  FrontEndResult& out;
+  DynamicDiagnostics& diag;
+  core::Stopwatch stage;  // restarted by lap()
+
+  PriorRegions prior;
+  GeometricPartition computed;  // when the caller gave no partition
+  const GeometricPartition* partition = nullptr;
+  DecisionRegions regions;
+  CandidateScoring candidates;
+  PoseConfirmation confirmation;
+  EpipolarEvidence epipolar;
+  DepthEvidence depth;
+  std::vector<bool> depth_moving;     // per superpixel (depth evidence; empty without)
+  BaselineMotion baseline;
+  std::vector<bool> baseline_moving;  // per superpixel (long-baseline tracks and rigid movers; empty without)
+  std::vector<int> baseline_points;   // per superpixel, for the rigid movers' surface growth
+  SurfaceSeeds surface_seeds;         // the rigid movers' (Dynamic.RigidMovers.growOverSurface)
+  ClusterVoting voting;
+
+  // Records the time since the last lap under `name`.
+  void lap(const char* name) {
+    out.timings_ms.emplace_back(name, stage.elapsedMs());
+    stage.restart();
+  }
+};
+
 FrontEndResult DynamicFrontEnd::process(const FrontEndInput& in) const {
   checkInput(in);
   core::Stopwatch total;
   FrontEndResult out;
-  DynamicDiagnostics& diag = out.diagnostics;
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
+  Frame f(in, out);
+  maskPriorRegions(f);
   const DynamicMode mode = options_.mode;
-  const bool use_prior = (mode == DynamicMode::kPrior || mode == DynamicMode::kFull) && !in.prior_mask.empty();
-  const bool use_geometry = (mode == DynamicMode::kGeometry || mode == DynamicMode::kFull) && !in.last_gray.empty();
-
-  // Prior regions (III-A): connected components of the (already dilated) segmentation mask. Unless they are judged
-  // by their epipolar violators below, every one of them is dynamic.
-  const PriorRegions prior = use_prior ? findPriorRegions(in.prior_mask) : PriorRegions{};
-  diag.prior_regions = prior.count;
-  const bool judge_prior = use_prior && use_geometry && options_.judge_prior_regions;
-  if (use_prior && !judge_prior) {
-    out.mask.setTo(255, in.prior_mask != 0);
-    diag.dynamic_prior_regions = prior.count;
+  if ((mode == DynamicMode::kGeometry || mode == DynamicMode::kFull) && !in.last_gray.empty()) {
+    out.diagnostics.geometry_ran = true;
+    f.stage.restart();
+    partitionFrame(f);        // III-B
+    trackCornersInto(f);      // last -> current correspondences
+    scoreAndConfirm(f);       // III-C, Eq. 5-6
+    judgeEpipolar(f);         // III-C, Eq. 7-8
+    addDepthEvidence(f);      // post-paper: Dynamic.Depth.enabled
+    addBaselineEvidence(f);   // post-paper: Dynamic.BaselineTracks.enabled, Dynamic.RigidMovers.enabled
+    decideMask(f);            // III-C, the decision and the boundaries
+    fillResult(f);
   }
-  if (!use_geometry) {
-    out.timings_ms.emplace_back("total", total.elapsedMs());
-    return out;
-  }
-  diag.geometry_ran = true;
-  core::Stopwatch stage;
-  auto lap = [&](const char* name) {
-    out.timings_ms.emplace_back(name, stage.elapsedMs());
-    stage.restart();
-  };
+  out.timings_ms.emplace_back("total", total.elapsedMs());
+  return out;
+}
 
-  // Stage 1a (III-B): superpixels and geometric clusters of the current frame; border blocks take no part in the
-  // decisions (III-C).
-  GeometricPartition computed;
-  if (in.partition == nullptr)
-    computed = computeGeometricPartition(in.bgr, in.depth, options_.superpixel, options_.cluster);
-  const GeometricPartition& partition = in.partition ? *in.partition : computed;
-  out.timings_ms.emplace_back("superpixels", partition.superpixel_ms);
-  stage.restart();
-  diag.superpixels = static_cast<int>(partition.segmentation.superpixels.size());
-  diag.clusters = clusterCount(partition.segmentation);
-  const DecisionRegions regions =
+// Prior regions (III-A): connected components of the (already dilated) segmentation mask, every one of them dynamic.
+void DynamicFrontEnd::maskPriorRegions(Frame& f) const {
+  const DynamicMode mode = options_.mode;
+  const bool use_prior = (mode == DynamicMode::kPrior || mode == DynamicMode::kFull) && !f.in.prior_mask.empty();
+  if (!use_prior) return;
+  f.prior = findPriorRegions(f.in.prior_mask);
+  f.diag.prior_regions = f.prior.count;
+  f.out.mask.setTo(255, f.in.prior_mask != 0);
+  f.diag.dynamic_prior_regions = f.prior.count;
+}
+
+// Stage 1a (III-B): superpixels and geometric clusters of the current frame; border blocks take no part in the
+// decisions (III-C).
+void DynamicFrontEnd::partitionFrame(Frame& f) const {
+  if (f.in.partition == nullptr)
+    f.computed = computeGeometricPartition(f.in.bgr, f.in.depth, options_.superpixel, options_.cluster);
+  f.partition = f.in.partition ? f.in.partition : &f.computed;
+  const GeometricPartition& partition = *f.partition;
+  f.out.timings_ms.emplace_back("superpixels", partition.superpixel_ms);
+  f.stage.restart();
+  f.diag.superpixels = static_cast<int>(partition.segmentation.superpixels.size());
+  f.diag.clusters = clusterCount(partition.segmentation);
+  f.regions =
       options_.boundary.border_blocks
           ? findDecisionRegions(partition.segmentation, partition.cluster_map, options_.boundary.border_margin_px)
           : findEdgeDecisionRegions(partition.segmentation, partition.cluster_map, edgeBand());
-  out.timings_ms.emplace_back("clusters", partition.cluster_ms + stage.elapsedMs());
-  stage.restart();
+  f.out.timings_ms.emplace_back("clusters", partition.cluster_ms + f.stage.elapsedMs());
+  f.stage.restart();
+}
 
-  // Correspondences last -> current.
-  out.tracks = in.tracks ? *in.tracks : trackCorners(in.last_gray, in.gray, options_.tracking);
+// Correspondences last -> current.
+void DynamicFrontEnd::trackCornersInto(Frame& f) const {
+  const FrontEndInput& in = f.in;
+  std::vector<PointTrack>& tracks = f.out.tracks;
+  tracks = in.tracks ? *in.tracks : trackCorners(in.last_gray, in.gray, options_.tracking);
   if (!options_.boundary.border_blocks) {
     // The per-track border rule at the other end: the edge band of the decision map takes the tracks that end near
     // the image edge out of the decisions; a track that started there had its LK template cut by the frame (a
     // camera turning brings such points inwards within a frame) and goes too.
     const float band = static_cast<float>(edgeBand());
     const float max_x = static_cast<float>(in.gray.cols - 1) - band, max_y = static_cast<float>(in.gray.rows - 1) - band;
-    out.tracks.erase(std::remove_if(out.tracks.begin(), out.tracks.end(),
-                                    [&](const PointTrack& t) {
-                                      return t.last.x < band || t.last.y < band || t.last.x > max_x || t.last.y > max_y;
-                                    }),
-                     out.tracks.end());
+    tracks.erase(std::remove_if(tracks.begin(), tracks.end(),
+                                [&](const PointTrack& t) {
+                                  return t.last.x < band || t.last.y < band || t.last.x > max_x || t.last.y > max_y;
+                                }),
+                 tracks.end());
   }
-  diag.tracks = static_cast<int>(out.tracks.size());
-  lap("tracking");
+  f.diag.tracks = static_cast<int>(tracks.size());
+  f.lap("tracking");
+}
 
-  // Stage 1b (III-C, Eq. 5-6): the potential motion regions from the reprojection errors under the initial pose,
-  // and every cluster judged again under the pose refitted without them.
-  CandidateScoring candidates =
-      scoreCandidates(out.tracks, in, regions.decision_map, diag.clusters, prior, camera_, options_, diag);
-  PoseConfirmation confirmation = confirmUnderRefittedPose(out.tracks, candidates, in.T_cw_last, in.T_cw_initial,
-                                                           camera_, options_.reprojection, diag);
-  lap("reprojection");
+// Stage 1b (III-C, Eq. 5-6): the potential motion regions from the reprojection errors under the initial pose, and
+// every cluster judged again under the pose refitted without them.
+void DynamicFrontEnd::scoreAndConfirm(Frame& f) const {
+  f.candidates = scoreCandidates(f.out.tracks, f.in, f.regions.decision_map, f.diag.clusters, f.prior, camera_,
+                                 options_, f.diag);
+  f.confirmation = confirmUnderRefittedPose(f.out.tracks, f.candidates, f.in.T_cw_last, f.in.T_cw_initial, camera_,
+                                            options_.reprojection, f.diag);
+  f.lap("reprojection");
+}
 
-  // Stage 2 (III-C, Eq. 7-8): fundamental matrix on the undistorted tracks outside the potential motion regions,
-  // epipolar distance of every track.
-  EpipolarEvidence epipolar =
-      fitEpipolarEvidence(out.tracks, confirmation.fit_tracks, camera_, options_.epipolar, diag);
-  lap("epipolar");
+// Stage 2 (III-C, Eq. 7-8): fundamental matrix on the undistorted tracks outside the potential motion regions,
+// epipolar distance of every track.
+void DynamicFrontEnd::judgeEpipolar(Frame& f) const {
+  f.epipolar = fitEpipolarEvidence(f.out.tracks, f.confirmation.fit_tracks, camera_, options_.epipolar, f.diag);
+  f.lap("epipolar");
+}
 
-  // Depth evidence (depth_evidence.h): superpixels whose depth moved under the judged pose, for movers that carry
-  // too few tracks to be scored.
-  DepthEvidence depth;
-  std::vector<bool> depth_moving;
-  if (options_.depth.enabled) {
-    depth = frameDepthEvidence(in.depth, confirmation.refit.T_cw, in.last_depth, in.T_cw_last, in.baseline_depth,
-                               in.T_cw_baseline, camera_, depth_grid_, partition.segmentation,
+// Depth evidence (depth_evidence.h): superpixels whose depth moved under the judged pose, for movers that carry too
+// few tracks to be scored.
+void DynamicFrontEnd::addDepthEvidence(Frame& f) const {
+  if (!options_.depth.enabled) return;
+  const FrontEndInput& in = f.in;
+  f.depth = frameDepthEvidence(in.depth, f.confirmation.refit.T_cw, in.last_depth, in.T_cw_last, in.baseline_depth,
+                               in.T_cw_baseline, camera_, depth_grid_, f.partition->segmentation,
                                options_.reprojection.depth_edge_ratio, options_.depth);
-    for (const SuperpixelDepth& sp : depth.superpixels) depth_moving.push_back(sp.moving);
-    diag.depth_moving_superpixels = depth.moving_superpixels;
-    lap("depth");
-  }
+  for (const SuperpixelDepth& sp : f.depth.superpixels) f.depth_moving.push_back(sp.moving);
+  f.diag.depth_moving_superpixels = f.depth.moving_superpixels;
+  f.lap("depth");
+}
 
-  // Long-baseline tracks (baseline_tracks.h): the tracked points against the frame Dynamic.Depth.baselineFrames
-  // back, for movers too slow for one frame.
-  BaselineMotion baseline;
-  std::vector<bool> baseline_moving;
-  std::vector<int> baseline_points;  // per superpixel, for growOverSurface
-  SurfaceSeeds surface_seeds;         // the rigid movers' (Dynamic.RigidMovers.growOverSurface)
-  if (options_.baseline_tracks.enabled && !in.baseline_gray.empty()) {
-    std::vector<cv::Point2f> points;
-    points.reserve(out.tracks.size());
-    for (const PointTrack& t : out.tracks) points.push_back(t.current);
-    // The pipeline's stage A builds the pyramids; otherwise they are built here.
-    const bool have_pyramids = !in.pyramid.empty() && !in.baseline_pyramid.empty();
-    const ImagePyramid pyramid = have_pyramids ? in.pyramid : buildPyramid(in.gray, options_.tracking);
-    const ImagePyramid baseline_pyramid =
-        have_pyramids ? in.baseline_pyramid : buildPyramid(in.baseline_gray, options_.tracking);
-    baseline = baselineMotion(points, pyramid, in.depth, confirmation.refit.T_cw, baseline_pyramid, in.T_cw_baseline,
-                              camera_, options_.tracking, options_.reprojection, options_.baseline_tracks);
-    // The pipeline's stage A computes the graph with the partition; otherwise it is computed here only when the
-    // vote pools over it or moving points are densified (mask building computes its own when it needs one).
-    const int superpixels = static_cast<int>(partition.segmentation.superpixels.size());
-    std::optional<SuperpixelGraph> own_graph;
-    const bool densify = options_.baseline_tracks.densify_points > 0 && baseline.ok && baseline.moving_points > 0;
-    if (!partition.graph && (options_.baseline_tracks.pool_neighbours || densify))
-      own_graph = superpixelGraph(partition.segmentation, in.depth, options_.reprojection.depth_edge_ratio);
-    const SuperpixelGraph* graph = partition.graph ? &*partition.graph : own_graph ? &*own_graph : nullptr;
-    diag.baseline_dense_points =
-        densifyBaselineMotion(baseline, pyramid, in.depth, confirmation.refit.T_cw, baseline_pyramid,
-                              in.baseline_depth, in.T_cw_baseline, camera_, partition.segmentation.labels, superpixels,
-                              graph, options_.tracking, options_.reprojection, options_.baseline_tracks);
-    diag.baseline_points = static_cast<int>(baseline.points.size());
-    diag.baseline_moving_points = baseline.moving_points;
-    baseline_moving = baselineMovingSuperpixels(baseline, partition.segmentation.labels, superpixels,
-                                                options_.baseline_tracks, graph);
-    if (options_.baseline_tracks.grow_over_surface || options_.rigid_movers.grow_over_surface)
-      baseline_points = baselinePointsPerSuperpixel(baseline, partition.segmentation.labels, superpixels);
-    lap("baseline_tracks");
-    // Rigid movers (rigid_movers.h): the moving points' rigid motions, and the superpixels that follow one.
-    if (options_.rigid_movers.enabled) {
-      const RigidDepthInput depth_input{depth_grid_, options_.depth, options_.reprojection.depth_edge_ratio};
-      const RigidMoverVerdict rigid = rigidMoverSuperpixels(
-          baseline, in.gray, in.depth, confirmation.refit.T_cw, in.baseline_gray, in.baseline_depth,
-          in.T_cw_baseline, camera_, partition.segmentation.labels, superpixels, options_.reprojection,
-          options_.rigid_movers, options_.depth.enabled ? &depth_input : nullptr);
-      diag.rigid_movers = static_cast<int>(rigid.movers.size());
-      diag.rigid_superpixels = rigid.moving_superpixels;
-      for (std::size_t s = 0; s < rigid.moving.size() && s < baseline_moving.size(); ++s)
-        baseline_moving[s] = baseline_moving[s] || rigid.moving[s];
-      if (options_.rigid_movers.grow_over_surface) {
-        surface_seeds.seeds = rigid.moving;
-        surface_seeds.within = superpixelsNearMovers(partition.segmentation.superpixels, rigid.movers,
-                                                     options_.rigid_movers.region_reach_px);
-      }
-      lap("rigid_movers");
-    }
-  }
+// Long-baseline tracks (baseline_tracks.h): the tracked points against the frame Dynamic.Depth.baselineFrames back,
+// for movers too slow for one frame; then the rigid movers among them.
+void DynamicFrontEnd::addBaselineEvidence(Frame& f) const {
+  const FrontEndInput& in = f.in;
+  if (!options_.baseline_tracks.enabled || in.baseline_gray.empty()) return;
+  std::vector<cv::Point2f> points;
+  points.reserve(f.out.tracks.size());
+  for (const PointTrack& t : f.out.tracks) points.push_back(t.current);
+  // The pipeline's stage A builds the pyramids; otherwise they are built here.
+  const bool have_pyramids = !in.pyramid.empty() && !in.baseline_pyramid.empty();
+  const ImagePyramid pyramid = have_pyramids ? in.pyramid : buildPyramid(in.gray, options_.tracking);
+  const ImagePyramid baseline_pyramid =
+      have_pyramids ? in.baseline_pyramid : buildPyramid(in.baseline_gray, options_.tracking);
+  f.baseline = baselineMotion(points, pyramid, in.depth, f.confirmation.refit.T_cw, baseline_pyramid,
+                              in.T_cw_baseline, camera_, options_.tracking, options_.reprojection,
+                              options_.baseline_tracks);
+  const SuperpixelSegmentation& segmentation = f.partition->segmentation;
+  const int superpixels = static_cast<int>(segmentation.superpixels.size());
+  f.diag.baseline_points = static_cast<int>(f.baseline.points.size());
+  f.diag.baseline_moving_points = f.baseline.moving_points;
+  f.baseline_moving =
+      baselineMovingSuperpixels(f.baseline, segmentation.labels, superpixels, options_.baseline_tracks);
+  if (options_.rigid_movers.grow_over_surface)
+    f.baseline_points = baselinePointsPerSuperpixel(f.baseline, segmentation.labels, superpixels);
+  f.lap("baseline_tracks");
+  if (options_.rigid_movers.enabled) addRigidMovers(f);
+}
 
-  // Decision: the epipolar violators vote for clusters and judged prior regions, then the mask follows the dynamic
-  // clusters per superpixel (or covers them whole) and the prior regions that stay.
-  const PriorRegions judged_prior = judge_prior ? prior : PriorRegions{};
-  ClusterVoting voting = voteClusters(epipolar.violators, regions.decision_map, candidates.cluster_scores,
-                                      confirmation.confirmed, judged_prior, options_, diag);
+// Rigid movers (rigid_movers.h): the moving long-baseline points' rigid motions, and the superpixels that follow one.
+void DynamicFrontEnd::addRigidMovers(Frame& f) const {
+  const FrontEndInput& in = f.in;
+  const SuperpixelSegmentation& segmentation = f.partition->segmentation;
+  const RigidMoverVerdict rigid = rigidMoverSuperpixels(
+      f.baseline, in.gray, in.depth, f.confirmation.refit.T_cw, in.baseline_gray, in.baseline_depth, in.T_cw_baseline,
+      camera_, segmentation.labels, static_cast<int>(segmentation.superpixels.size()), options_.reprojection,
+      options_.rigid_movers);
+  f.diag.rigid_movers = static_cast<int>(rigid.movers.size());
+  f.diag.rigid_superpixels = rigid.moving_superpixels;
+  for (std::size_t s = 0; s < rigid.moving.size() && s < f.baseline_moving.size(); ++s)
+    f.baseline_moving[s] = f.baseline_moving[s] || rigid.moving[s];
+  if (options_.rigid_movers.grow_over_surface) {
+    f.surface_seeds.seeds = rigid.moving;
+    f.surface_seeds.within =
+        superpixelsNearMovers(segmentation.superpixels, rigid.movers, options_.rigid_movers.region_reach_px);
+  }
+  f.lap("rigid_movers");
+}
+
+// Decision: the epipolar violators vote for clusters (and the evidence sources add theirs), then the mask follows the
+// dynamic clusters per superpixel (or covers them whole).
+void DynamicFrontEnd::decideMask(Frame& f) const {
+  DynamicDiagnostics& diag = f.diag;
+  f.voting = voteClusters(f.epipolar.violators, f.regions.decision_map, f.candidates.cluster_scores,
+                          f.confirmation.confirmed, options_, diag);
+  std::vector<bool>& dynamic_cluster = f.voting.dynamic_cluster;
   if (options_.depth.enabled) {
     diag.depth_dynamic_clusters =
-        addDepthMovingClusters(depth, partition.segmentation, candidates.cluster_scores,
-                               options_.reprojection.min_points_per_cluster, options_.depth, voting.dynamic_cluster);
+        addDepthMovingClusters(f.depth, f.partition->segmentation, f.candidates.cluster_scores,
+                               options_.reprojection.min_points_per_cluster, options_.depth, dynamic_cluster);
     diag.dynamic_clusters += diag.depth_dynamic_clusters;
   }
-  if (!baseline_moving.empty()) {
+  if (!f.baseline_moving.empty()) {
     const std::vector<bool> moved = baselineMovingClusters(
-        baseline, regions.decision_map, static_cast<int>(voting.dynamic_cluster.size()), options_.baseline_tracks);
+        f.baseline, f.regions.decision_map, static_cast<int>(dynamic_cluster.size()), options_.baseline_tracks);
     for (std::size_t c = 0; c < moved.size(); ++c)
-      if (moved[c] && !voting.dynamic_cluster[c]) {
-        voting.dynamic_cluster[c] = true;
+      if (moved[c] && !dynamic_cluster[c]) {
+        dynamic_cluster[c] = true;
         ++diag.baseline_dynamic_clusters;
         ++diag.dynamic_clusters;
       }
   }
-  if (options_.boundary.grow_from_confirmed > 0 && confirmation.refit.ok) {
-    // Clusters that move well beyond the confirmation threshold (boundary_assignment.h, growFromConfirmed).
-    const double bar = options_.boundary.grow_from_confirmed * confirmation.static_bar_px;
-    surface_seeds.strong_clusters.assign(voting.dynamic_cluster.size(), false);
-    for (std::size_t c = 0; c < voting.dynamic_cluster.size() && c < confirmation.confirm_scores.size(); ++c)
-      surface_seeds.strong_clusters[c] = voting.dynamic_cluster[c] && confirmation.confirmed[c] &&
-                                         confirmation.confirm_scores[c].equivalent_px >= bar;
-    for (const ClusterScore& score : candidates.cluster_scores)
-      surface_seeds.unscored_clusters.push_back(score.points < options_.reprojection.min_points_per_cluster);
-  }
-  const DynamicMask mask = buildDynamicMask(in, out.tracks, partition, regions, candidates, confirmation, epipolar,
-                                            voting, judged_prior, depth_moving, options_, diag, baseline_moving,
-                                            baseline_points, surface_seeds);
-  cv::bitwise_or(out.mask, mask.mask, out.mask);
-  lap("decision");
+  const DynamicMask mask =
+      buildDynamicMask(f.in, f.out.tracks, *f.partition, f.regions, f.candidates, f.confirmation, f.epipolar,
+                       f.voting, f.depth_moving, options_, diag, f.baseline_moving, f.baseline_points,
+                       f.surface_seeds);
+  cv::bitwise_or(f.out.mask, mask.mask, f.out.mask);
+  f.lap("decision");
+}
 
-  // Temporal hold (motion_hold.h): what this frame's tests found moving, carried over the frames where a mover
-  // that slows down falls below them.
-  if (options_.temporal.hold_frames > 0) {
-    MotionHoldInput hold_in;
-    hold_in.evidence_mask = &mask.mask;
-    hold_in.labels = &partition.segmentation.labels;
-    hold_in.count = static_cast<int>(partition.segmentation.superpixels.size());
-    hold_in.depth = &in.depth;
-    hold_in.T_cw = confirmation.refit.T_cw;
-    hold_in.last_score = &in.last_hold_score;
-    hold_in.last_depth = &in.last_depth;
-    hold_in.T_cw_last = in.T_cw_last;
-    // Static evidence at this frame's noise level ends a hold (motion_hold.h).
-    std::vector<bool> seen_static(static_cast<std::size_t>(hold_in.count), false);
-    if (confirmation.refit.ok) {
-      seen_static = stillSuperpixels(out.tracks, residualNorms(confirmation.residuals), partition.segmentation.labels,
-                                     hold_in.count, confirmation.refit.sigma_px);
-    }
-    if (baseline.ok) {
-      const std::vector<bool> stayed = baselineStaticSuperpixels(baseline, partition.segmentation.labels,
-                                                                 hold_in.count, options_.baseline_tracks);
-      for (std::size_t s = 0; s < stayed.size() && s < seen_static.size(); ++s)
-        seen_static[s] = seen_static[s] || stayed[s];
-    }
-    hold_in.seen_static = &seen_static;
-    MotionHold hold =
-        holdMotion(hold_in, camera_, hold_grid_, options_.depth, options_.temporal.hold_frames,
-                   options_.temporal.hold_min_frames);
-    diag.held_superpixels = hold.held_superpixels;
-    if (hold.held_superpixels > 0) markLabelledPixels(partition.segmentation.labels, hold.held, out.mask);
-    out.hold_score = std::move(hold.score);
-    lap("hold");
-  }
-
-  out.superpixel_labels = partition.segmentation.labels;
-  out.cluster_map = partition.cluster_map;
-  out.cluster_scores = std::move(candidates.cluster_scores);
-  out.reprojection_error_px = std::move(candidates.errors_px);
-  out.confirm_scores = std::move(confirmation.confirm_scores);
-  out.judged_error_px = residualNorms(confirmation.residuals);
-  out.T_cw_judged = confirmation.refit.T_cw;
-  out.dynamic_cluster = std::move(voting.dynamic_cluster);
-  out.epipolar_distance_px = std::move(epipolar.distance_px);
-  out.baseline_bar_px = baseline.bar_px;
-  out.baseline_points = std::move(baseline.points);
-  out.timings_ms.emplace_back("total", total.elapsedMs());
-  return out;
+// The geometric detail of the result (moved, not copied, from the stages' results).
+void DynamicFrontEnd::fillResult(Frame& f) const {
+  FrontEndResult& out = f.out;
+  out.superpixel_labels = f.partition->segmentation.labels;
+  out.cluster_map = f.partition->cluster_map;
+  out.cluster_scores = std::move(f.candidates.cluster_scores);
+  out.reprojection_error_px = std::move(f.candidates.errors_px);
+  out.confirm_scores = std::move(f.confirmation.confirm_scores);
+  out.judged_error_px = residualNorms(f.confirmation.residuals);
+  out.T_cw_judged = f.confirmation.refit.T_cw;
+  out.dynamic_cluster = std::move(f.voting.dynamic_cluster);
+  out.epipolar_distance_px = std::move(f.epipolar.distance_px);
+  out.baseline_bar_px = f.baseline.bar_px;
+  out.baseline_points = std::move(f.baseline.points);
 }
 
 }  // namespace amos::dynamic

@@ -169,17 +169,10 @@ TEST(DynamicFrontEnd, ModesCombinePriorAndGeometry) {
   EXPECT_EQ(coverage(full.mask, in.prior_mask), 1.0);
   EXPECT_GT(coverage(full.mask, pair.current.box_mask), 0.85);
 
-  // Judged prior regions: the static "person" region holds no epipolar violator and leaves the mask.
-  options.judge_prior_regions = true;
-  FrontEndResult judged = DynamicFrontEnd(cam, options).process(in);
-  EXPECT_EQ(judged.diagnostics.dynamic_prior_regions, 0);
-  EXPECT_LT(coverage(judged.mask, in.prior_mask), 0.05);
-
   // The first frame (no last frame) can only use the prior.
   FrontEndInput first = in;
   first.last_gray.release();
   first.last_depth.release();
-  options.judge_prior_regions = false;
   FrontEndResult only_prior = DynamicFrontEnd(cam, options).process(first);
   EXPECT_FALSE(only_prior.diagnostics.geometry_ran);
   EXPECT_EQ(cv::countNonZero(only_prior.mask != in.prior_mask), 0);
@@ -477,56 +470,6 @@ TEST(DynamicFrontEnd, BaselineTracksFindAMoverTooSlowForOneFrame) {
   // 31 of its points move over the baseline: their superpixels and three clusters; in one frame none does.
   EXPECT_GT(coverage(with.mask, current.box_mask), 0.4);
   EXPECT_LT(coverage(with.mask, wall), 0.02);
-}
-
-// The box rises 4 cm a frame for four frames, then creeps 1.7 mm a frame (~0.6 px: above the static tracks' noise,
-// below every test's bar) while the camera slides on: with the temporal hold it stays masked for as many frames as
-// it was seen, not beyond.
-TEST(DynamicFrontEnd, TheTemporalHoldKeepsAMoverThatSlowsDownMasked) {
-  auto pose = [](int k) {
-    core::Vector6d xi;
-    xi << -0.01 * k, 0.0, 0.0, 0.0, 0.0, 0.0;
-    return core::expSE3(xi);
-  };
-  auto rise = [](int k) { return k <= 4 ? 0.04 * k : 0.16 + 0.0017 * (k - 4); };
-  DynamicOptions options;
-  options.mode = DynamicMode::kGeometry;
-  options.temporal.hold_frames = 3;
-  options.temporal.hold_min_frames = 2;
-  const DynamicFrontEnd held(testCamera(), options);
-  options.temporal.hold_frames = 0;
-  const DynamicFrontEnd plain(testCamera(), options);
-  Rendered last = render(pose(0), Eigen::Vector3d(0.0, 0.0, 0.0));
-  cv::Mat last_mask_held, last_mask_plain, last_score;
-  for (int k = 1; k <= 9; ++k) {
-    const Rendered now = render(pose(k), Eigen::Vector3d(0.0, -rise(k), 0.0));
-    FrontEndInput in;
-    in.gray = now.gray, in.bgr = now.bgr, in.depth = now.depth;
-    in.last_gray = last.gray, in.last_depth = last.depth;
-    in.T_cw_last = pose(k - 1);
-    in.T_cw_initial = pose(k);
-    in.last_mask = last_mask_plain;
-    const FrontEndResult without = plain.process(in);
-    in.last_mask = last_mask_held;
-    in.last_hold_score = last_score;
-    const FrontEndResult with = held.process(in);
-    cv::Mat wall;
-    cv::bitwise_not(now.box_mask, wall);
-    EXPECT_LT(coverage(with.mask, wall), 0.03) << "frame " << k;
-    if (k <= 4) {
-      EXPECT_GT(coverage(without.mask, now.box_mask), 0.6) << "frame " << k;  // found by its own motion
-      EXPECT_EQ(with.diagnostics.held_superpixels, 0) << "frame " << k;
-    } else {
-      EXPECT_LT(coverage(without.mask, now.box_mask), 0.1) << "frame " << k;  // too slow to be seen
-      if (k <= 7) {
-        EXPECT_GT(coverage(with.mask, now.box_mask), 0.6) << "frame " << k;  // held: seen in four frames, cap 3
-      } else {
-        EXPECT_LT(coverage(with.mask, now.box_mask), 0.1) << "frame " << k;  // released
-      }
-    }
-    last = now;
-    last_mask_plain = without.mask, last_mask_held = with.mask, last_score = with.hold_score;
-  }
 }
 
 }  // namespace

@@ -41,12 +41,6 @@ void DynamicOptions::check() const {
   depth.check();
   baseline_tracks.check();
   rigid_movers.check();
-  core::requireInRange(temporal.hold_frames, "temporal.hold_frames", 0, 254);
-  core::requireOption(temporal.hold_min_frames >= 2 && temporal.hold_min_frames + temporal.hold_frames <= 256,
-                      core::option(temporal.hold_min_frames, "temporal.hold_min_frames"),
-                      fmt::format("must be >= 2 and at most 256 - holdFrames ({}), got {}", temporal.hold_frames,
-                                  temporal.hold_min_frames),
-                      {core::option(temporal.hold_frames, "temporal.hold_frames")});
   core::requireOption(!baseline_tracks.enabled || depth.baseline_frames > 1,
                       core::option(baseline_tracks.enabled, "baseline_tracks.enabled"),
                       fmt::format("needs depth.baseline_frames > 1 (the frame it compares with), got {}",

@@ -34,27 +34,15 @@ struct TemporalOptions {
   // still take part in every decision). Keeps a mover that the detector and the candidate stage miss in this frame
   // from biasing the pose the movers are judged against.
   bool exclude_last_mask_from_fits = true;
-  // Dynamic.Temporal.holdFrames (H, 0 = off): a surface found moving in n frames stays dynamic for the n - 1 frames
-  // after it was last found, at most H (motion_hold.h): a mover easing into a stop moves below every test's bar
-  // before it stops. At most 254.
-  int hold_frames = 0;
-  // Dynamic.Temporal.holdMinFrames (m >= 2): only a surface found moving in at least m frames is held, for n - m + 1
-  // frames after n (at most holdFrames). A static surface's false positives flicker for a frame or two.
-  int hold_min_frames = 2;
 };
 
 struct DynamicOptions {
   DynamicMode mode = DynamicMode::kFull;  // Dynamic.mode
-  // Dynamic.judgePriorRegions: false = every prior (segmented person) region is removed, as in paper III-A
-  // ("feature points that fall within the region of highly dynamic objects will be removed"). true = a prior
-  // region stays in the mask only if it holds >= Dynamic.Epipolar.minDynamicPoints epipolar violators, which
-  // keeps the features of a sitting person but would also keep those of a person moving along epipolar lines.
-  bool judge_prior_regions = false;
-  // Dynamic.priorMaskedExtraction: with judgePriorRegions off every keypoint in a (dilated) prior region is removed
-  // anyway, so ORB features may be detected outside those regions in the first place: the feature budget
+  // Every prior (segmented person) region is removed, as in paper III-A ("feature points that fall within the
+  // region of highly dynamic objects will be removed").
+  // Dynamic.priorMaskedExtraction: every keypoint in a (dilated) prior region is removed anyway, so ORB features may be detected outside those regions in the first place: the feature budget
   // (ORBextractor.nFeatures) then goes to the static part of the image instead of being spent on people and thrown
   // away. The mask is the previous frame's (people move a few pixels per frame, well inside the dilation).
-  // Ignored when judgePriorRegions is on.
   bool prior_masked_extraction = true;
   // Dynamic.priorMaskedExtractionCoverage: ... but only once the mask covers at least this fraction of the image,
   // i.e. once more than half of the budget would be thrown away. Below that the static part still gets at least

@@ -7,7 +7,7 @@
 
 #include "amos/core/camera.h"
 #include "amos/dynamic/corner_tracking.h"
-#include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/front_end_types.h"
 #include "amos/dynamic/epipolar_check.h"
 
 namespace amos::dynamic {

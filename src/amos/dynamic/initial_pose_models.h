@@ -29,13 +29,6 @@ struct InitialPoseOptions {
   // PnP RANSAC for models 1 and 2 (its defaults; Dynamic.InitialPose.minimalSolver picks the minimal solver:
   // AP3P by default, the paper's EPnP for ablation; see geometry/pnp_ransac.h for why three points).
   geometry::PnpRansacOptions pnp;
-  // Dynamic.InitialPose.keyframeForwardBackward: 1 = model 1's LK tracks (reference keyframe -> current frame) pass
-  // the forward-backward check like the corner tracks; 0 = only the forward pass runs (half the LK cost of model 1)
-  // and its EPnP RANSAC rejects the tracks that went astray, as it rejects wrong matches anyway (the check is
-  // needed for the corner tracks, whose every outlier would vote in the dynamic judgement, not here). Measured on
-  // Bonn crowd (LK window 11, 3 runs each): ATE 1.62 / 1.65 / 1.81 cm with 0 against 1.61-2.03 with 1, lost frames
-  // 20-37 against 22-25, initial pose 6.4 -> 5.3 ms CPU per frame.
-  bool keyframe_forward_backward = false;
   // Dynamic.InitialPose.keyframeMaxPoints: model 1 tracks at most this many of the reference keyframe's map-point
   // keypoints (every k-th, which keeps the extractor's spread over the image and the levels; 0 = all). The model
   // only seeds the tracker's pose, and EPnP RANSAC with a few hundred spread correspondences is as good as with a
@@ -47,13 +40,9 @@ struct InitialPoseOptions {
   // (PnpRansacOptions::coverage_min_support), the one whose inliers cover the most of the image wins (cells of an
   // 8 x 6 grid holding at least one inlier; ties: more inliers). A mover is compact and the static world surrounds
   // it: when a textured person holds most of the corners and the detector has not found it, the motion that
-  // follows the person has the most inliers, but in a few cells. walking_rpy seed 4 (full, the detector misses a
-  // walker that fills a sixth of the first frames): the pose followed the walker for 8 frames, 14.0 mm against a
-  // static twin's 2.4 mm. Without the floor a crowd lost frames: where people fill most of the view, a pose that
-  // follows some of them gathered a few chance inliers in many cells (Bonn crowd frame 67: 77 inliers in 22 cells
-  // against the static pose's 141 in 8). With the floor it changed nothing else in the quality matrix (seeds 1-5,
-  // all presets bit-identical but walking_rpy seed 4: 13.5 -> 8.4 mm) and nothing measurable on the Bonn crowd
-  // slice (4 interleaved runs: ATE 1.49-1.85 against 1.65-1.75 cm, none lost, initial pose +0.3 ms CPU).
+  // follows the person has the most inliers, but in a few cells. The floor of half the most inliers keeps a pose
+  // that follows some people of a crowd, with a few chance inliers in many cells, from winning. Measurements:
+  // docs/experiments/front-end-defaults.md.
   bool select_by_coverage = true;
   void check() const;
 };

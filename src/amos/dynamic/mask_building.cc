@@ -99,8 +99,7 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
                                      const SuperpixelGraph* graph, const std::vector<bool>& depth_moving,
                                      const std::vector<bool>& baseline_moving,
-                                     const std::vector<int>& baseline_points, double still_bar_px,
-                                     const SurfaceSeeds& surface_seeds) {
+                                     const std::vector<int>& baseline_points, const SurfaceSeeds& surface_seeds) {
   const int count = static_cast<int>(segmentation.superpixels.size());
   SuperpixelGraph computed;
   if (graph == nullptr) computed = superpixelGraph(segmentation, depth, options.reprojection.depth_edge_ratio);
@@ -109,7 +108,7 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   std::vector<RegionLabel> seeds =
       seedSuperpixels(segmentation.labels, segmentation.superpixels, neighbours, border, dynamic_cluster, evidence,
                       static_bar_px, options.epipolar.dynamic_threshold_px,
-                      SeedOptions{seed_outside, options.epipolar.min_dynamic_points, still_bar_px});
+                      SeedOptions{seed_outside, options.epipolar.min_dynamic_points});
   for (std::size_t s = 0; s < depth_moving.size() && s < seeds.size(); ++s)
     if (depth_moving[s] && seeds[s] == RegionLabel::kUnlabelled && !(s < border.size() && border[s]))
       seeds[s] = RegionLabel::kDynamic;
@@ -118,48 +117,17 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   std::vector<bool> may_be_dynamic(count);
   for (int s = 0; s < count; ++s)
     may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
-  auto grow = [&](const std::vector<bool>& from, const std::vector<bool>& within, double max_from_seed) {
+  auto grow = [&](const std::vector<bool>& from, const std::vector<bool>& within) {
     if (std::find(from.begin(), from.end(), true) == from.end()) return;
     const std::vector<bool> surface = surfaceFromMovingSeeds(
         segmentation.superpixels, g, seeds, border, from, baseline_points, options.superpixel.colour_scale,
-        options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity, within, max_from_seed);
+        options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity, within);
     for (int s = 0; s < count; ++s) may_be_dynamic[s] = may_be_dynamic[s] || surface[s];
   };
-  if (options.baseline_tracks.grow_over_surface) grow(baseline_moving, {}, 0.0);
-  grow(surface_seeds.seeds, surface_seeds.within, 0.0);
-  if (!surface_seeds.strong_clusters.empty()) {
-    // Seeds: the dynamic superpixels of the strong clusters. The growth stays within the box of each cluster's
-    // seeds plus the paper's boundary reach (Dynamic.Boundary.radius), as a rigid mover's does, or in clusters that
-    // too few tracks scored: a seed that straddles the mover's outline must not flood the plain surface behind it
-    // (a desk front, whose cluster the tracks found static), but a mover's plain part may be a cluster of its own.
-    const int clusters = static_cast<int>(surface_seeds.strong_clusters.size());
-    std::vector<bool> from(count, false);
-    std::vector<std::optional<cv::Rect2f>> seed_box(clusters);  // per strong cluster, around its seeds' centroids
-    for (int s = 0; s < count; ++s) {
-      const Superpixel& sp = segmentation.superpixels[s];
-      const int c = sp.cluster;
-      if (seeds[s] != RegionLabel::kDynamic || c < 0 || c >= clusters || !surface_seeds.strong_clusters[c]) continue;
-      from[s] = true;
-      const cv::Rect2f centroid(sp.x, sp.y, 0.f, 0.f);
-      seed_box[c] = seed_box[c] ? (*seed_box[c] | centroid) : centroid;
-    }
-    std::vector<cv::Rect2f> boxes;
-    for (const auto& box : seed_box)
-      if (box) boxes.push_back(*box);
-    if (!boxes.empty()) {  // else no strong cluster holds a dynamic seed
-      std::vector<bool> within =
-          superpixelsNearBoxes(segmentation.superpixels, boxes, options.boundary.search_radius_px);
-      auto flag = [](const std::vector<bool>& v, int c) { return c >= 0 && c < static_cast<int>(v.size()) && v[c]; };
-      for (int s = 0; s < count; ++s) {
-        const int c = segmentation.superpixels[s].cluster;
-        within[s] = within[s] || flag(surface_seeds.unscored_clusters, c) || flag(dynamic_cluster, c);
-      }
-      grow(from, within, options.baseline_tracks.grow_dissimilarity);
-    }
-  }
+  grow(surface_seeds.seeds, surface_seeds.within);
   const std::vector<RegionLabel> labels =
       growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,
-                  options.superpixel.depth_scale_m, g.occlusion_edges, options.boundary.max_dynamic_step);
+                  options.superpixel.depth_scale_m, g.occlusion_edges);
   std::vector<bool> dynamic(count);
   for (int s = 0; s < count; ++s) dynamic[s] = labels[s] == RegionLabel::kDynamic;
   return dynamic;
@@ -170,17 +138,16 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
                                          const std::vector<bool>& moving_seeds,
                                          const std::vector<int>& baseline_points, double colour_scale,
                                          double depth_scale_m, double max_dissimilarity,
-                                         const std::vector<bool>& within, double max_from_seed) {
+                                         const std::vector<bool>& within) {
   const std::size_t count = superpixels.size();
   core::require(graph.neighbours.size() == count && seeds.size() == count,
                 "surfaceFromMovingSeeds: the graph and the seeds must be of these superpixels");
   auto flag = [](const std::vector<bool>& v, std::size_t s) { return s < v.size() && v[s]; };
   std::vector<bool> reached(count, false);
-  std::vector<int> queue, origin(count, -1);
+  std::vector<int> queue;
   for (std::size_t s = 0; s < count; ++s)
     if (flag(moving_seeds, s) && !flag(border, s)) {
       reached[s] = true;
-      origin[s] = static_cast<int>(s);
       queue.push_back(static_cast<int>(s));
     }
   for (std::size_t head = 0; head < queue.size(); ++head) {
@@ -195,12 +162,6 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
       if (n < static_cast<int>(baseline_points.size()) && baseline_points[n] > 0) continue;
       if (superpixelDissimilarity(superpixels[s], superpixels[n], colour_scale, depth_scale_m) > max_dissimilarity)
         continue;
-      // Small steps may chain along a gradient (a floor receding from the mover that stands on it, into the desk
-      // front beyond): the whole way must stay as like the seed it started from.
-      if (max_from_seed > 0 &&
-          superpixelDissimilarity(superpixels[origin[s]], superpixels[n], colour_scale, depth_scale_m) > max_from_seed)
-        continue;
-      origin[n] = origin[s];
       reached[n] = true;
       queue.push_back(n);
     }
@@ -212,7 +173,7 @@ DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTra
                              const GeometricPartition& partition, const DecisionRegions& regions,
                              const CandidateScoring& candidates, const PoseConfirmation& confirmation,
                              const EpipolarEvidence& epipolar, const ClusterVoting& voting,
-                             const PriorRegions& judged_prior, const std::vector<bool>& depth_moving,
+                             const std::vector<bool>& depth_moving,
                              const DynamicOptions& options, DynamicDiagnostics& diag,
                              const std::vector<bool>& baseline_moving,
                              const std::vector<int>& baseline_points,
@@ -237,9 +198,7 @@ DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTra
     out.dynamic_superpixel =
         dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
                            seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr,
-                           depth_moving, baseline_moving, baseline_points,
-                           confirmation.refit.ok ? options.boundary.still_sigmas * confirmation.refit.sigma_px : 0.0,
-                           surface_seeds);
+                           depth_moving, baseline_moving, baseline_points, surface_seeds);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);
@@ -247,7 +206,6 @@ DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTra
     // The mask covers whole dynamic clusters, border blocks included (they only abstain from the decision).
     markLabelledPixels(partition.cluster_map, voting.dynamic_cluster, out.mask);
   }
-  if (judged_prior.count > 0) markLabelledPixels(judged_prior.components, voting.dynamic_prior_region, out.mask);
   return out;
 }
 

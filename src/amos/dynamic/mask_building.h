@@ -1,7 +1,7 @@
 #pragma once
 // The dynamic mask from the decisions (paper III-C; boundary_assignment.h): per superpixel in and around the
 // dynamic clusters (Dynamic.Boundary.superpixelMask), so that it follows the mover's outline rather than the
-// clusters' blobs, else the whole dynamic clusters; then the judged prior regions that kept their votes.
+// clusters' blobs, else the whole dynamic clusters.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -11,7 +11,7 @@
 #include "amos/dynamic/candidate_scoring.h"
 #include "amos/dynamic/cluster_voting.h"
 #include "amos/dynamic/corner_tracking.h"
-#include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/front_end_types.h"
 #include "amos/dynamic/epipolar_evidence.h"
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/geometric_clustering.h"
@@ -19,18 +19,11 @@
 
 namespace amos::dynamic {
 
-// Seeds of the surface growth besides the long-baseline ones (Dynamic.RigidMovers.growOverSurface): per
-// superpixel, those that follow a rigid mover, and those the growth from them may enter at all (empty = any): a
+// Seeds of the surface growth (Dynamic.RigidMovers.growOverSurface): per superpixel, those that follow a rigid mover, and those the growth from them may enter at all (empty = any): a
 // mover speaks only for its own region (rigid_movers.h, superpixelsNearMovers), so its plain surface lies there too.
-// `strong_clusters`: per cluster, whether its dynamic superpixels seed the growth too
-// (Dynamic.Boundary.growFromConfirmed; empty = none), over superpixels as like the seed as one step may be, near
-// the cluster's seeds (their box plus Dynamic.Boundary.radius) or in the `unscored_clusters` (per cluster: too
-// few tracks for Eq. 5).
 struct SurfaceSeeds {
   std::vector<bool> seeds;
   std::vector<bool> within;
-  std::vector<bool> strong_clusters;
-  std::vector<bool> unscored_clusters;
 };
 
 // Sets to 255 the pixels of mask (CV_8U) whose label in label_map (CV_32S, same size, each label an index into
@@ -56,13 +49,11 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 // superpixel that the tracks leave unlabelled is a dynamic seed (border superpixels excepted).
 // `baseline_moving`: per superpixel, whether its points moved over the long baseline (baseline_tracks.h; empty =
 // none): such a superpixel is a dynamic seed whatever its one-frame votes say (border superpixels excepted).
-// `still_bar_px`: SeedOptions::still_px (0 = static_bar_px).
-// `baseline_points`: per superpixel, how many long-baseline points lie on it (empty = none); with
-// Dynamic.BaselineTracks.growOverSurface the dynamic label may also enter, outside the dynamic clusters, the
-// superpixels that neither a track nor a long-baseline point measured and that are reached from a baseline-moving
-// seed through non-occlusion borders, each step between superpixels at most growDissimilarity apart
-// (surfaceFromMovingSeeds). `surface_seeds`: seeds of that growth besides (none = empty), which grow whatever
-// growOverSurface says, but only within their `within` superpixels.
+// `baseline_points`: per superpixel, how many long-baseline points lie on it (empty = none). `surface_seeds` (none =
+// empty): the dynamic label may also enter, outside the dynamic clusters and within their `within` superpixels, the
+// superpixels that neither a track nor a long-baseline point measured and that are reached from a seed through
+// non-occlusion borders, each step between superpixels at most Dynamic.BaselineTracks.growDissimilarity apart
+// (surfaceFromMovingSeeds).
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
@@ -70,33 +61,31 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const SuperpixelGraph* graph = nullptr,
                                      const std::vector<bool>& depth_moving = {},
                                      const std::vector<bool>& baseline_moving = {},
-                                     const std::vector<int>& baseline_points = {}, double still_bar_px = 0,
+                                     const std::vector<int>& baseline_points = {},
                                      const SurfaceSeeds& surface_seeds = {});
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
-// dynamicSuperpixels): breadth-first from `moving_seeds` (the baseline-moving superpixels or the rigid movers'
-// ones) over unmeasured, non-border superpixels; only into the `within` ones (empty = any), and, with
-// max_from_seed > 0, only into those at most that dissimilar from the seed the growth started from.
+// dynamicSuperpixels): breadth-first from `moving_seeds` (the rigid movers' superpixels) over unmeasured, non-border
+// superpixels; only into the `within` ones (empty = any).
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
                                          const std::vector<bool>& moving_seeds,
                                          const std::vector<int>& baseline_points, double colour_scale,
                                          double depth_scale_m, double max_dissimilarity,
-                                         const std::vector<bool>& within = {}, double max_from_seed = 0);
+                                         const std::vector<bool>& within = {});
 
 struct DynamicMask {
   cv::Mat mask;                          // CV_8U, 255 = dynamic
   std::vector<bool> dynamic_superpixel;  // per superpixel (per-superpixel mask only, else empty)
 };
 
-// The geometric stage's mask. judged_prior: the prior regions voted on (cluster_voting.h), empty when they are not
-// judged (the caller then masks every prior region itself). depth_moving / baseline_moving: per superpixel, from the
+// The geometric stage's mask (the caller masks the prior regions itself). depth_moving / baseline_moving: per superpixel, from the
 // depth evidence and the long-baseline tracks (empty without; see dynamicSuperpixels). Fills diag.dynamic_superpixels.
 DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTrack>& tracks,
                              const GeometricPartition& partition, const DecisionRegions& regions,
                              const CandidateScoring& candidates, const PoseConfirmation& confirmation,
                              const EpipolarEvidence& epipolar, const ClusterVoting& voting,
-                             const PriorRegions& judged_prior, const std::vector<bool>& depth_moving,
+                             const std::vector<bool>& depth_moving,
                              const DynamicOptions& options, DynamicDiagnostics& diag,
                              const std::vector<bool>& baseline_moving = {},
                              const std::vector<int>& baseline_points = {},

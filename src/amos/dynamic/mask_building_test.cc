@@ -50,7 +50,7 @@ TEST(MaskBuilding, MarksThePixelsOfMarkedLabelsAndKeepsTheRest) {
   EXPECT_EQ(mask.at<uchar>(35, 35), 255);
 }
 
-TEST(MaskBuilding, WholeClustersAndTheKeptPriorRegions) {
+TEST(MaskBuilding, WholeClusters) {
   const FrontEndInput in = wallFramePair({40, 40}, 2.f);
   const GeometricPartition partition = blockPartition();
   const DecisionRegions regions = findDecisionRegions(partition.segmentation, partition.cluster_map, 0);
@@ -58,19 +58,11 @@ TEST(MaskBuilding, WholeClustersAndTheKeptPriorRegions) {
   options.boundary.superpixel_mask = false;
   ClusterVoting voting;
   voting.dynamic_cluster = {false, true};
-  // Two judged prior regions in the left half; only region 2 kept its votes.
-  PriorRegions prior;
-  prior.count = 2;
-  prior.components = cv::Mat(40, 40, CV_32S, cv::Scalar(0));
-  prior.components(cv::Rect(0, 0, 5, 5)).setTo(1);
-  prior.components(cv::Rect(10, 30, 5, 4)).setTo(2);
-  voting.dynamic_prior_region = {false, false, true};
   DynamicDiagnostics diag;
-  const DynamicMask mask = buildDynamicMask(in, {}, partition, regions, {}, {}, {}, voting, prior, {}, options, diag);
-  // The right half (border blocks included) and region 2.
+  const DynamicMask mask = buildDynamicMask(in, {}, partition, regions, {}, {}, {}, voting, {}, options, diag);
+  // The right half (border blocks included).
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(20, 0, 20, 40))), 800);
-  EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 20);
-  EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(10, 30, 5, 4))), 20);
+  EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 0);
   EXPECT_TRUE(mask.dynamic_superpixel.empty());
   EXPECT_EQ(diag.dynamic_superpixels, 0);
 }
@@ -93,10 +85,10 @@ TEST(MaskBuilding, ADynamicSeedGrowsOverItsClusterAndAStaticOneHoldsTheOther) {
             std::vector<bool>(16, false));
 }
 
-TEST(MaskBuilding, LongBaselineMotionGrowsOverTheUnmeasuredSurfaceAroundIt) {
-  // No dynamic cluster; the long-baseline points of superpixel 5 (dark cluster 0) moved. Superpixel 9 below it, as
-  // dark and unmeasured (a door's plain panel), may take the dynamic label with growOverSurface; superpixel 6 (bright
-  // cluster 1) is another surface.
+TEST(MaskBuilding, MovingSeedsGrowOverTheUnmeasuredSurfaceAroundThem) {
+  // No dynamic cluster; the long-baseline points of superpixel 5 (dark cluster 0) moved: it is a dynamic seed.
+  // Superpixel 9 below it, as dark and unmeasured (a door's plain panel), is on its surface (surfaceFromMovingSeeds);
+  // superpixel 6 (bright cluster 1) is another surface.
   const GeometricPartition partition = blockPartition();
   const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);  // all but 5, 6, 9, 10
   const cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
@@ -110,19 +102,10 @@ TEST(MaskBuilding, LongBaselineMotionGrowsOverTheUnmeasuredSurfaceAroundIt) {
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
                                nullptr, {}, baseline_moving, baseline_points),
             only_5);
-  options.baseline_tracks.grow_over_surface = true;
   std::vector<bool> five_and_nine = only_5;
   five_and_nine[9] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points),
-            five_and_nine);
-  // A long-baseline point that stayed on 9 measures it: the growth does not enter it.
-  baseline_points[9] = 1;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points),
-            only_5);
-  // Nor across an occlusion edge, nor into a track-seeded superpixel, nor a step too unlike.
-  baseline_points[9] = 0;
+  // Not into a superpixel a long-baseline point measured, nor across an occlusion edge, nor into a track-seeded
+  // superpixel, nor a step too unlike.
   SuperpixelGraph graph = superpixelGraph(partition.segmentation, depth, options.reprojection.depth_edge_ratio);
   const std::vector<RegionLabel> unseeded(16, RegionLabel::kUnlabelled);
   auto surface = [&](const SuperpixelGraph& g, const std::vector<RegionLabel>& seeds, double max_step) {
@@ -131,6 +114,9 @@ TEST(MaskBuilding, LongBaselineMotionGrowsOverTheUnmeasuredSurfaceAroundIt) {
                                   max_step);
   };
   EXPECT_EQ(surface(graph, unseeded, 1.0), five_and_nine);
+  baseline_points[9] = 1;
+  EXPECT_EQ(surface(graph, unseeded, 1.0), only_5);
+  baseline_points[9] = 0;
   EXPECT_EQ(surface(graph, unseeded, 10.0)[6], true);  // L 20 -> 80: 6 units of colourScale
   std::vector<RegionLabel> static_9 = unseeded;
   static_9[9] = RegionLabel::kStatic;
@@ -140,39 +126,11 @@ TEST(MaskBuilding, LongBaselineMotionGrowsOverTheUnmeasuredSurfaceAroundIt) {
   EXPECT_EQ(surface(graph, unseeded, 1.0), only_5);
 }
 
-TEST(MaskBuilding, TheSurfaceGrowthMayBeHeldToItsSeedsLikeness) {
-  // Seed 5 (L 20), then 9 (L 28) and 10 (L 36): each step is 0.8 colourScale units, but 10 is 1.6 from the seed.
-  // Steps alone chain into 10 (a floor's gradient away from the mover standing on it); held to 1 from the seed the
-  // growth stops at 9.
-  GeometricPartition partition = blockPartition();
-  partition.segmentation.superpixels[9].L = 28.f;
-  partition.segmentation.superpixels[10].L = 36.f;
-  const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);  // all but 5, 6, 9, 10
-  const cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
-  const DynamicOptions options;
-  const SuperpixelGraph graph = superpixelGraph(partition.segmentation, depth, options.reprojection.depth_edge_ratio);
-  std::vector<bool> seed(16, false);
-  seed[5] = true;
-  auto surface = [&](double max_from_seed) {
-    return surfaceFromMovingSeeds(partition.segmentation.superpixels, graph,
-                                  std::vector<RegionLabel>(16, RegionLabel::kUnlabelled), border, seed, {},
-                                  options.superpixel.colour_scale, options.superpixel.depth_scale_m, 1.0, {},
-                                  max_from_seed);
-  };
-  std::vector<bool> five_nine = seed;
-  five_nine[9] = true;
-  std::vector<bool> five_nine_ten = five_nine;
-  five_nine_ten[10] = true;
-  EXPECT_EQ(surface(0.0), five_nine_ten);
-  EXPECT_EQ(surface(1.0), five_nine);
-}
-
 TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaselineGrowth) {
   // Superpixel 5 follows a rigid mover (rigid_movers.h) and is also a long-baseline seed; superpixel 10's points
-  // moved over the long baseline but follow no mover. With Dynamic.RigidMovers.growOverSurface alone (surface seeds
-  // = the rigid movers' superpixels) the label grows from 5 into 9 (same dark surface, unmeasured), not from 10 into
-  // 6 (bright, unmeasured, which the long-baseline growth would enter), and only while 9 is within the mover's
-  // region; with neither growth nothing grows.
+  // moved over the long baseline but follow no mover. With Dynamic.RigidMovers.growOverSurface (surface seeds = the
+  // rigid movers' superpixels) the label grows from 5 into 9 (same dark surface, unmeasured), not from 10 into 6
+  // (bright, unmeasured), and only while 9 is within the mover's region; without it nothing grows.
   const GeometricPartition partition = blockPartition();
   const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);
   const cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
@@ -180,7 +138,7 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   baseline_moving[5] = baseline_moving[10] = rigid[5] = true;
   std::vector<int> baseline_points(16, 0);
   baseline_points[5] = baseline_points[10] = 3;
-  const DynamicOptions options;  // growOverSurface off
+  const DynamicOptions options;
   std::vector<bool> seeds_only(16, false);
   seeds_only[5] = seeds_only[10] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
@@ -189,59 +147,18 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   std::vector<bool> grown = seeds_only;
   grown[9] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, {}, {}, {}}),
+                               nullptr, {}, baseline_moving, baseline_points, {rigid, {}}),
             grown);
   // Bounded to the mover's region: with 9 outside it the label stays on the seeds; within it, it grows again.
   std::vector<bool> within(16, true);
   within[9] = false;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, within, {}, {}}),
+                               nullptr, {}, baseline_moving, baseline_points, {rigid, within}),
             seeds_only);
   within[9] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, 0.0, {rigid, within, {}, {}}),
+                               nullptr, {}, baseline_moving, baseline_points, {rigid, within}),
             grown);
-  DynamicOptions baseline_growth;
-  baseline_growth.baseline_tracks.grow_over_surface = true;
-  grown[6] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth,
-                               baseline_growth, nullptr, {}, baseline_moving, baseline_points),
-            grown);
-}
-
-TEST(MaskBuilding, AClusterMovingWellBeyondTheThresholdGrowsOverItsSurfaceIntoAnotherCluster) {
-  // Cluster 0 (dark, left half) is dynamic, with two violators in superpixel 5. Superpixel 6 lies in cluster 1 but
-  // is as dark as cluster 0 and unmeasured (a chair's plain back that k-means put beside its seat's cluster): only
-  // when cluster 0 is a strong cluster (Dynamic.Boundary.growFromConfirmed) does the label reach it, and only while
-  // 6 lies near the seeds (their box plus Dynamic.Boundary.radius) or in a cluster no tracks scored; superpixel 10
-  // (bright) never.
-  GeometricPartition partition = blockPartition();
-  partition.segmentation.superpixels[6].L = 20.f;
-  const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);  // all but 5, 6, 9, 10
-  const std::vector<TrackEvidence> evidence = {{{14, 15}, std::nullopt, 10.0}, {{16, 15}, std::nullopt, 10.0}};
-  const cv::Mat depth(40, 40, CV_32F, cv::Scalar(2.f));
-  auto judge = [&](const std::vector<bool>& strong, const std::vector<bool>& unscored, int radius_px,
-                   const std::vector<TrackEvidence>& tracks) {
-    SurfaceSeeds surface;
-    surface.strong_clusters = strong;
-    surface.unscored_clusters = unscored;
-    DynamicOptions options;
-    options.boundary.search_radius_px = radius_px;
-    return dynamicSuperpixels(partition.segmentation, border, {true, false}, tracks, 1.0, false, depth, options,
-                              nullptr, {}, {}, {}, 0.0, surface);
-  };
-  std::vector<bool> with_6 = leftHalfSuperpixels();
-  with_6[6] = true;
-  EXPECT_EQ(judge({}, {}, 30, evidence), leftHalfSuperpixels());
-  EXPECT_EQ(judge({false, false}, {false, true}, 30, evidence), leftHalfSuperpixels());
-  EXPECT_EQ(judge({true, false}, {false, false}, 30, evidence), with_6);  // 6 within 30 px of the seed
-  EXPECT_EQ(judge({true, false}, {false, false}, 0, evidence), leftHalfSuperpixels());
-  EXPECT_EQ(judge({true, false}, {false, true}, 0, evidence), with_6);  // cluster 1 unscored
-  // A track that stayed on 6 measures it: the growth does not enter it.
-  std::vector<TrackEvidence> measured = evidence;
-  measured.push_back({{24, 15}, Eigen::Vector2d::Zero(), 0.0});
-  measured.push_back({{26, 15}, Eigen::Vector2d::Zero(), 0.0});
-  EXPECT_EQ(judge({true, false}, {false, true}, 30, measured), leftHalfSuperpixels());
 }
 
 TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
@@ -260,7 +177,7 @@ TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
   voting.dynamic_cluster = {true, false};
   DynamicDiagnostics diag;
   const DynamicMask mask = buildDynamicMask(in, tracks, partition, regions, candidates, confirmation, epipolar,
-                                            voting, PriorRegions{}, {}, DynamicOptions{}, diag);
+                                            voting, {}, DynamicOptions{}, diag);
   EXPECT_EQ(mask.dynamic_superpixel, leftHalfSuperpixels());
   EXPECT_EQ(diag.dynamic_superpixels, 8);
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 800);

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/front_end_types.h"
 
 namespace amos::dynamic {
 

@@ -11,7 +11,7 @@
 #include "amos/core/pose.h"
 #include "amos/dynamic/candidate_scoring.h"
 #include "amos/dynamic/corner_tracking.h"
-#include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/front_end_types.h"
 #include "amos/dynamic/reprojection_scoring.h"
 
 namespace amos::dynamic {

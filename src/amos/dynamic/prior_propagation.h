@@ -32,12 +32,10 @@ struct PriorScheduleOptions {
   int lag = 2;
   // Dynamic.Prior.detectEvery: the person detector runs on every detectEvery-th segmentation; the ones between
   // mask the people of the last detection again (their boxes widened by Segmentation.carriedBoxWiden*), so only
-  // the mask network runs. 1 = every segmentation detects (default). 2 saves a third of the segmentation CPU on
-  // Bonn crowd (8.2 -> 5.8 ms per frame: NanoDet-m 320 ~14 ms per run, the person masks ~3.5 ms each), and the
-  // masks on carried boxes match the detector's (IoU 0.82 vs 0.83 with 1), but a person who enters the view is
-  // found only by the next detection, up to interval * detectEvery + lag = 8 frames later instead of 5; on Bonn
-  // crowd one entering person the detector missed once went unmasked for 6 frames more, and ATE rose from
-  // 1.6-1.8 to 1.9-2.6 cm (5 runs each). For CPUs too slow for 1.
+  // the mask network runs. 1 = every segmentation detects (default). 2 saves about a third of the segmentation CPU
+  // and the masks on carried boxes match the detector's, but a person who enters the view is found only by the next
+  // detection, up to interval * detectEvery + lag = 8 frames later instead of 5, which costs accuracy in a crowd
+  // (docs/experiments/front-end-defaults.md). For CPUs too slow for 1.
   int detect_every = 1;
   // Dynamic.Prior.minTracks: tracks inside an instance needed to measure its motion; with fewer, the instance
   // keeps its last motion (people do not stop within a frame). 3: a median of three is robust to one bad track.

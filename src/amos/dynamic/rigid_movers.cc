@@ -10,7 +10,6 @@
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
 #include "amos/dynamic/frame_regions.h"
-#include "amos/dynamic/rigid_mover_depth.h"
 #include "amos/dynamic/robust_scale.h"
 
 namespace amos::dynamic {
@@ -118,8 +117,7 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
                                         const core::SE3& T_cw, const cv::Mat& baseline_gray,
                                         const cv::Mat& baseline_depth, const core::SE3& T_cw_baseline,
                                         const core::PinholeCamera& camera, const cv::Mat& labels, int count,
-                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options,
-                                        const RigidDepthInput* depth_input) {
+                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options) {
   core::require(gray.type() == CV_8UC1 && baseline_gray.type() == CV_8UC1 && gray.size() == baseline_gray.size() &&
                     depth.type() == CV_32F && depth.size() == gray.size() && labels.type() == CV_32S &&
                     labels.size() == gray.size(),
@@ -144,7 +142,7 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
                         static_cast<float>(lifted[i]->z()));
     if (motion.points[i].moving)
       moving_object.push_back(X), moving_image.push_back(seen[i]), moving_pixel.push_back(current[i]);
-    else if (!motion.points[i].densified)
+    else
       still_object.push_back(X), still_image.push_back(seen[i]), still_pixel.push_back(current[i]);
   }
   const cv::Mat K = camera.K();
@@ -270,15 +268,6 @@ RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::
       votes.push_back({s, best}), ++mover_tally[best];
     else if (e_static + options.intensity_margin < e_mover)
       votes.push_back({s, -1 - best}), ++static_tally[best];
-  }
-  if (depth_input && options.depth_votes && !baseline_depth.empty()) {
-    // Where the image has no texture to vote with, the baseline's depth does (rigid_mover_depth.h).
-    for (const RigidSampleVote& vote :
-         rigidMoverDepthVotes(out.movers, out.T_bc_static, depth, baseline_depth, camera, depth_input->grid, labels,
-                              count, options.region_reach_px, depth_input->depth_edge_ratio, depth_input->options)) {
-      votes.push_back(vote);
-      ++(vote.mover >= 0 ? mover_tally[vote.mover] : static_tally[-1 - vote.mover]);
-    }
   }
   // A mover must explain the samples around its own points better than the static world does; a motion fitted to
   // a real sensor's structured errors (TUM fr2/desk: the near desk at the image bottom, where depth and colour were

@@ -19,7 +19,6 @@
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
 #include "amos/dynamic/baseline_tracks.h"
-#include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/reprojection_scoring.h"
 
@@ -55,8 +54,8 @@ struct RigidMoverOptions {
   // its points (the paper's boundary reach, Dynamic.Boundary.radius: about one superpixel).
   int region_reach_px = 30;
   // Dynamic.RigidMovers.minGradient: a sample needs at least this RMS intensity gradient [grey levels per px] along
-  // the direction that separates the two hypotheses, over 7x7 px (windowStructure; the floor of
-  // Dynamic.BaselineTracks.densifyMinGradient): a patch textured across one direction only (wood grain, a row of
+  // the direction that separates the two hypotheses, over 7x7 px (windowStructure): at 4 the image noise of a few
+  // grey levels moves a patch match by well under the bar; a patch textured across one direction only (wood grain, a row of
   // book spines) cannot tell a shift along the stripes from none.
   double min_gradient = 4.0;
   // Dynamic.RigidMovers.growOverSurface: the mask may grow from the superpixels that follow a rigid mover over the
@@ -64,13 +63,8 @@ struct RigidMoverOptions {
   // step at most Dynamic.BaselineTracks.growDissimilarity apart), outside the dynamic clusters too: a door's plain
   // panel moves with its textured parts, and gives the samples nothing to vote on. The growth stays within the
   // movers' regions (superpixelsNearMovers), as their votes do: from a box's superpixels it would otherwise run on
-  // over the plain, shadowed floor beside it (box_push seed 8, frame 86: 37000 px).
+  // over the plain, shadowed floor beside it.
   bool grow_over_surface = false;
-  // Dynamic.RigidMovers.depthVotes: the baseline frame's depth samples vote too (rigid_mover_depth.h), where the
-  // image cannot: a door's plain panel, or a surface receding from the camera, which the intensity patches and the
-  // depth evidence's free-space test leave undecided. Their votes count in the region test as well: a slanted
-  // door's box holds more textured wall than textured door.
-  bool depth_votes = false;
   void check() const;
 };
 
@@ -87,12 +81,6 @@ struct RigidSampleVote {
   int mover;
 };
 
-// What the depth votes need (Dynamic.RigidMovers.depthVotes): the depth evidence's sample grid and noise model.
-struct RigidDepthInput {
-  const DepthSampleGrid& grid;
-  const DepthEvidenceOptions& options;
-  double depth_edge_ratio;  // Dynamic.Reprojection.depthEdgeRatio
-};
 
 struct RigidMoverVerdict {
   core::SE3 T_bc_static = core::SE3::Identity();  // the static world's motion (refined on the points that stayed)
@@ -106,14 +94,12 @@ struct RigidMoverVerdict {
 // follow one of them rather than the static world. gray / depth / T_cw: the current frame (CV_8UC1, CV_32F metres,
 // judged pose); baseline_gray / baseline_depth / T_cw_baseline: the baseline frame (its depth only tells which
 // predictions it saw: one nearer by more than max(2 cm, 4 %) was hidden there). reprojection: depth trust rules.
-// With depth_input and options.depth_votes the baseline's depth votes too (rigid_mover_depth.h).
 // Empty `moving` (all false) when no rigid motion has minInliers points.
 RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::Mat& gray, const cv::Mat& depth,
                                         const core::SE3& T_cw, const cv::Mat& baseline_gray,
                                         const cv::Mat& baseline_depth, const core::SE3& T_cw_baseline,
                                         const core::PinholeCamera& camera, const cv::Mat& labels, int count,
-                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options,
-                                        const RigidDepthInput* depth_input = nullptr);
+                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options);
 
 // Whether p lies within reach pixels of the box r (a mover's region and the samples it speaks for).
 bool withinReach(const cv::Rect2f& r, const cv::Point2f& p, float reach);

@@ -4,7 +4,7 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
-#include "amos/dynamic/dynamic_front_end.h"
+#include "amos/dynamic/front_end_types.h"
 #include "amos/testing/test_camera.h"
 
 namespace amos::dynamic {

@@ -91,10 +91,10 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
     out << "frame id name pixels marked tracks scored init_px judged_px epi_viol base_moving/base_points base_px "
            "cause | clusters: "
            "c<id>:<mover share of cluster>/<share of mover> n<tracks> i<initial px>[C] r<refit px>[K] [D]\n";
-  cv::Mat last_gray, last_depth, last_mask, last_hold_score;
+  cv::Mat last_gray, last_depth, last_mask;
   core::SE3 T_cw_last, T_cw_before;
   // As the pipeline keeps it.
-  dynamic::BaselineHistory baseline_history(dyn.depth.baseline_frames, dyn.depth.baseline_min_frames);
+  dynamic::BaselineHistory baseline_history(dyn.depth.baseline_frames);
   bool have_before = false;
   if (!options.images_dir.empty()) std::filesystem::create_directories(options.images_dir);
   while (auto frame = reader.next()) {
@@ -107,7 +107,6 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
       dynamic::FrontEndInput in;
       in.gray = gray, in.bgr = frame->bgr, in.depth = frame->depth;
       in.last_gray = last_gray, in.last_depth = last_depth, in.last_mask = last_mask;
-      in.last_hold_score = last_hold_score;
       in.T_cw_last = T_cw_last;
       if (const auto* baseline = baseline_history.baseline()) {
         in.baseline_depth = baseline->depth;
@@ -119,7 +118,6 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
                                              : T_cw_last;
       const dynamic::FrontEndResult result = front_end.process(in);
       last_mask = result.mask;
-      last_hold_score = result.hold_score;
       const auto mk = masks->frameAt(frame->timestamp);
       if (mk) {
         const cv::Mat ids = masks->instanceMask(*mk);
@@ -155,7 +153,6 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
       }
     } else {
       last_mask.release();
-      last_hold_score.release();
     }
     if (!last_gray.empty()) T_cw_before = T_cw_last, have_before = true;
     last_gray = gray, last_depth = frame->depth, T_cw_last = T_cw;

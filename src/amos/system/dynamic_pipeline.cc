@@ -48,8 +48,7 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
   if (scheduler_.tasks().segmentation)
     state_.person_masks.emplace(scheduler_.segmentation()->dilation(), options_.prior);
   if (options_.depth.enabled || options_.baseline_tracks.enabled)
-    state_.baseline_history =
-        dynamic::BaselineHistory(options_.depth.baseline_frames, options_.depth.baseline_min_frames);
+    state_.baseline_history = dynamic::BaselineHistory(options_.depth.baseline_frames);
 }
 
 DynamicPipeline::~DynamicPipeline() = default;
@@ -105,7 +104,7 @@ std::optional<core::SE3> DynamicPipeline::initialPose(const dynamic::ImagePyrami
       points_w.push_back(view.points_w[i]);
     }
     dynamic::CornerTrackingOptions tracking = options_.tracking;
-    tracking.forward_backward_check = options_.initial_pose.keyframe_forward_backward;
+    tracking.forward_backward_check = false;  // its EPnP RANSAC rejects the tracks that went astray
     // The keyframe keypoints are undistorted; LK on the raw keyframe image needs them raw.
     from_keyframe = dynamic::keyframeCorrespondences({keyframe, current}, camera.distort(pixels), points_w,
                                                      camera, tracking);
@@ -183,7 +182,7 @@ DynamicPipeline::Judgement DynamicPipeline::judge(dynamic::FrontEndInput input) 
   times_.add("dynamic.front_end", watch.elapsedMs());
   times_.add("cpu.front_end", threadCpuMs() - cpu);
   for (const auto& [stage, ms] : judged.timings_ms) times_.add("dynamic." + stage, ms);
-  return {std::move(judged.mask), std::move(judged.hold_score)};
+  return {std::move(judged.mask)};
 }
 
 void DynamicPipeline::track(const TrackInput& input, ProcessedFrame& out) {
@@ -195,7 +194,7 @@ void DynamicPipeline::track(const TrackInput& input, ProcessedFrame& out) {
   removed_fractions_.push_back(out.removed_fraction);
 }
 
-void DynamicPipeline::remember(const ProcessedFrame& out, FrameMotionInput motion, cv::Mat hold_score) {
+void DynamicPipeline::remember(const ProcessedFrame& out, FrameMotionInput motion) {
   state_.tracking_view = out.slam.view;  // also after a lost frame: the next frame's initial pose starts from it
   const tracking::TrackResult& result = out.slam.track;
   if (result.state != tracking::TrackingState::kOk) {
@@ -213,8 +212,7 @@ void DynamicPipeline::remember(const ProcessedFrame& out, FrameMotionInput motio
     if (state_.keyframe_pyramids.size() > kKeyFrameImages) state_.keyframe_pyramids.pop_front();
   }
   state_.last = LastFrame{std::move(motion.gray),    out.frame.depth,           out.dynamic_mask,
-                          std::move(hold_score),     std::move(motion.pyramid), std::move(motion.corners),
-                          result.T_cw};
+                          std::move(motion.pyramid), std::move(motion.corners), result.T_cw};
 }
 
 FrameNumber DynamicPipeline::firstSlotNeeded() const {
@@ -240,7 +238,6 @@ ProcessedFrame DynamicPipeline::processNext() {
   track_input.depth = slot.frame.depth;
   // The initial-pose models (step 4) of the next frame read the reference keyframe's points.
   track_input.reference_keyframe_view = tasks.geometry;
-  cv::Mat hold_score;
   if (options_.mode != dynamic::DynamicMode::kNone) {
     dynamic::FrontEndInput input;
     input.gray = motion.gray;
@@ -253,7 +250,6 @@ ProcessedFrame DynamicPipeline::processNext() {
       input.last_depth = last.depth;
       input.T_cw_last = last.T_cw;
       input.last_mask = last.dynamic_mask;
-      input.last_hold_score = last.hold_score;
       input.T_cw_initial = last.T_cw;
       if (const auto* baseline = state_.baseline_history.baseline()) {
         input.baseline_depth = baseline->depth;
@@ -296,7 +292,6 @@ ProcessedFrame DynamicPipeline::processNext() {
     }
     Judgement judgement = judge(std::move(input));  // 5
     track_input.dynamic_mask = judgement.mask;
-    hold_score = std::move(judgement.hold_score);
     out.dynamic_mask = track_input.dynamic_mask;
   }
   core::Stopwatch wait;
@@ -310,7 +305,7 @@ ProcessedFrame DynamicPipeline::processNext() {
   track_input.features = std::move(features.features);
   track(track_input, out);  // 6
   slot.map_ready.set_value(out.slam.view.state != tracking::TrackingState::kNotInitialized);
-  remember(out, std::move(motion), std::move(hold_score));  // 7
+  remember(out, std::move(motion));  // 7
   ++state_.processed;
   processed_.store(state_.processed);
   scheduler_.release(firstSlotNeeded());

@@ -132,7 +132,6 @@ class DynamicPipeline {
   struct LastFrame {
     cv::Mat gray, depth;
     cv::Mat dynamic_mask;           // its final dynamic mask (empty in mode none)
-    cv::Mat hold_score;             // its temporal hold scores (empty unless Dynamic.Temporal.holdFrames)
     dynamic::ImagePyramid pyramid;  // LK pyramid of gray (empty when the geometric stage is off)
     std::vector<cv::Point2f> corners;  // corners of gray (dynamic::detectCorners), tracked into the next frame
     core::SE3 T_cw = core::SE3::Identity();
@@ -159,13 +158,13 @@ class DynamicPipeline {
                                        const std::vector<dynamic::PointTrack>& tracks,
                                        std::optional<dynamic::PoseModel>& model);
   PersonMaskCarrier::Masks personMasks(FrameSlot& slot, const std::vector<dynamic::PointTrack>& tracks);
-  // What the judgement passes on: the dynamic mask, and the temporal hold's scores for the next frame.
+  // What the judgement passes on: the dynamic mask.
   struct Judgement {
-    cv::Mat mask, hold_score;
+    cv::Mat mask;
   };
   Judgement judge(dynamic::FrontEndInput input);
   void track(const TrackInput& input, ProcessedFrame& out);
-  void remember(const ProcessedFrame& out, FrameMotionInput motion, cv::Mat hold_score);
+  void remember(const ProcessedFrame& out, FrameMotionInput motion);
 
   // The slots that stage B will still read from (the segmentation that serves the next frame, and on).
   FrameNumber firstSlotNeeded() const;

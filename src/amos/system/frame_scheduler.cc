@@ -15,9 +15,7 @@ StageATasks StageATasks::forMode(const dynamic::DynamicOptions& options) {
   StageATasks t;
   t.segmentation = options.mode == DynamicMode::kPrior || options.mode == DynamicMode::kFull;
   t.geometry = options.mode == DynamicMode::kGeometry || options.mode == DynamicMode::kFull;
-  // When prior regions are judged (Dynamic.judgePriorRegions) a person may turn out static, so the mask must not
-  // keep features away from it.
-  t.masked_extraction = t.segmentation && options.prior_masked_extraction && !options.judge_prior_regions;
+  t.masked_extraction = t.segmentation && options.prior_masked_extraction;
   return t;
 }
 

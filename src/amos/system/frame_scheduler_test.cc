@@ -40,8 +40,6 @@ TEST(StageATasks, EachModeSchedulesItsTasks) {
   o.mode = DynamicMode::kFull;
   t = StageATasks::forMode(o);
   EXPECT_TRUE(t.geometry && t.segmentation && t.masked_extraction);
-  o.judge_prior_regions = true;  // a person may turn out static: the mask must not keep features away from it
-  EXPECT_FALSE(StageATasks::forMode(o).masked_extraction);
 }
 
 // Frame 1's preparation waits for frame 0's dilated person mask (declared hand-off), then detects ORB features only
