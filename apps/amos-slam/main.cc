@@ -1,4 +1,4 @@
-// amos-slam: command-line front end. See README.md for the subcommands.
+// amos-slam: command-line front end. See docs/usage.md for the subcommands.
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 

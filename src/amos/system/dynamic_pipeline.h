@@ -89,7 +89,7 @@ struct ProcessedFrame {
   std::optional<dynamic::PoseModel> initial_pose_model;  // which model of III-D won, when one ran
   double removed_fraction = 0;  // keypoints removed by the mask / keypoints extracted
   // The extracted keypoints (image pixels, as detected), before the mask removed any: for observers that mark
-  // kept and removed ones (report/run_observer.h). A copy of ~1000 points, microseconds.
+  // kept and removed ones (run/run_observer.h). A copy of ~1000 points, microseconds.
   std::vector<cv::Point2f> keypoints;
 };
 

@@ -139,7 +139,7 @@ class SlamSystem {
   const SlamOptions& options() const { return options_; }
   map::Map& map() { return *map_; }
   const map::Map& map() const { return *map_; }
-  // The map for observers that may outlive this system (the viewer's publisher thread; report/run_observer.h).
+  // The map for observers that may outlive this system (the viewer's publisher thread; run/run_observer.h).
   std::shared_ptr<const map::Map> sharedMap() const { return map_; }
   const std::shared_ptr<const map::Sensor>& sensor() const { return sensor_; }
   // The keyframes' bag-of-words database (null without a vocabulary).

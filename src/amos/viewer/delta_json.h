@@ -1,7 +1,7 @@
 #pragma once
 // JSON of what the browsers receive: an update event (new / moved / removed points and keyframes, appended
 // trajectory, the frame status) and the pieces of the whole state. Positions are rounded to the millimetre to keep
-// the messages small. Shapes (see README, "Seeing a run"):
+// the messages small. Shapes (see docs/viewer.md):
 //   point     [id, x, y, z]            keyframe  [id, x, y, z, qx, qy, qz, qw]  (T_wc)
 //   trajectory point [t, x, y, z]
 #include <nlohmann/json.hpp>
