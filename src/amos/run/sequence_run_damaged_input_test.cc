@@ -92,7 +92,7 @@ TEST(SequenceRunDamagedInput, BadFramesAreSkippedAndCountedByReason) {
   std::ifstream in(out / "stats.json");
   const nlohmann::json stats = nlohmann::json::parse(in);
   EXPECT_EQ(stats["skipped_frames"], nlohmann::json({{"missing", 1}, {"unreadable", 1}, {"wrong_size", 1},
-                                                     {"wrong_format", 1}}));
+                                                     {"wrong_format", 1}, {"blank", 0}}));
   EXPECT_EQ(stats["depth_dropouts"]["frames"], 0);
 }
 
