@@ -22,6 +22,10 @@
 #include "amos/config/settings.h"
 #include "amos/config/slam_options.h"
 #include "amos/dynamic/dynamic_front_end.h"
+#include "amos/evidence/baseline_tracks.h"
+#include "amos/evidence/depth_evidence.h"
+#include "amos/evidence/evidence_sources.h"
+#include "amos/evidence/rigid_movers.h"
 #include "amos/segmentation/model_locator.h"
 #include "amos/segmentation/segmenter_factory.h"
 #include "amos/dynamic/superpixel_metrics.h"
@@ -34,6 +38,7 @@ namespace {
 
 using namespace amos;
 using namespace amos::dynamic;
+using namespace amos::evidence;
 
 struct Frame {
   cv::Mat bgr, gray, depth;
@@ -389,7 +394,7 @@ void BM_FrontEndGeometry(benchmark::State& state) {
   const BenchData& d = data();
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrontEnd front_end(d.camera, options);
+  const DynamicFrontEnd front_end(d.camera, options, makeEvidenceSources(d.camera, options));
   FrontEndInput in;
   in.gray = d.current.gray, in.bgr = d.current.bgr, in.depth = d.current.depth;
   in.last_gray = d.last.gray, in.last_depth = d.last.depth;

@@ -4,17 +4,15 @@
 // fitted to any sequence.
 #include <string>
 
-#include "amos/dynamic/baseline_tracks.h"
 #include "amos/dynamic/boundary_assignment.h"
 #include "amos/dynamic/corner_tracking.h"
-#include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/epipolar_check.h"
+#include "amos/dynamic/evidence_options.h"
 #include "amos/dynamic/geometric_clustering.h"
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/prior_propagation.h"
 #include "amos/dynamic/reprojection_scoring.h"
-#include "amos/dynamic/rigid_movers.h"
 
 namespace amos::dynamic {
 

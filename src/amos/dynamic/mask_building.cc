@@ -1,7 +1,6 @@
 #include "amos/dynamic/mask_building.h"
 
 #include "amos/core/error.h"
-#include "amos/dynamic/rigid_movers.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,13 +9,15 @@
 #include <vector>
 
 #include "amos/core/camera.h"
-#include "amos/dynamic/baseline_tracks.h"
+#include "amos/evidence/baseline_tracks.h"
 #include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/dynamic_options.h"
 #include "amos/dynamic/test_scenes.h"
 #include "amos/testing/test_camera.h"
 
-namespace amos::dynamic::box_wall {
+namespace amos::evidence::box_wall {
+
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 
 // A textured wall 3 m in front of the world origin (plane z = 3) and the textured front face of a box (a square of
 // 0.6 m on the plane z = 1.5, centred at x = box_x), its texture moving with it; cameras look along +z without
@@ -93,4 +95,4 @@ struct Scene {
   }
 };
 
-}  // namespace amos::dynamic::box_wall
+}  // namespace amos::evidence::box_wall

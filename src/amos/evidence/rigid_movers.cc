@@ -1,4 +1,4 @@
-#include "amos/dynamic/rigid_movers.h"
+#include "amos/evidence/rigid_movers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,19 +12,9 @@
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/robust_scale.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
 
-void RigidMoverOptions::check() const {
-  core::requireAtLeast(min_inliers, "min_inliers", 6);
-  core::requirePositive(inlier_px, "inlier_px");
-  core::requireAtLeast(max_movers, "max_movers", 1);
-  core::requireAtLeast(sample_step_px, "sample_step_px", 1);
-  core::requireAtLeast(min_separation_px, "min_separation_px", 0.0);
-  core::requireAtLeast(intensity_margin, "intensity_margin", 0.0);
-  core::requireAtLeast(min_samples, "min_samples", 1);
-  core::requireAtLeast(region_reach_px, "region_reach_px", 0);
-  core::requireAtLeast(min_gradient, "min_gradient", 0.0);
-}
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 
 bool withinReach(const cv::Rect2f& r, const cv::Point2f& p, float reach) {
   return p.x >= r.x - reach && p.y >= r.y - reach && p.x <= r.x + r.width + reach && p.y <= r.y + r.height + reach;
@@ -311,4 +301,4 @@ std::vector<bool> superpixelsNearMovers(const std::vector<Superpixel>& superpixe
   return superpixelsNearBoxes(superpixels, regions, reach_px);
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

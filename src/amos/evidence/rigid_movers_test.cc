@@ -1,15 +1,17 @@
-#include "amos/dynamic/rigid_movers.h"
+#include "amos/evidence/rigid_movers.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
 #include "amos/core/option_error.h"
-#include "amos/dynamic/box_wall_scene.h"
+#include "amos/evidence/box_wall_scene.h"
 #include "amos/dynamic/dynamic_options.h"
 #include "amos/dynamic/test_scenes.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
+
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 namespace {
 using box_wall::Frame;
 using box_wall::render;
@@ -115,4 +117,4 @@ TEST(RigidMovers, OptionsAreChecked) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

@@ -1,4 +1,4 @@
-#include "amos/dynamic/depth_evidence.h"
+#include "amos/evidence/depth_evidence.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,26 +6,9 @@
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
 
-void DepthEvidenceOptions::check() const {
-  core::requireInRange(sample_step_px, "sample_step_px", 1, 32);
-  core::requirePositive(noise_base_m, "noise_base_m");
-  core::requireAtLeast(noise_quadratic, "noise_quadratic", 0.0);
-  core::requireAtLeast(noise_offset_m, "noise_offset_m", 0.0);
-  core::requirePositive(sigmas, "sigmas");
-  core::requireAtLeast(min_residual_m, "min_residual_m", 0.0);
-  core::requirePositive(max_depth_m, "max_depth_m");
-  core::requireInRange(min_relative_residual, "min_relative_residual", 0.0, 1.0);
-  core::requireAtLeast(min_samples, "min_samples", 1);
-  core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
-  core::requirePositive(violation_sigmas, "violation_sigmas");
-  core::requireInRange(violation_share, "violation_share", 1e-6, 1.0);
-  core::requireAtLeast(min_violations, "min_violations", 1);
-  core::requireAtLeast(unscored_cluster_superpixels, "unscored_cluster_superpixels", 1);
-  core::requireAtLeast(baseline_frames, "baseline_frames", 0);
-  core::requireInRange(baseline_relative_residual, "baseline_relative_residual", 0.0, 1.0);
-}
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 
 DepthSampleGrid::DepthSampleGrid(const core::PinholeCamera& camera, int step_px) {
   core::require(step_px >= 1, "DepthSampleGrid: step must be >= 1");
@@ -233,24 +216,16 @@ DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, co
                                                                 count, depth_edge_ratio, baseline, true));
 }
 
-int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
-                           const std::vector<ClusterScore>& cluster_scores, int min_points,
-                           const DepthEvidenceOptions& options, std::vector<bool>& dynamic_cluster) {
+std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
+                                      const std::vector<ClusterScore>& cluster_scores, int min_points,
+                                      const DepthEvidenceOptions& options) {
   std::vector<int> cluster_of_superpixel;
   cluster_of_superpixel.reserve(segmentation.superpixels.size());
   for (const Superpixel& sp : segmentation.superpixels) cluster_of_superpixel.push_back(sp.cluster);
   std::vector<bool> scored;
   for (const ClusterScore& score : cluster_scores) scored.push_back(score.points >= min_points);
-  const std::vector<bool> moved = depthMovingClusters(evidence, cluster_of_superpixel, scored,
-                                                      static_cast<int>(dynamic_cluster.size()), options);
-  int added = 0;
-  for (std::size_t c = 0; c < moved.size() && c < dynamic_cluster.size(); ++c) {
-    if (moved[c] && !dynamic_cluster[c]) {
-      dynamic_cluster[c] = true;
-      ++added;
-    }
-  }
-  return added;
+  return depthMovingClusters(evidence, cluster_of_superpixel, scored, static_cast<int>(cluster_scores.size()),
+                             options);
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

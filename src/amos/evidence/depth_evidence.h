@@ -26,71 +26,16 @@
 #include "amos/core/pose.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/reprojection_scoring.h"
+#include "amos/dynamic/evidence_options.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
 
-struct DepthEvidenceOptions {
-  // Dynamic.Depth.enabled: the depth evidence takes part in the decisions (geometry and full modes).
-  bool enabled = false;
-  // Dynamic.Depth.sampleStep: every step-th pixel in x and y. 4 gives 160x120 samples on 640x480 (~40 per
-  // superpixel of S ~ 26 px), enough for a median whose standard error is a sixth of the noise, at ~1 ms.
-  int sample_step_px = 4;
-  // Dynamic.Depth.noiseBase / noiseQuadratic / noiseOffset: the sensor's axial noise sigma(z) = base + quadratic
-  // (z - offset)^2 [m] (Nguyen et al. 2012, Kinect v1; the synthetic sensor uses the same model).
-  double noise_base_m = 0.0012;
-  double noise_quadratic = 0.0019;
-  double noise_offset_m = 0.4;
-  // Dynamic.Depth.maxDepth: samples farther than this in either frame do not count. The specified range of the
-  // structured-light sensors (Kinect v1 4 m, Xtion 3.5 m): beyond it the error is no longer the noise model's
-  // Gaussian (disparity steps of 5 cm and more at 4-5 m, multipath), and TUM fr2/desk's static background at 4-5.6 m
-  // was the only thing its 10-frame comparison found moving.
-  double max_depth_m = 4.0;
-  // Dynamic.Depth.sigmas: a superpixel moves when its median residual is this many of its standard errors from
-  // zero. 4: on ~300 static superpixels per frame a Gaussian statistic passes 4 sigma once in ~50 frames.
-  double sigmas = 4.0;
-  // Dynamic.Depth.minResidual: ... and at least this far [m]. A pose error of 1 mrad (half a pixel at f ~ 540 px)
-  // shifts a point at 3 m by 3 mm sideways, which on a surface seen at 60-70 deg from its normal reads as 5-8 mm
-  // of depth: 1 cm stays above that.
-  double min_residual_m = 0.01;
-  // Dynamic.Depth.minRelativeResidual: ... and at least this share of the depth. A real structured-light sensor's
-  // error is not only noise: its depth carries a bias that varies over the image by ~1 % of the depth (the "donut"
-  // of a Kinect's depth distortion), which a surface seen at other pixels in the other frame reads as motion (TUM
-  // fr2/desk, static: the floor at 2-3 m; geometry mode marks 6.4 % of its pixels with 0 and 2.3 % with 0.02,
-  // against 2.1 % without the depth evidence). 0 for an ideal sensor.
-  double min_relative_residual = 0.02;
-  // Dynamic.Depth.minSamples: valid samples a superpixel needs to be judged (a median of fewer is noise).
-  int min_samples = 8;
-  // Dynamic.Depth.violationSigmas: a sample violates free space when the last frame measured a surface farther
-  // than its lifted point by this many sigma (and minResidual): the point stands where the last frame saw empty
-  // space, which no static point can (a static point revealed by the motion lies behind what hid it: the opposite
-  // sign). This is the leading edge of a mover crossing the view, whose flat inside shows no depth change. 3: a
-  // sample of the static world passes it in ~0.1 % of the cases.
-  double violation_sigmas = 3.0;
-  // Dynamic.Depth.violationShare: a superpixel moves when at least this share of its samples violate free space
-  // (and at least minViolations of them). 0.2: a mover advancing 5 px per frame into a superpixel of S ~ 26 px.
-  double violation_share = 0.2;
-  int min_violations = 4;  // Dynamic.Depth.minViolations
-  // Dynamic.Depth.clusterShare: a decision cluster is dynamic when at least this share of its valid samples lies in
-  // moving superpixels (the mask then grows over the cluster from them, boundary_assignment.h) ...
-  double cluster_share = 0.3;
-  // Dynamic.Depth.unscoredClusterSuperpixels: ... or when it holds at least this many moving superpixels and too
-  // few tracks for Eq. 5 to score it: the inside of a trackless mover (a plain fabric chair crossing the view)
-  // shows no depth change, only its leading edge does, and nothing says that the rest of its cluster is static.
-  int unscored_cluster_superpixels = 2;
-  // Dynamic.Depth.baselineFrames: the current depth is also compared with that of the frame this many frames back
-  // (FrontEndInput::baseline_depth), and a superpixel moves when either comparison says so. Against the last
-  // frame alone a mover must shift by minResidual (1 cm) in 33 ms, 0.3 m/s; over 10 frames (0.33 s) 3 cm/s will
-  // do: a door easing into its stops, a chair starting to roll (2-3 px per frame at 1 m). The price: a mover that
-  // stops stays marked for up to this many frames. 0 = the last frame only.
-  int baseline_frames = 10;
-  // Dynamic.Depth.baselineRelativeResidual: minRelativeResidual for that comparison. The sensor's depth bias varies
-  // over the image, and over 10 frames a surface moves across more of it than over one: TUM fr2/desk's static
-  // floor and walls at 3.5-3.8 m read 2 % (6-8 cm) farther than 10 frames before. 0.04: twice the one-frame floor.
-  double baseline_relative_residual = 0.04;
-  void check() const;
-  // Axial noise at depth z [m].
-  double sigma(double z) const { return noise_base_m + noise_quadratic * (z - noise_offset_m) * (z - noise_offset_m); }
-};
+using dynamic::ClusterScore;
+using dynamic::DepthEvidenceOptions;
+using dynamic::ReprojectionOptions;
+using dynamic::Superpixel;
+using dynamic::SuperpixelSegmentation;
+
 
 // The sample pixels of a camera's image and their undistorted normalised coordinates, computed once per camera.
 class DepthSampleGrid {
@@ -181,10 +126,10 @@ DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, co
                                  const DepthSampleGrid& grid, const SuperpixelSegmentation& segmentation,
                                  double depth_edge_ratio, const DepthEvidenceOptions& options);
 
-// Marks dynamic (in dynamic_cluster, per cluster) the clusters that depthMovingClusters finds moving, a cluster
-// counting as scored when Eq. 5 had min_points tracks for it (cluster_scores). Returns how many it added.
-int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
-                           const std::vector<ClusterScore>& cluster_scores, int min_points,
-                           const DepthEvidenceOptions& options, std::vector<bool>& dynamic_cluster);
+// Per cluster (as many as cluster_scores), whether depthMovingClusters finds it moving, a cluster counting as scored
+// when Eq. 5 had min_points tracks for it.
+std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
+                                      const std::vector<ClusterScore>& cluster_scores, int min_points,
+                                      const DepthEvidenceOptions& options);
 
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

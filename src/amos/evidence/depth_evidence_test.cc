@@ -1,4 +1,4 @@
-#include "amos/dynamic/depth_evidence.h"
+#include "amos/evidence/depth_evidence.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,9 @@
 #include "amos/dynamic/test_scenes.h"
 #include "amos/testing/test_camera.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
+
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 namespace {
 
 // A wall 3 m in front of the world origin (plane z = 3) and the front face of a box, a rectangle [x0, x1] x
@@ -176,4 +178,4 @@ TEST(DepthEvidence, OptionsAreChecked) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

@@ -1,4 +1,4 @@
-#include "amos/dynamic/baseline_tracks.h"
+#include "amos/evidence/baseline_tracks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,15 +11,9 @@
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/robust_scale.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
 
-void BaselineTrackOptions::check() const {
-  core::requirePositive(sigmas, "sigmas");
-  core::requireAtLeast(min_motion_px, "min_motion_px", 0.0);
-  core::requireAtLeast(min_votes, "min_votes", 1);
-  core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
-  core::requireAtLeast(grow_dissimilarity, "grow_dissimilarity", 0.0);
-}
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 
 namespace {
 
@@ -163,7 +157,6 @@ void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& mo
   }
 }
 
-
 }  // namespace
 
 WindowStructure windowStructure(const cv::Mat& gray, int u, int v) {
@@ -240,4 +233,4 @@ std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv:
   return out;
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

@@ -1,4 +1,4 @@
-#include "amos/dynamic/baseline_tracks.h"
+#include "amos/evidence/baseline_tracks.h"
 
 #include <gtest/gtest.h>
 
@@ -7,11 +7,13 @@
 
 #include "amos/core/option_error.h"
 #include "amos/dynamic/dynamic_options.h"
-#include "amos/dynamic/box_wall_scene.h"
+#include "amos/evidence/box_wall_scene.h"
 #include "amos/dynamic/test_scenes.h"
 #include "amos/testing/test_camera.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
+
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 namespace {
 using box_wall::awayFromBox;
 using box_wall::Frame;
@@ -149,4 +151,4 @@ TEST(BaselineTracks, OptionsAreChecked) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

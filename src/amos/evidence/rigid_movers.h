@@ -18,55 +18,18 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
-#include "amos/dynamic/baseline_tracks.h"
+#include "amos/evidence/baseline_tracks.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/reprojection_scoring.h"
+#include "amos/dynamic/evidence_options.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
 
-struct RigidMoverOptions {
-  // Dynamic.RigidMovers.enabled: the test takes part in the decisions. It fits the long-baseline tracks' moving
-  // points, so it acts only with Dynamic.BaselineTracks.enabled (a settings file may switch either alone).
-  bool enabled = false;
-  // Dynamic.RigidMovers.minInliers: moving long-baseline points one rigid motion must explain. EPnP needs 4 and
-  // 6 fix a rigid motion; 8 leaves two over, so that a few LK slips on the static world (0-11 of ~110 points per
-  // frame beyond the bar on TUM fr2/desk, scattered) do not make a mover.
-  int min_inliers = 8;
-  // Dynamic.RigidMovers.inlierPx: a point follows a motion when it is reprojected within this many pixels of where
-  // LK found it in the baseline frame: the long-baseline bar's floor (Dynamic.BaselineTracks.minMotion, 2 px), LK's
-  // error over ten frames. A mover's motion must also move its inliers by more than this from the static world's.
-  double inlier_px = 2.0;
-  // Dynamic.RigidMovers.maxMovers: rigid motions fitted one after the other on the moving points left over.
-  int max_movers = 3;
-  // Dynamic.RigidMovers.sampleStep: the samples lie on a grid of this step [px] (as the depth evidence's).
-  int sample_step_px = 4;
-  // Dynamic.RigidMovers.minSeparation: a sample decides only where the two hypotheses put it this many pixels
-  // apart in the baseline frame; closer, a 3x3 patch's difference is interpolation, not evidence.
-  double min_separation_px = 1.0;
-  // Dynamic.RigidMovers.intensityMargin: a hypothesis wins a sample when its mean absolute difference over the 3x3
-  // patch is lower by this many grey levels: sensor noise of 2-3 grey levels gives a patch mean that varies by
-  // well under 1, and ten frames of shading and resampling by 1-3 more.
-  double intensity_margin = 6.0;
-  // Dynamic.RigidMovers.minSamples: votes a superpixel needs (and twice the static ones) to move: three independent
-  // patches (4 px apart, the 3x3 patches do not overlap).
-  int min_samples = 3;
-  // Dynamic.RigidMovers.regionReach: a mover speaks only for the samples within this many pixels of the box around
-  // its points (the paper's boundary reach, Dynamic.Boundary.radius: about one superpixel).
-  int region_reach_px = 30;
-  // Dynamic.RigidMovers.minGradient: a sample needs at least this RMS intensity gradient [grey levels per px] along
-  // the direction that separates the two hypotheses, over 7x7 px (windowStructure): at 4 the image noise of a few
-  // grey levels moves a patch match by well under the bar; a patch textured across one direction only (wood grain, a row of
-  // book spines) cannot tell a shift along the stripes from none.
-  double min_gradient = 4.0;
-  // Dynamic.RigidMovers.growOverSurface: the mask may grow from the superpixels that follow a rigid mover over the
-  // unmeasured superpixels of the same surface (no track, no long-baseline point, no occlusion edge between, each
-  // step at most Dynamic.BaselineTracks.growDissimilarity apart), outside the dynamic clusters too: a door's plain
-  // panel moves with its textured parts, and gives the samples nothing to vote on. The growth stays within the
-  // movers' regions (superpixelsNearMovers), as their votes do: from a box's superpixels it would otherwise run on
-  // over the plain, shadowed floor beside it.
-  bool grow_over_surface = false;
-  void check() const;
-};
+using dynamic::BaselineMotion;
+using dynamic::ReprojectionOptions;
+using dynamic::RigidMoverOptions;
+using dynamic::Superpixel;
+
 
 struct RigidMover {
   core::SE3 T_bc;          // current camera -> baseline camera under this mover's motion
@@ -113,4 +76,4 @@ std::vector<bool> superpixelsNearBoxes(const std::vector<Superpixel>& superpixel
 std::vector<bool> superpixelsNearMovers(const std::vector<Superpixel>& superpixels,
                                         const std::vector<RigidMover>& movers, int reach_px);
 
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

@@ -25,52 +25,21 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
+#include "amos/dynamic/baseline_motion.h"
 #include "amos/dynamic/boundary_assignment.h"
 #include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/reprojection_scoring.h"
+#include "amos/dynamic/evidence_options.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
 
-struct BaselineTrackOptions {
-  // Dynamic.BaselineTracks.enabled: the long-baseline test takes part in the decisions (geometry and full modes;
-  // needs Dynamic.Depth.baselineFrames > 1, the history it compares with).
-  bool enabled = false;
-  // Dynamic.BaselineTracks.sigmas: a point moves when its residual exceeds this many noise scales of the points
-  // (as Dynamic.Reprojection.confirmSigmas for one frame) ...
-  double sigmas = 5.0;
-  // Dynamic.BaselineTracks.minMotion: ... and this many pixels. Twice the one-frame floor (1 px): over ten frames
-  // the appearance of a surface changes more (perspective, lighting), and LK's error grows with it.
-  double min_motion_px = 2.0;
-  // Dynamic.BaselineTracks.minVotes: moving points a superpixel or a cluster needs: two independent points, as for
-  // an epipolar region (one may be an LK slip).
-  int min_votes = 2;
-  // Dynamic.BaselineTracks.clusterShare: share of a decision cluster's points that must move for the whole cluster
-  // to become dynamic (the mask then grows over it from the moving superpixels). A half: a cluster that straddles a
-  // mover and the static surface beside it (a door leaf in front of its wall) is dynamic when the mover holds most of
-  // its points.
-  double cluster_share = 0.5;
-  // Dynamic.BaselineTracks.growDissimilarity: the largest step of the surface growth from the rigid movers'
-  // superpixels (Dynamic.RigidMovers.growOverSurface, mask_building.h): Eq. 1 without the position term
-  // (superpixelDissimilarity); 1 = a colour difference of colourScale Lab units, or a depth step of depthScale (10 cm), the unit of SLIC's own distance.
-  double grow_dissimilarity = 1.0;
-  void check() const;
-};
+using dynamic::BaselineMotion;
+using dynamic::BaselinePoint;
+using dynamic::BaselineTrackOptions;
+using dynamic::CornerTrackingOptions;
+using dynamic::ImagePyramid;
+using dynamic::ReprojectionOptions;
 
-struct BaselinePoint {
-  cv::Point2f current;    // raw pixel in the current frame
-  cv::Point2f found;      // raw pixel where LK found it in the baseline frame
-  double residual_px = 0;  // |found - prediction - common shift| (undistorted pixels)
-  bool moving = false;
-};
-
-struct BaselineMotion {
-  std::vector<BaselinePoint> points;  // those with a trusted depth that LK followed both ways
-  bool ok = false;                    // enough points (Dynamic.Reprojection.refitMinPoints) to judge any
-  Eigen::Vector2d shift_px = Eigen::Vector2d::Zero();  // the median residual, removed from every point
-  double sigma_px = 0;                // the points' noise scale around it
-  double bar_px = 0;                  // max(min_motion_px, sigmas * sigma_px)
-  int moving_points = 0;
-};
 
 // Steps 1-4 above for `points` (raw current-frame pixels; the current frame's tracked corners). gray/depth/T_cw:
 // current frame (CV_8UC1, CV_32F metres, the judged pose); baseline_gray / T_cw_baseline: the baseline frame.
@@ -111,4 +80,4 @@ std::vector<int> baselinePointsPerSuperpixel(const BaselineMotion& motion, const
 std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv::Mat& decision_map, int num_clusters,
                                          const BaselineTrackOptions& options);
 
-}  // namespace amos::dynamic
+}  // namespace amos::evidence
