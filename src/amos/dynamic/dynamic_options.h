@@ -47,7 +47,7 @@ struct DynamicOptions {
   // half of the features, enough to track, and the unmasked extraction keeps the per-frame cost (a masked one puts
   // the whole budget on the static part: more points to match, track and adjust). Before the map exists the mask
   // is used at any coverage: the frame alone must then supply Tracking.initMinDepthPoints static points.
-  // Bonn crowd slice: 16-20 frames lost and 23 before the map could start without it, none with it.
+  // Measurements: docs/experiments/front-end-defaults.md.
   double prior_masked_extraction_coverage = 0.5;
   DepthSlicOptions superpixel;       // Dynamic.Superpixel.*
   ClusteringOptions cluster;         // Dynamic.Cluster.*

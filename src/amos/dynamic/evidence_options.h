@@ -31,9 +31,8 @@ struct DepthEvidenceOptions {
   double min_residual_m = 0.01;
   // Dynamic.Depth.minRelativeResidual: ... and at least this share of the depth. A real structured-light sensor's
   // error is not only noise: its depth carries a bias that varies over the image by ~1 % of the depth (the "donut"
-  // of a Kinect's depth distortion), which a surface seen at other pixels in the other frame reads as motion (TUM
-  // fr2/desk, static: the floor at 2-3 m; geometry mode marks 6.4 % of its pixels with 0 and 2.3 % with 0.02,
-  // against 2.1 % without the depth evidence). 0 for an ideal sensor.
+  // of a Kinect's depth distortion), which a surface seen at other pixels in the other frame reads as motion
+  // (measurements: docs/experiments/front-end-defaults.md). 0 for an ideal sensor.
   double min_relative_residual = 0.02;
   // Dynamic.Depth.minSamples: valid samples a superpixel needs to be judged (a median of fewer is noise).
   int min_samples = 8;
@@ -61,8 +60,8 @@ struct DepthEvidenceOptions {
   // stops stays marked for up to this many frames. 0 = the last frame only.
   int baseline_frames = 10;
   // Dynamic.Depth.baselineRelativeResidual: minRelativeResidual for that comparison. The sensor's depth bias varies
-  // over the image, and over 10 frames a surface moves across more of it than over one: TUM fr2/desk's static
-  // floor and walls at 3.5-3.8 m read 2 % (6-8 cm) farther than 10 frames before. 0.04: twice the one-frame floor.
+  // over the image, and over 10 frames a surface moves across more of it than over one (the figures:
+  // docs/experiments/front-end-defaults.md). 0.04: twice the one-frame floor.
   double baseline_relative_residual = 0.04;
   void check() const;
   // Axial noise at depth z [m].
