@@ -238,9 +238,10 @@ RigidMoverFrame rigidMoverFrame(const BenchData& d, const DynamicOptions& option
 }
 
 RigidMoverVerdict rigidMovers(const BenchData& d, const RigidMoverFrame& f, const DynamicOptions& options) {
-  return rigidMoverSuperpixels(f.motion, d.current.gray, d.current.depth, d.T_cw_initial, f.baseline_gray,
-                               d.current.depth, d.T_cw_initial, d.camera, f.segmentation.labels, f.count,
-                               options.reprojection, options.rigid_movers);
+  const RigidMoverFrames frames{
+      d.camera, {d.current.gray, d.current.depth, d.T_cw_initial}, {f.baseline_gray, d.current.depth, d.T_cw_initial}};
+  return rigidMoverSuperpixels(f.motion, frames, {f.segmentation.labels, f.count}, options.reprojection,
+                               options.rigid_movers);
 }
 
 void BM_RigidMovers(benchmark::State& state) {

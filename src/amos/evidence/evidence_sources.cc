@@ -64,10 +64,11 @@ void RigidMoversSource::addEvidence(const EvidenceContext& context, FrameEvidenc
   const dynamic::FrontEndInput& in = context.input;
   const dynamic::DynamicOptions& options = context.options;
   const SuperpixelSegmentation& segmentation = context.partition.segmentation;
-  const RigidMoverVerdict rigid = rigidMoverSuperpixels(
-      evidence.baseline, in.gray, in.depth, context.T_cw, in.baseline_gray, in.baseline_depth, in.T_cw_baseline,
-      context.camera, segmentation.labels, static_cast<int>(segmentation.superpixels.size()), options.reprojection,
-      options.rigid_movers);
+  const RigidMoverFrames frames{
+      context.camera, {in.gray, in.depth, context.T_cw}, {in.baseline_gray, in.baseline_depth, in.T_cw_baseline}};
+  const SuperpixelLabels superpixels{segmentation.labels, static_cast<int>(segmentation.superpixels.size())};
+  const RigidMoverVerdict rigid =
+      rigidMoverSuperpixels(evidence.baseline, frames, superpixels, options.reprojection, options.rigid_movers);
   evidence.diagnostics.rigid_movers = static_cast<int>(rigid.movers.size());
   evidence.diagnostics.rigid_superpixels = rigid.moving_superpixels;
   for (std::size_t s = 0; s < rigid.moving.size() && s < evidence.baseline_moving.size(); ++s)

@@ -53,16 +53,34 @@ struct RigidMoverVerdict {
   int mover_votes = 0, static_votes = 0;  // samples that decided
 };
 
-// The rigid motions among motion's moving points, and the superpixels (labels CV_32S, count labels) whose samples
-// follow one of them rather than the static world. gray / depth / T_cw: the current frame (CV_8UC1, CV_32F metres,
-// judged pose); baseline_gray / baseline_depth / T_cw_baseline: the baseline frame (its depth only tells which
-// predictions it saw: one nearer by more than max(2 cm, 4 %) was hidden there). reprojection: depth trust rules.
-// Empty `moving` (all false) when no rigid motion has minInliers points.
-RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const cv::Mat& gray, const cv::Mat& depth,
-                                        const core::SE3& T_cw, const cv::Mat& baseline_gray,
-                                        const cv::Mat& baseline_depth, const core::SE3& T_cw_baseline,
-                                        const core::PinholeCamera& camera, const cv::Mat& labels, int count,
-                                        const ReprojectionOptions& reprojection, const RigidMoverOptions& options);
+// A frame as the rigid movers read it (references, valid while the frame is): gray CV_8UC1, depth CV_32F metres,
+// the pose.
+struct PosedImages {
+  const cv::Mat& gray;
+  const cv::Mat& depth;
+  const core::SE3& T_cw;
+};
+
+// The current frame (judged pose) and the baseline frame, seen by one camera. The baseline's depth only tells which
+// predictions it saw (one nearer by more than max(2 cm, 4 %) was hidden there) and may be empty.
+struct RigidMoverFrames {
+  const core::PinholeCamera& camera;
+  PosedImages current;
+  PosedImages baseline;
+};
+
+// A superpixel label image (CV_32S) and its number of labels.
+struct SuperpixelLabels {
+  const cv::Mat& labels;
+  int count;
+};
+
+// The rigid motions among motion's moving points, and the superpixels whose samples follow one of them rather than
+// the static world. reprojection: depth trust rules. Empty `moving` (all false) when no rigid motion has minInliers
+// points.
+RigidMoverVerdict rigidMoverSuperpixels(const BaselineMotion& motion, const RigidMoverFrames& frames,
+                                        const SuperpixelLabels& superpixels, const ReprojectionOptions& reprojection,
+                                        const RigidMoverOptions& options);
 
 // Whether p lies within reach pixels of the box r (a mover's region and the samples it speaks for).
 bool withinReach(const cv::Rect2f& r, const cv::Point2f& p, float reach);

@@ -39,8 +39,9 @@ Judged judge(const Scene& s, double box_before, double box_now, const RigidMover
   j.motion.moving_points = static_cast<int>(std::count_if(kept.begin(), kept.end(), [](const BaselinePoint& p) { return p.moving; }));
   const Frame before = render(s.camera, s.c_before, box_before), now = render(s.camera, s.c_now, box_now);
   j.labels = blockLabels(s.camera, j.count);
-  j.verdict = rigidMoverSuperpixels(j.motion, now.gray, now.depth, poseAt(s.c_now), before.gray, before.depth,
-                                    poseAt(s.c_before), s.camera, j.labels, j.count, s.options.reprojection, options);
+  const core::SE3 T_cw_now = poseAt(s.c_now), T_cw_before = poseAt(s.c_before);
+  const RigidMoverFrames frames{s.camera, {now.gray, now.depth, T_cw_now}, {before.gray, before.depth, T_cw_before}};
+  j.verdict = rigidMoverSuperpixels(j.motion, frames, {j.labels, j.count}, s.options.reprojection, options);
   return j;
 }
 
