@@ -2,9 +2,9 @@
 // The evidence sources added after the paper, behind one interface: each reads what the paper's stages found in a
 // frame (EvidenceContext) and adds its own evidence of motion (FrameEvidence): moving superpixels for the mask,
 // dynamic clusters for the decision. DynamicFrontEnd calls its sources in order after the epipolar judgement and
-// never names one; the concrete sources (depth evidence, long-baseline tracks, rigid movers) live in src/amos/evidence/,
-// whose makeEvidenceSources builds the list from DynamicOptions. Like the front end, a source is const and stateless
-// between frames, so one list can be shared by threads.
+// never names one; the concrete sources (depth evidence, long-baseline tracks, rigid movers) live in
+// src/amos/evidence/, whose makeEvidenceSources builds the list from DynamicOptions. Like the front end, a source
+// is const and stateless between frames, so one list can be shared by threads.
 #include <vector>
 
 #include "amos/core/camera.h"

@@ -28,6 +28,7 @@
 #include "amos/dynamic/baseline_motion.h"
 #include "amos/dynamic/boundary_assignment.h"
 #include "amos/dynamic/corner_tracking.h"
+#include "amos/dynamic/dynamic_options.h"
 #include "amos/dynamic/reprojection_scoring.h"
 #include "amos/dynamic/evidence_options.h"
 
@@ -41,21 +42,32 @@ using dynamic::ImagePyramid;
 using dynamic::ReprojectionOptions;
 
 
-// Steps 1-4 above for `points` (raw current-frame pixels; the current frame's tracked corners). gray/depth/T_cw:
-// current frame (CV_8UC1, CV_32F metres, the judged pose); baseline_gray / T_cw_baseline: the baseline frame.
-// lk: window, levels, stop criteria and forward-backward threshold of LK; reprojection: depth trust rules and the
-// number of points needed (refitMinPoints).
-BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const cv::Mat& gray, const cv::Mat& depth,
-                              const core::SE3& T_cw, const cv::Mat& baseline_gray, const core::SE3& T_cw_baseline,
-                              const core::PinholeCamera& camera, const CornerTrackingOptions& lk,
-                              const ReprojectionOptions& reprojection, const BaselineTrackOptions& options);
-// The same on the two frames' LK pyramids built beforehand (buildPyramid with lk: the same result), which a pipeline
-// has anyway.
-BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
-                              const cv::Mat& depth, const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,
-                              const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
-                              const CornerTrackingOptions& lk, const ReprojectionOptions& reprojection,
-                              const BaselineTrackOptions& options);
+// The current frame (gray CV_8UC1, depth CV_32F metres, the judged pose) and the baseline frame (gray, pose).
+struct BaselineImages {
+  const cv::Mat& gray;
+  const cv::Mat& depth;
+  const core::SE3& T_cw;
+  const cv::Mat& baseline_gray;
+  const core::SE3& T_cw_baseline;
+};
+
+// The same with the two frames' LK pyramids built beforehand (buildPyramid with Dynamic.LK.*: the same result),
+// which a pipeline has anyway.
+struct BaselinePyramids {
+  const ImagePyramid& pyramid;
+  const cv::Mat& depth;
+  const core::SE3& T_cw;
+  const ImagePyramid& baseline_pyramid;
+  const core::SE3& T_cw_baseline;
+};
+
+// Steps 1-4 above for `points` (raw current-frame pixels; the current frame's tracked corners). options: tracking
+// (LK's window, levels, stop criteria and forward-backward threshold), reprojection (depth trust rules and the
+// number of points needed, refitMinPoints) and baseline_tracks.
+BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const BaselineImages& frames,
+                              const core::PinholeCamera& camera, const dynamic::DynamicOptions& options);
+BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const BaselinePyramids& frames,
+                              const core::PinholeCamera& camera, const dynamic::DynamicOptions& options);
 
 // The structure tensor of the 7x7 window around (u, v) of a CV_8UC1 image: the mean products of the intensity
 // gradient's components (grey levels^2 per px^2); its quadratic form in a unit direction is the mean squared

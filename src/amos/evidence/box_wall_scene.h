@@ -89,9 +89,9 @@ struct Scene {
     const Frame before = render(camera, c_before, box_before), now = render(camera, c_now, box_now);
     const std::vector<cv::Point2f> corners = detectCorners(now.gray, options.tracking);
     if (corners_out) *corners_out = corners;
-    return baselineMotion(corners, now.gray, now.depth, poseAt(c_now), before.gray,
-                          baseline_pose_error * poseAt(c_before), camera, options.tracking, options.reprojection,
-                          options.baseline_tracks);
+    const core::SE3 T_cw_now = poseAt(c_now), T_cw_before = baseline_pose_error * poseAt(c_before);
+    const BaselineImages frames{now.gray, now.depth, T_cw_now, before.gray, T_cw_before};
+    return baselineMotion(corners, frames, camera, options);
   }
 };
 

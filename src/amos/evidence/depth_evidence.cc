@@ -73,21 +73,24 @@ LiftedDepthSamples liftDepthSamples(const cv::Mat& depth, const DepthSampleGrid&
   return out;
 }
 
-DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_depth, const core::SE3& T_cw_last,
-                                      const core::SE3& T_cw, const core::PinholeCamera& camera,
-                                      const DepthSampleGrid& grid, const cv::Mat& labels, int count,
-                                      double depth_edge_ratio, const DepthEvidenceOptions& options,
-                                      bool free_space_only) {
-  core::require(depth.type() == CV_32F && last_depth.type() == CV_32F && depth.size() == last_depth.size(),
+DepthEvidence superpixelDepthEvidence(const PosedDepth& current, const PosedDepth& other, const DepthSampleGrid& grid,
+                                      const SuperpixelLabels& superpixels, const DepthComparison& comparison) {
+  core::require(current.depth.type() == CV_32F && other.depth.type() == CV_32F &&
+                    current.depth.size() == other.depth.size(),
                 "superpixelDepthEvidence: depth images must be CV_32F of one size");
-  return superpixelDepthEvidence(liftDepthSamples(depth, grid, labels, depth_edge_ratio, options), last_depth,
-                                 T_cw_last, T_cw, camera, count, depth_edge_ratio, options, free_space_only);
+  const LiftedDepthSamples lifted =
+      liftDepthSamples(current.depth, grid, superpixels.labels, comparison.depth_edge_ratio, comparison.options);
+  return superpixelDepthEvidence(lifted, superpixels.count, current.T_cw, other, comparison);
 }
 
-DepthEvidence superpixelDepthEvidence(const LiftedDepthSamples& current, const cv::Mat& last_depth,
-                                      const core::SE3& T_cw_last, const core::SE3& T_cw,
-                                      const core::PinholeCamera& camera, int count, double depth_edge_ratio,
-                                      const DepthEvidenceOptions& options, bool free_space_only) {
+DepthEvidence superpixelDepthEvidence(const LiftedDepthSamples& current, int count, const core::SE3& T_cw,
+                                      const PosedDepth& other, const DepthComparison& comparison) {
+  const cv::Mat& last_depth = other.depth;
+  const core::SE3& T_cw_last = other.T_cw;
+  const core::PinholeCamera& camera = comparison.camera;
+  const double depth_edge_ratio = comparison.depth_edge_ratio;
+  const DepthEvidenceOptions& options = comparison.options;
+  const bool free_space_only = comparison.free_space_only;
   core::require(last_depth.type() == CV_32F && last_depth.cols == camera.width() && last_depth.rows == camera.height(),
                 "superpixelDepthEvidence: the other frame's depth must be CV_32F of the camera's size");
   const core::SE3 T_last_cur = T_cw_last * T_cw.inverse();
@@ -200,20 +203,19 @@ std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const std::
   return out;
 }
 
-DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, const cv::Mat& last_depth,
-                                 const core::SE3& T_cw_last, const cv::Mat& baseline_depth,
-                                 const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
-                                 const DepthSampleGrid& grid, const SuperpixelSegmentation& segmentation,
-                                 double depth_edge_ratio, const DepthEvidenceOptions& options) {
+DepthEvidence frameDepthEvidence(const DepthFrames& frames, const DepthSampleGrid& grid,
+                                 const SuperpixelSegmentation& segmentation, const DepthComparison& comparison) {
   const int count = static_cast<int>(segmentation.superpixels.size());
-  const LiftedDepthSamples current = liftDepthSamples(depth, grid, segmentation.labels, depth_edge_ratio, options);
-  DepthEvidence evidence =
-      superpixelDepthEvidence(current, last_depth, T_cw_last, T_cw, camera, count, depth_edge_ratio, options);
-  if (baseline_depth.empty()) return evidence;
-  DepthEvidenceOptions baseline = options;
-  baseline.min_relative_residual = options.baseline_relative_residual;
-  return combineDepthEvidence(evidence, superpixelDepthEvidence(current, baseline_depth, T_cw_baseline, T_cw, camera,
-                                                                count, depth_edge_ratio, baseline, true));
+  const LiftedDepthSamples current = liftDepthSamples(frames.current.depth, grid, segmentation.labels,
+                                                      comparison.depth_edge_ratio, comparison.options);
+  DepthEvidence evidence = superpixelDepthEvidence(current, count, frames.current.T_cw, frames.last, comparison);
+  if (frames.baseline.depth.empty()) return evidence;
+  DepthEvidenceOptions baseline = comparison.options;
+  baseline.min_relative_residual = comparison.options.baseline_relative_residual;
+  const DepthComparison free_space{comparison.camera, comparison.depth_edge_ratio, baseline, true};
+  const DepthEvidence over_baseline =
+      superpixelDepthEvidence(current, count, frames.current.T_cw, frames.baseline, free_space);
+  return combineDepthEvidence(evidence, over_baseline);
 }
 
 std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,

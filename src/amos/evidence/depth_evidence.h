@@ -27,6 +27,7 @@
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/reprojection_scoring.h"
 #include "amos/dynamic/evidence_options.h"
+#include "amos/evidence/evidence_frames.h"
 
 namespace amos::evidence {
 
@@ -87,21 +88,24 @@ struct LiftedDepthSamples {
 LiftedDepthSamples liftDepthSamples(const cv::Mat& depth, const DepthSampleGrid& grid, const cv::Mat& labels,
                                     double depth_edge_ratio, const DepthEvidenceOptions& options);
 
-// The lifted samples of the current frame (pose T_cw) against the depth of another frame (last_depth, CV_32F, pose
-// T_cw_last), per superpixel (count labels). free_space_only: only a positive median (the surface now stands in
-// front of what the other frame saw) moves a superpixel; for a comparison over many frames, where a negative one is
-// mostly background that a mover has uncovered meanwhile (over one frame that is a strip, too thin to move a
-// median).
-DepthEvidence superpixelDepthEvidence(const LiftedDepthSamples& current, const cv::Mat& last_depth,
-                                      const core::SE3& T_cw_last, const core::SE3& T_cw,
-                                      const core::PinholeCamera& camera, int count, double depth_edge_ratio,
-                                      const DepthEvidenceOptions& options, bool free_space_only = false);
+// How two depths are compared: the camera, Dynamic.Reprojection.depthEdgeRatio, the options. free_space_only: only
+// a positive median (the surface now stands in front of what the other frame saw) moves a superpixel; for a
+// comparison over many frames, where a negative one is mostly background that a mover has uncovered meanwhile (over
+// one frame that is a strip, too thin to move a median).
+struct DepthComparison {
+  const core::PinholeCamera& camera;
+  double depth_edge_ratio;
+  const DepthEvidenceOptions& options;
+  bool free_space_only = false;
+};
+
+// The lifted samples of the current frame (pose T_cw) against the depth of another frame (CV_32F, the camera's
+// size), per superpixel (count labels).
+DepthEvidence superpixelDepthEvidence(const LiftedDepthSamples& current, int count, const core::SE3& T_cw,
+                                      const PosedDepth& other, const DepthComparison& comparison);
 // The same from the current depth image (liftDepthSamples, then the comparison).
-DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_depth, const core::SE3& T_cw_last,
-                                      const core::SE3& T_cw, const core::PinholeCamera& camera,
-                                      const DepthSampleGrid& grid, const cv::Mat& labels, int count,
-                                      double depth_edge_ratio, const DepthEvidenceOptions& options,
-                                      bool free_space_only = false);
+DepthEvidence superpixelDepthEvidence(const PosedDepth& current, const PosedDepth& other, const DepthSampleGrid& grid,
+                                      const SuperpixelLabels& superpixels, const DepthComparison& comparison);
 
 // Per superpixel, the evidence of either comparison (a: the last frame's, b: a baseline frame's, free space only):
 // moving when either says so, or when b says that the surface receded and a that it is still receding now (its
@@ -120,11 +124,12 @@ std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const std::
 // The front end's two comparisons (depth_evidence.h's header): the current frame (depth, pose T_cw) against the
 // last one, and, when baseline_depth is not empty, against the baseline frame with its own relative floor, free
 // space only, combined (combineDepthEvidence).
-DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, const cv::Mat& last_depth,
-                                 const core::SE3& T_cw_last, const cv::Mat& baseline_depth,
-                                 const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
-                                 const DepthSampleGrid& grid, const SuperpixelSegmentation& segmentation,
-                                 double depth_edge_ratio, const DepthEvidenceOptions& options);
+struct DepthFrames {
+  PosedDepth current, last;
+  PosedDepth baseline;  // its depth empty without a baseline frame
+};
+DepthEvidence frameDepthEvidence(const DepthFrames& frames, const DepthSampleGrid& grid,
+                                 const SuperpixelSegmentation& segmentation, const DepthComparison& comparison);
 
 // Per cluster (as many as cluster_scores), whether depthMovingClusters finds it moving, a cluster counting as scored
 // when Eq. 5 had min_points tracks for it.

@@ -51,8 +51,9 @@ struct Scene {
                          const core::SE3& pose_error = core::SE3::Identity()) const {
     const cv::Mat last = renderDepth(camera, c_last, box_last, noise_m, 1);
     const cv::Mat now = renderDepth(camera, c_now, box_now, noise_m, 2);
-    return superpixelDepthEvidence(now, last, poseAt(c_last), pose_error * poseAt(c_now), camera, grid, labels,
-                                   count, 0.05, options, free_space_only);
+    const core::SE3 T_cw_last = poseAt(c_last), T_cw = pose_error * poseAt(c_now);
+    return superpixelDepthEvidence({now, T_cw}, {last, T_cw_last}, grid, {labels, count},
+                                   {camera, 0.05, options, free_space_only});
   }
   // Pixel of a world point seen from `centre`.
   cv::Point pixel(const Eigen::Vector3d& centre, const Eigen::Vector3d& p_w) const {

@@ -15,9 +15,10 @@ void DepthEvidenceSource::addEvidence(const EvidenceContext& context, FrameEvide
   const dynamic::FrontEndInput& in = context.input;
   const dynamic::DynamicOptions& options = context.options;
   const SuperpixelSegmentation& segmentation = context.partition.segmentation;
-  const DepthEvidence depth =
-      frameDepthEvidence(in.depth, context.T_cw, in.last_depth, in.T_cw_last, in.baseline_depth, in.T_cw_baseline,
-                         context.camera, grid_, segmentation, options.reprojection.depth_edge_ratio, options.depth);
+  const DepthFrames frames{
+      {in.depth, context.T_cw}, {in.last_depth, in.T_cw_last}, {in.baseline_depth, in.T_cw_baseline}};
+  const DepthComparison comparison{context.camera, options.reprojection.depth_edge_ratio, options.depth};
+  const DepthEvidence depth = frameDepthEvidence(frames, grid_, segmentation, comparison);
   for (const SuperpixelDepth& sp : depth.superpixels) evidence.depth_moving.push_back(sp.moving);
   evidence.diagnostics.depth_moving_superpixels = depth.moving_superpixels;
   evidence.depth_clusters = depthMovingClusters(depth, segmentation, context.candidates.cluster_scores,
@@ -40,13 +41,14 @@ void BaselineTracksSource::addEvidence(const EvidenceContext& context, FrameEvid
   const ImagePyramid baseline_pyramid =
       have_pyramids ? in.baseline_pyramid : dynamic::buildPyramid(in.baseline_gray, options.tracking);
   BaselineMotion& motion = evidence.baseline;
-  motion = baselineMotion(points, pyramid, in.depth, context.T_cw, baseline_pyramid, in.T_cw_baseline, context.camera,
-                          options.tracking, options.reprojection, options.baseline_tracks);
+  const BaselinePyramids pyramids{pyramid, in.depth, context.T_cw, baseline_pyramid, in.T_cw_baseline};
+  motion = baselineMotion(points, pyramids, context.camera, options);
   const SuperpixelSegmentation& segmentation = context.partition.segmentation;
   const int superpixels = static_cast<int>(segmentation.superpixels.size());
   evidence.diagnostics.baseline_points = static_cast<int>(motion.points.size());
   evidence.diagnostics.baseline_moving_points = motion.moving_points;
-  evidence.baseline_moving = baselineMovingSuperpixels(motion, segmentation.labels, superpixels, options.baseline_tracks);
+  evidence.baseline_moving =
+      baselineMovingSuperpixels(motion, segmentation.labels, superpixels, options.baseline_tracks);
   if (options.rigid_movers.grow_over_surface)
     evidence.baseline_points = baselinePointsPerSuperpixel(motion, segmentation.labels, superpixels);
   if (!evidence.baseline_moving.empty()) {

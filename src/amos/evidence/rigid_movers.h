@@ -19,6 +19,7 @@
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
 #include "amos/evidence/baseline_tracks.h"
+#include "amos/evidence/evidence_frames.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/reprojection_scoring.h"
 #include "amos/dynamic/evidence_options.h"
@@ -53,26 +54,12 @@ struct RigidMoverVerdict {
   int mover_votes = 0, static_votes = 0;  // samples that decided
 };
 
-// A frame as the rigid movers read it (references, valid while the frame is): gray CV_8UC1, depth CV_32F metres,
-// the pose.
-struct PosedImages {
-  const cv::Mat& gray;
-  const cv::Mat& depth;
-  const core::SE3& T_cw;
-};
-
 // The current frame (judged pose) and the baseline frame, seen by one camera. The baseline's depth only tells which
 // predictions it saw (one nearer by more than max(2 cm, 4 %) was hidden there) and may be empty.
 struct RigidMoverFrames {
   const core::PinholeCamera& camera;
   PosedImages current;
   PosedImages baseline;
-};
-
-// A superpixel label image (CV_32S) and its number of labels.
-struct SuperpixelLabels {
-  const cv::Mat& labels;
-  int count;
 };
 
 // The rigid motions among motion's moving points, and the superpixels whose samples follow one of them rather than
