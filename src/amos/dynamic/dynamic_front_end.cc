@@ -200,10 +200,9 @@ void DynamicFrontEnd::decideMask(Frame& f) const {
   diag.depth_dynamic_clusters = addClusters(evidence.depth_clusters, dynamic_cluster);
   diag.baseline_dynamic_clusters = addClusters(evidence.baseline_clusters, dynamic_cluster);
   diag.dynamic_clusters += diag.depth_dynamic_clusters + diag.baseline_dynamic_clusters;
-  const DynamicMask mask =
-      buildDynamicMask(f.in, f.out.tracks, *f.partition, f.regions, f.candidates, f.confirmation, f.epipolar,
-                       f.voting, evidence.depth_moving, options_, diag, evidence.baseline_moving,
-                       evidence.baseline_points, evidence.surface_seeds);
+  const MaskStages stages{f.in,           f.out.tracks,   *f.partition, f.regions,
+                          f.candidates,   f.confirmation, f.epipolar,   f.voting};
+  const DynamicMask mask = buildDynamicMask(stages, evidence.superpixels, options_, diag);
   cv::bitwise_or(f.out.mask, mask.mask, f.out.mask);
   f.lap("decision");
 }

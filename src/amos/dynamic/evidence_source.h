@@ -37,13 +37,10 @@ struct FrameEvidence {
   explicit FrameEvidence(DynamicDiagnostics& diag) : diagnostics(diag) {}
 
   DynamicDiagnostics& diagnostics;        // the sources' counters (depth_moving_superpixels, baseline_points, ...)
-  std::vector<bool> depth_moving;         // per superpixel: its depth moved under the judged pose
+  SuperpixelEvidence superpixels;         // the mask's seeds (depth_moving, baseline_moving) and surface growth
   std::vector<bool> depth_clusters;       // per cluster: dynamic by the depth evidence
   BaselineMotion baseline;                // the tracked points against the baseline frame
-  std::vector<bool> baseline_moving;      // per superpixel: moved over the long baseline (or follows a rigid mover)
   std::vector<bool> baseline_clusters;    // per cluster: dynamic by the long-baseline points
-  std::vector<int> baseline_points;       // per superpixel, for the rigid movers' surface growth
-  SurfaceSeeds surface_seeds;             // the rigid movers' (Dynamic.RigidMovers.growOverSurface)
 };
 
 class EvidenceSource {

@@ -96,9 +96,11 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const std::vector<bool>& dynamic_cluster,
                                      const std::vector<TrackEvidence>& evidence, double static_bar_px,
                                      bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
-                                     const SuperpixelGraph* graph, const std::vector<bool>& depth_moving,
-                                     const std::vector<bool>& baseline_moving,
-                                     const std::vector<int>& baseline_points, const SurfaceSeeds& surface_seeds) {
+                                     const SuperpixelGraph* graph, const SuperpixelEvidence& moving) {
+  const std::vector<bool>& depth_moving = moving.depth_moving;
+  const std::vector<bool>& baseline_moving = moving.baseline_moving;
+  const std::vector<int>& baseline_points = moving.baseline_points;
+  const SurfaceSeeds& surface_seeds = moving.surface_seeds;
   const int count = static_cast<int>(segmentation.superpixels.size());
   SuperpixelGraph computed;
   if (graph == nullptr) computed = superpixelGraph(segmentation, depth, options.reprojection.depth_edge_ratio);
@@ -168,15 +170,15 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
   return reached;
 }
 
-DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTrack>& tracks,
-                             const GeometricPartition& partition, const DecisionRegions& regions,
-                             const CandidateScoring& candidates, const PoseConfirmation& confirmation,
-                             const EpipolarEvidence& epipolar, const ClusterVoting& voting,
-                             const std::vector<bool>& depth_moving,
-                             const DynamicOptions& options, DynamicDiagnostics& diag,
-                             const std::vector<bool>& baseline_moving,
-                             const std::vector<int>& baseline_points,
-                             const SurfaceSeeds& surface_seeds) {
+DynamicMask buildDynamicMask(const MaskStages& stages, const SuperpixelEvidence& moving, const DynamicOptions& options,
+                             DynamicDiagnostics& diag) {
+  const FrontEndInput& in = stages.in;
+  const GeometricPartition& partition = stages.partition;
+  const DecisionRegions& regions = stages.regions;
+  const PoseConfirmation& confirmation = stages.confirmation;
+  const ClusterVoting& voting = stages.voting;
+  const std::vector<bool>& depth_moving = moving.depth_moving;
+  const std::vector<bool>& baseline_moving = moving.baseline_moving;
   DynamicMask out;
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
   const SuperpixelSegmentation& segmentation = partition.segmentation;
@@ -188,7 +190,8 @@ DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTra
   if (options.boundary.superpixel_mask && (any_dynamic_cluster || seed_outside || any_moving)) {
     // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
     std::vector<TrackEvidence> evidence =
-        seedingEvidence(tracks, candidates.lifted, confirmation.residuals, epipolar.distance_px, in.last_depth,
+        seedingEvidence(stages.tracks, stages.candidates.lifted, confirmation.residuals,
+                        stages.epipolar.distance_px, in.last_depth,
                         in.depth, segmentation, confirmation.static_bar_px, options);
     // Tracks outside the decision map (the border blocks, or the edge band of the per-track border rule) abstain.
     evidence.erase(std::remove_if(evidence.begin(), evidence.end(),
@@ -196,8 +199,7 @@ DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTra
                    evidence.end());
     out.dynamic_superpixel =
         dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
-                           seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr,
-                           depth_moving, baseline_moving, baseline_points, surface_seeds);
+                           seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr, moving);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);

@@ -59,7 +59,12 @@ TEST(MaskBuilding, WholeClusters) {
   ClusterVoting voting;
   voting.dynamic_cluster = {false, true};
   DynamicDiagnostics diag;
-  const DynamicMask mask = buildDynamicMask(in, {}, partition, regions, {}, {}, {}, voting, {}, options, diag);
+  const std::vector<PointTrack> tracks;
+  const CandidateScoring candidates;
+  const PoseConfirmation confirmation;
+  const EpipolarEvidence epipolar;
+  const MaskStages stages{in, tracks, partition, regions, candidates, confirmation, epipolar, voting};
+  const DynamicMask mask = buildDynamicMask(stages, {}, options, diag);
   // The right half (border blocks included).
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(20, 0, 20, 40))), 800);
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 0);
@@ -100,7 +105,7 @@ TEST(MaskBuilding, MovingSeedsGrowOverTheUnmeasuredSurfaceAroundThem) {
   std::vector<bool> only_5(16, false);
   only_5[5] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points),
+                               nullptr, {{}, baseline_moving, baseline_points}),
             only_5);
   std::vector<bool> five_and_nine = only_5;
   five_and_nine[9] = true;
@@ -142,22 +147,22 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   std::vector<bool> seeds_only(16, false);
   seeds_only[5] = seeds_only[10] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points),
+                               nullptr, {{}, baseline_moving, baseline_points}),
             seeds_only);
   std::vector<bool> grown = seeds_only;
   grown[9] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, {rigid, {}}),
+                               nullptr, {{}, baseline_moving, baseline_points, {rigid, {}}}),
             grown);
   // Bounded to the mover's region: with 9 outside it the label stays on the seeds; within it, it grows again.
   std::vector<bool> within(16, true);
   within[9] = false;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, {rigid, within}),
+                               nullptr, {{}, baseline_moving, baseline_points, {rigid, within}}),
             seeds_only);
   within[9] = true;
   EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, {rigid, within}),
+                               nullptr, {{}, baseline_moving, baseline_points, {rigid, within}}),
             grown);
 }
 
@@ -176,8 +181,8 @@ TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
   ClusterVoting voting;
   voting.dynamic_cluster = {true, false};
   DynamicDiagnostics diag;
-  const DynamicMask mask = buildDynamicMask(in, tracks, partition, regions, candidates, confirmation, epipolar,
-                                            voting, {}, DynamicOptions{}, diag);
+  const MaskStages stages{in, tracks, partition, regions, candidates, confirmation, epipolar, voting};
+  const DynamicMask mask = buildDynamicMask(stages, {}, DynamicOptions{}, diag);
   EXPECT_EQ(mask.dynamic_superpixel, leftHalfSuperpixels());
   EXPECT_EQ(diag.dynamic_superpixels, 8);
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 800);

@@ -19,7 +19,7 @@ void DepthEvidenceSource::addEvidence(const EvidenceContext& context, FrameEvide
       {in.depth, context.T_cw}, {in.last_depth, in.T_cw_last}, {in.baseline_depth, in.T_cw_baseline}};
   const DepthComparison comparison{context.camera, options.reprojection.depth_edge_ratio, options.depth};
   const DepthEvidence depth = frameDepthEvidence(frames, grid_, segmentation, comparison);
-  for (const SuperpixelDepth& sp : depth.superpixels) evidence.depth_moving.push_back(sp.moving);
+  for (const SuperpixelDepth& sp : depth.superpixels) evidence.superpixels.depth_moving.push_back(sp.moving);
   evidence.diagnostics.depth_moving_superpixels = depth.moving_superpixels;
   evidence.depth_clusters = depthMovingClusters(depth, segmentation, context.candidates.cluster_scores,
                                                 options.reprojection.min_points_per_cluster, options.depth);
@@ -47,11 +47,11 @@ void BaselineTracksSource::addEvidence(const EvidenceContext& context, FrameEvid
   const int superpixels = static_cast<int>(segmentation.superpixels.size());
   evidence.diagnostics.baseline_points = static_cast<int>(motion.points.size());
   evidence.diagnostics.baseline_moving_points = motion.moving_points;
-  evidence.baseline_moving =
+  evidence.superpixels.baseline_moving =
       baselineMovingSuperpixels(motion, segmentation.labels, superpixels, options.baseline_tracks);
   if (options.rigid_movers.grow_over_surface)
-    evidence.baseline_points = baselinePointsPerSuperpixel(motion, segmentation.labels, superpixels);
-  if (!evidence.baseline_moving.empty()) {
+    evidence.superpixels.baseline_points = baselinePointsPerSuperpixel(motion, segmentation.labels, superpixels);
+  if (!evidence.superpixels.baseline_moving.empty()) {
     const int clusters = static_cast<int>(context.candidates.cluster_scores.size());
     evidence.baseline_clusters =
         baselineMovingClusters(motion, context.regions.decision_map, clusters, options.baseline_tracks);
@@ -73,11 +73,11 @@ void RigidMoversSource::addEvidence(const EvidenceContext& context, FrameEvidenc
       rigidMoverSuperpixels(evidence.baseline, frames, superpixels, options.reprojection, options.rigid_movers);
   evidence.diagnostics.rigid_movers = static_cast<int>(rigid.movers.size());
   evidence.diagnostics.rigid_superpixels = rigid.moving_superpixels;
-  for (std::size_t s = 0; s < rigid.moving.size() && s < evidence.baseline_moving.size(); ++s)
-    evidence.baseline_moving[s] = evidence.baseline_moving[s] || rigid.moving[s];
+  for (std::size_t s = 0; s < rigid.moving.size() && s < evidence.superpixels.baseline_moving.size(); ++s)
+    evidence.superpixels.baseline_moving[s] = evidence.superpixels.baseline_moving[s] || rigid.moving[s];
   if (options.rigid_movers.grow_over_surface) {
-    evidence.surface_seeds.seeds = rigid.moving;
-    evidence.surface_seeds.within =
+    evidence.superpixels.surface_seeds.seeds = rigid.moving;
+    evidence.superpixels.surface_seeds.within =
         superpixelsNearMovers(segmentation.superpixels, rigid.movers, options.rigid_movers.region_reach_px);
   }
 }
