@@ -118,14 +118,13 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   std::vector<bool> may_be_dynamic(count);
   for (int s = 0; s < count; ++s)
     may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
-  auto grow = [&](const std::vector<bool>& from, const std::vector<bool>& within) {
-    if (std::find(from.begin(), from.end(), true) == from.end()) return;
-    const std::vector<bool> surface = surfaceFromMovingSeeds(
-        segmentation.superpixels, g, seeds, border, from, baseline_points, options.superpixel.colour_scale,
-        options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity, within);
+  if (std::find(surface_seeds.seeds.begin(), surface_seeds.seeds.end(), true) != surface_seeds.seeds.end()) {
+    const SurfaceSimilarity similarity{options.superpixel.colour_scale, options.superpixel.depth_scale_m,
+                                       options.baseline_tracks.grow_dissimilarity};
+    const std::vector<bool> surface =
+        surfaceFromMovingSeeds(segmentation.superpixels, g, seeds, border, surface_seeds, baseline_points, similarity);
     for (int s = 0; s < count; ++s) may_be_dynamic[s] = may_be_dynamic[s] || surface[s];
-  };
-  grow(surface_seeds.seeds, surface_seeds.within);
+  }
   const std::vector<RegionLabel> labels =
       growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,
                   options.superpixel.depth_scale_m, g.occlusion_edges);
@@ -136,10 +135,12 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
 
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
-                                         const std::vector<bool>& moving_seeds,
-                                         const std::vector<int>& baseline_points, double colour_scale,
-                                         double depth_scale_m, double max_dissimilarity,
-                                         const std::vector<bool>& within) {
+                                         const SurfaceSeeds& moving, const std::vector<int>& baseline_points,
+                                         const SurfaceSimilarity& similarity) {
+  const std::vector<bool>& moving_seeds = moving.seeds;
+  const std::vector<bool>& within = moving.within;
+  const double colour_scale = similarity.colour_scale, depth_scale_m = similarity.depth_scale_m;
+  const double max_dissimilarity = similarity.max_dissimilarity;
   const std::size_t count = superpixels.size();
   core::require(graph.neighbours.size() == count && seeds.size() == count,
                 "surfaceFromMovingSeeds: the graph and the seeds must be of these superpixels");

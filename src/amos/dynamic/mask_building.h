@@ -72,14 +72,17 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
                                      const SuperpixelGraph* graph = nullptr, const SuperpixelEvidence& moving = {});
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
-// dynamicSuperpixels): breadth-first from `moving_seeds` (the rigid movers' superpixels) over unmeasured, non-border
-// superpixels; only into the `within` ones (empty = any).
+// dynamicSuperpixels): breadth-first from `moving.seeds` (the rigid movers' superpixels) over unmeasured, non-border
+// superpixels; only into the `moving.within` ones (empty = any); each step at most similarity.max_dissimilarity.
+struct SurfaceSimilarity {
+  double colour_scale;       // Dynamic.Superpixel.colourScale
+  double depth_scale_m;      // Dynamic.Superpixel.depthScale
+  double max_dissimilarity;  // Dynamic.BaselineTracks.growDissimilarity
+};
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
-                                         const std::vector<bool>& moving_seeds,
-                                         const std::vector<int>& baseline_points, double colour_scale,
-                                         double depth_scale_m, double max_dissimilarity,
-                                         const std::vector<bool>& within = {});
+                                         const SurfaceSeeds& moving, const std::vector<int>& baseline_points,
+                                         const SurfaceSimilarity& similarity);
 
 struct DynamicMask {
   cv::Mat mask;                          // CV_8U, 255 = dynamic

@@ -114,9 +114,9 @@ TEST(MaskBuilding, MovingSeedsGrowOverTheUnmeasuredSurfaceAroundThem) {
   SuperpixelGraph graph = superpixelGraph(partition.segmentation, depth, options.reprojection.depth_edge_ratio);
   const std::vector<RegionLabel> unseeded(16, RegionLabel::kUnlabelled);
   auto surface = [&](const SuperpixelGraph& g, const std::vector<RegionLabel>& seeds, double max_step) {
-    return surfaceFromMovingSeeds(partition.segmentation.superpixels, g, seeds, border, baseline_moving,
-                                  baseline_points, options.superpixel.colour_scale, options.superpixel.depth_scale_m,
-                                  max_step);
+    const SurfaceSimilarity similarity{options.superpixel.colour_scale, options.superpixel.depth_scale_m, max_step};
+    return surfaceFromMovingSeeds(partition.segmentation.superpixels, g, seeds, border, {baseline_moving, {}},
+                                  baseline_points, similarity);
   };
   EXPECT_EQ(surface(graph, unseeded, 1.0), five_and_nine);
   baseline_points[9] = 1;
