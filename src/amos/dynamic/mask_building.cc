@@ -94,9 +94,11 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
-                                     const std::vector<TrackEvidence>& evidence, double static_bar_px,
-                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
+                                     const TrackSeeds& tracks, const cv::Mat& depth, const DynamicOptions& options,
                                      const SuperpixelGraph* graph, const SuperpixelEvidence& moving) {
+  const std::vector<TrackEvidence>& evidence = tracks.evidence;
+  const double static_bar_px = tracks.static_bar_px;
+  const bool seed_outside = tracks.seed_outside;
   const std::vector<bool>& depth_moving = moving.depth_moving;
   const std::vector<bool>& baseline_moving = moving.baseline_moving;
   const std::vector<int>& baseline_points = moving.baseline_points;
@@ -199,8 +201,9 @@ DynamicMask buildDynamicMask(const MaskStages& stages, const SuperpixelEvidence&
                                   [&](const TrackEvidence& t) { return labelAt(regions.decision_map, t.pixel) < 0; }),
                    evidence.end());
     out.dynamic_superpixel =
-        dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
-                           seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr, moving);
+        dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster,
+                           {evidence, confirmation.static_bar_px, seed_outside}, in.depth, options,
+                           partition.graph ? &*partition.graph : nullptr, moving);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);

@@ -52,6 +52,14 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
                                            const cv::Mat& depth, const SuperpixelSegmentation& segmentation,
                                            double static_bar_px, const DynamicOptions& options);
 
+// The tracks' part of the seeding: their evidence, the static bar of their residuals, and whether a track may seed
+// a superpixel outside the dynamic clusters (Dynamic.Boundary.seedOutsideClusters with a refitted pose).
+struct TrackSeeds {
+  const std::vector<TrackEvidence>& evidence;
+  double static_bar_px;
+  bool seed_outside;
+};
+
 // Per superpixel, whether it is dynamic: seeds from the evidence (seedSuperpixels; also away from the dynamic
 // clusters with seed_outside), then seeded region growing (growRegions) that may enter a superpixel as dynamic only
 // in a dynamic cluster or from a dynamic seed, and never across an occlusion edge of depth (CV_32F metres).
@@ -61,14 +69,13 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 // dynamic seed (border superpixels excepted). `baseline_moving`: per superpixel, whether its points moved over the
 // long baseline (evidence/baseline_tracks.h; empty = none): such a superpixel is a dynamic seed whatever its
 // one-frame votes say (border superpixels excepted). `baseline_points`: per superpixel, how many long-baseline points
-// lie on it (empty = none). `surface_seeds` (none = empty): the dynamic label may also enter, outside the dynamic clusters and within their `within` superpixels, the
-// superpixels that neither a track nor a long-baseline point measured and that are reached from a seed through
-// non-occlusion borders, each step between superpixels at most Dynamic.BaselineTracks.growDissimilarity apart
-// (surfaceFromMovingSeeds).
+// lie on it (empty = none). `surface_seeds` (none = empty): the dynamic label may also enter, outside the dynamic
+// clusters and within their `within` superpixels, the superpixels that neither a track nor a long-baseline point
+// measured and that are reached from a seed through non-occlusion borders, each step between superpixels at most
+// Dynamic.BaselineTracks.growDissimilarity apart (surfaceFromMovingSeeds).
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
-                                     const std::vector<bool>& dynamic_cluster,
-                                     const std::vector<TrackEvidence>& evidence, double static_bar_px,
-                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
+                                     const std::vector<bool>& dynamic_cluster, const TrackSeeds& tracks,
+                                     const cv::Mat& depth, const DynamicOptions& options,
                                      const SuperpixelGraph* graph = nullptr, const SuperpixelEvidence& moving = {});
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see

@@ -81,12 +81,13 @@ TEST(MaskBuilding, ADynamicSeedGrowsOverItsClusterAndAStaticOneHoldsTheOther) {
                                                {{24, 15}, Eigen::Vector2d::Zero(), 0.0},
                                                {{26, 15}, Eigen::Vector2d::Zero(), 0.0}};
   const std::vector<bool> dynamic =
-      dynamicSuperpixels(partition.segmentation, border, {true, false}, evidence, 1.0, false,
+      dynamicSuperpixels(partition.segmentation, border, {true, false}, {evidence, 1.0, false},
                          cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)), DynamicOptions{});
   EXPECT_EQ(dynamic, leftHalfSuperpixels());
   // Without a dynamic seed a dynamic cluster is not marked whole.
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {true, false}, {evidence[2], evidence[3]}, 1.0,
-                               false, cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)), DynamicOptions{}),
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {true, false},
+                               {{evidence[2], evidence[3]}, 1.0, false}, cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)),
+                               DynamicOptions{}),
             std::vector<bool>(16, false));
 }
 
@@ -104,7 +105,7 @@ TEST(MaskBuilding, MovingSeedsGrowOverTheUnmeasuredSurfaceAroundThem) {
   DynamicOptions options;
   std::vector<bool> only_5(16, false);
   only_5[5] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
                                nullptr, {{}, baseline_moving, baseline_points}),
             only_5);
   std::vector<bool> five_and_nine = only_5;
@@ -146,22 +147,22 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   const DynamicOptions options;
   std::vector<bool> seeds_only(16, false);
   seeds_only[5] = seeds_only[10] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
                                nullptr, {{}, baseline_moving, baseline_points}),
             seeds_only);
   std::vector<bool> grown = seeds_only;
   grown[9] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
                                nullptr, {{}, baseline_moving, baseline_points, {rigid, {}}}),
             grown);
   // Bounded to the mover's region: with 9 outside it the label stays on the seeds; within it, it grows again.
   std::vector<bool> within(16, true);
   within[9] = false;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
                                nullptr, {{}, baseline_moving, baseline_points, {rigid, within}}),
             seeds_only);
   within[9] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
                                nullptr, {{}, baseline_moving, baseline_points, {rigid, within}}),
             grown);
 }
