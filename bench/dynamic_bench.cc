@@ -22,6 +22,10 @@
 #include "amos/config/settings.h"
 #include "amos/config/slam_options.h"
 #include "amos/dynamic/dynamic_front_end.h"
+#include "amos/evidence/baseline_tracks.h"
+#include "amos/evidence/depth_evidence.h"
+#include "amos/evidence/evidence_sources.h"
+#include "amos/evidence/rigid_movers.h"
 #include "amos/segmentation/model_locator.h"
 #include "amos/segmentation/segmenter_factory.h"
 #include "amos/dynamic/superpixel_metrics.h"
@@ -34,6 +38,7 @@ namespace {
 
 using namespace amos;
 using namespace amos::dynamic;
+using namespace amos::evidence;
 
 struct Frame {
   cv::Mat bgr, gray, depth;
@@ -177,10 +182,11 @@ void BM_DepthEvidence(benchmark::State& state) {
   const SuperpixelSegmentation seg = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
   DepthEvidenceOptions options;
   const DepthSampleGrid grid(d.camera, options.sample_step_px);
+  const core::SE3 identity = core::SE3::Identity();
   DepthEvidence e;
   for (auto _ : state) {
-    e = superpixelDepthEvidence(d.current.depth, d.last.depth, core::SE3::Identity(), d.T_cw_initial, d.camera, grid,
-                                seg.labels, static_cast<int>(seg.superpixels.size()), 0.05, options);
+    e = superpixelDepthEvidence({d.current.depth, d.T_cw_initial}, {d.last.depth, identity}, grid,
+                                {seg.labels, static_cast<int>(seg.superpixels.size())}, {d.camera, 0.05, options});
     benchmark::DoNotOptimize(e.samples);
   }
   state.counters["samples"] = e.samples;
@@ -194,13 +200,13 @@ BENCHMARK(BM_DepthEvidence)->Unit(benchmark::kMillisecond);
 void BM_BaselineTracks(benchmark::State& state) {
   const BenchData& d = data();
   const DynamicOptions options;
+  const core::SE3 identity = core::SE3::Identity();
   std::vector<cv::Point2f> points;
   for (const PointTrack& t : d.tracks) points.push_back(t.current);
   BaselineMotion m;
   for (auto _ : state) {
-    m = baselineMotion(points, d.current.gray, d.current.depth, d.T_cw_initial, d.last.gray,
-                       core::SE3::Identity(), d.camera, options.tracking, options.reprojection,
-                       options.baseline_tracks);
+    const BaselineImages frames{d.current.gray, d.current.depth, d.T_cw_initial, d.last.gray, identity};
+    m = baselineMotion(points, frames, d.camera, options);
     benchmark::DoNotOptimize(m.moving_points);
   }
   state.counters["points"] = static_cast<double>(points.size());
@@ -225,17 +231,18 @@ RigidMoverFrame rigidMoverFrame(const BenchData& d, const DynamicOptions& option
   d.current.gray(block).copyTo(f.baseline_gray(block - cv::Point(6, 0)));
   std::vector<cv::Point2f> points;
   for (const PointTrack& t : d.tracks) points.push_back(t.current);
-  f.motion = baselineMotion(points, d.current.gray, d.current.depth, d.T_cw_initial, f.baseline_gray, d.T_cw_initial,
-                            d.camera, options.tracking, options.reprojection, options.baseline_tracks);
+  const BaselineImages frames{d.current.gray, d.current.depth, d.T_cw_initial, f.baseline_gray, d.T_cw_initial};
+  f.motion = baselineMotion(points, frames, d.camera, options);
   f.segmentation = computeDepthSlic(d.current.bgr, d.current.depth, DepthSlicOptions{});
   f.count = static_cast<int>(f.segmentation.superpixels.size());
   return f;
 }
 
 RigidMoverVerdict rigidMovers(const BenchData& d, const RigidMoverFrame& f, const DynamicOptions& options) {
-  return rigidMoverSuperpixels(f.motion, d.current.gray, d.current.depth, d.T_cw_initial, f.baseline_gray,
-                               d.current.depth, d.T_cw_initial, d.camera, f.segmentation.labels, f.count,
-                               options.reprojection, options.rigid_movers);
+  const RigidMoverFrames frames{
+      d.camera, {d.current.gray, d.current.depth, d.T_cw_initial}, {f.baseline_gray, d.current.depth, d.T_cw_initial}};
+  return rigidMoverSuperpixels(f.motion, frames, {f.segmentation.labels, f.count}, options.reprojection,
+                               options.rigid_movers);
 }
 
 void BM_RigidMovers(benchmark::State& state) {
@@ -389,7 +396,7 @@ void BM_FrontEndGeometry(benchmark::State& state) {
   const BenchData& d = data();
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrontEnd front_end(d.camera, options);
+  const DynamicFrontEnd front_end(d.camera, options, makeEvidenceSources(d.camera, options));
   FrontEndInput in;
   in.gray = d.current.gray, in.bgr = d.current.bgr, in.depth = d.current.depth;
   in.last_gray = d.last.gray, in.last_depth = d.last.depth;

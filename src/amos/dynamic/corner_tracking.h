@@ -29,8 +29,7 @@ struct CornerTrackingOptions {
   int lk_levels = 3;
   // Dynamic.LK.maxIterations / epsilon: per-level Gauss-Newton stop. A step below 0.03 px is a tenth of the
   // corner localisation noise (~0.3 px), so iterating on to OpenCV's 0.01 px (30 iterations) buys nothing that a
-  // later test can see: with 10 / 0.03 LK costs 15 % less on Bonn crowd and the end points move by a median
-  // 0.002 px (bench_dynamic TrackPointsOnPyramids 11/10/30 against 11/30/10).
+  // later test can see, at a lower cost (docs/experiments/front-end-defaults.md).
   int lk_max_iterations = 10;
   double lk_epsilon = 0.03;
   // Dynamic.LK.forwardBackwardThreshold: a static well-tracked corner returns within ~2 * 0.3 px (two LK runs at

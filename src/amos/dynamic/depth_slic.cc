@@ -152,10 +152,30 @@ std::vector<Centre> seedCentres(const Planes& p, int num_superpixels, float& ste
 // Operation by operation the arithmetic of the 4-lane loop in assignPixels (no FMA: fused operations would round
 // differently), and `dx4` carries that loop's running x offsets in and out (lanes 0-3 here hold its chunk, lanes
 // 4-7 its next one), so both paths give the same labels bit for bit.
-__attribute__((target("avx2"))) int assignRowAvx2(const float* L, const float* A, const float* B, const float* Z,
-                                                  const float* V, float* dist, int* lab, int x, int x1,
-                                                  const Centre& c, float dy2, float inv_colour, float inv_step,
-                                                  float depth_w, int k, __m128& dx4) {
+// One row of a centre's window as assignRowAvx2 reads it: the working planes' row, the distance and label rows it
+// updates, where the row ends, and the centre's terms of Eq. 1.
+struct AssignRow {
+  const float* L;
+  const float* A;
+  const float* B;
+  const float* Z;
+  const float* V;
+  float* dist;
+  int* lab;
+  int x1;
+  const Centre& c;
+  float dy2, inv_colour, inv_step, depth_w;
+  int k;
+};
+
+__attribute__((target("avx2"))) int assignRowAvx2(const AssignRow& row, int x, __m128& dx4) {
+  const float *L = row.L, *A = row.A, *B = row.B, *Z = row.Z, *V = row.V;
+  float* dist = row.dist;
+  int* lab = row.lab;
+  const int x1 = row.x1;
+  const Centre& c = row.c;
+  const float dy2 = row.dy2, inv_colour = row.inv_colour, inv_step = row.inv_step, depth_w = row.depth_w;
+  const int k = row.k;
   const __m128 four = _mm_set1_ps(4.f);
   __m256 dx = _mm256_set_m128(_mm_add_ps(dx4, four), dx4);
   const __m256 v_four = _mm256_set1_ps(4.f), v_cl = _mm256_set1_ps(c.L), v_ca = _mm256_set1_ps(c.A),
@@ -224,7 +244,10 @@ void assignPixels(const Planes& p, const std::vector<Centre>& centres, float ste
         const cv::v_int32 v_k = cv::vx_setall_s32(k);
         cv::v_float32 v_dx = cv::vx_load(ramp) + cv::vx_setall_f32(x0 - c.x);
 #if AMOS_SLIC_AVX2
-        if (avx2) x = assignRowAvx2(L, A, B, Z, V, dist, lab, x, x1, c, dy2, inv_colour, inv_step, depth_w, k, v_dx.val);
+        if (avx2) {
+          const AssignRow row{L, A, B, Z, V, dist, lab, x1, c, dy2, inv_colour, inv_step, depth_w, k};
+          x = assignRowAvx2(row, x, v_dx.val);
+        }
 #endif
         for (; x + kLanes <= x1; x += kLanes, v_dx = v_dx + v_lanes) {
           const cv::v_float32 dl = cv::vx_load(L + x) - v_cl, da = cv::vx_load(A + x) - v_ca,

@@ -8,19 +8,18 @@
 #include "amos/core/stage_timer.h"
 #include "amos/dynamic/candidate_scoring.h"
 #include "amos/dynamic/cluster_voting.h"
-#include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/epipolar_evidence.h"
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/mask_building.h"
 #include "amos/dynamic/pose_confirmation.h"
-#include "amos/dynamic/rigid_movers.h"
 
 namespace amos::dynamic {
 
-DynamicFrontEnd::DynamicFrontEnd(const core::PinholeCamera& camera, const DynamicOptions& options)
-    : camera_(camera), options_(options) {
+DynamicFrontEnd::DynamicFrontEnd(const core::PinholeCamera& camera, const DynamicOptions& options,
+                                 EvidenceSources sources)
+    : camera_(camera), options_(options), sources_(std::move(sources)) {
   options_.check();
-  if (options_.depth.enabled) depth_grid_ = DepthSampleGrid(camera_, options_.depth.sample_step_px);
+  for (const auto& source : sources_) core::require(source != nullptr, "DynamicFrontEnd: an evidence source is null");
 }
 
 namespace {
@@ -47,12 +46,24 @@ void checkInput(const FrontEndInput& in) {
   }
 }
 
+// Marks the clusters `moved` names dynamic; returns how many were not already.
+int addClusters(const std::vector<bool>& moved, std::vector<bool>& dynamic_cluster) {
+  int added = 0;
+  for (std::size_t c = 0; c < moved.size() && c < dynamic_cluster.size(); ++c)
+    if (moved[c] && !dynamic_cluster[c]) {
+      dynamic_cluster[c] = true;
+      ++added;
+    }
+  return added;
+}
+
 }  // namespace
 
 // What the stages of one process() call hand on to each other. References to the input and the result, which the
 // stages fill; the intermediate results by value (moved into the result at the end, never copied).
 struct DynamicFrontEnd::Frame {
-  Frame(const FrontEndInput& input, FrontEndResult& result) : in(input), out(result), diag(result.diagnostics) {}
+  Frame(const FrontEndInput& input, FrontEndResult& result)
+      : in(input), out(result), diag(result.diagnostics), evidence(result.diagnostics) {}
 
   const FrontEndInput& in;
   FrontEndResult& out;
@@ -66,12 +77,7 @@ struct DynamicFrontEnd::Frame {
   CandidateScoring candidates;
   PoseConfirmation confirmation;
   EpipolarEvidence epipolar;
-  DepthEvidence depth;
-  std::vector<bool> depth_moving;     // per superpixel (depth evidence; empty without)
-  BaselineMotion baseline;
-  std::vector<bool> baseline_moving;  // per superpixel (long-baseline tracks and rigid movers; empty without)
-  std::vector<int> baseline_points;   // per superpixel, for the rigid movers' surface growth
-  SurfaceSeeds surface_seeds;         // the rigid movers' (Dynamic.RigidMovers.growOverSurface)
+  FrameEvidence evidence;  // the evidence sources'
   ClusterVoting voting;
 
   // Records the time since the last lap under `name`.
@@ -96,8 +102,7 @@ FrontEndResult DynamicFrontEnd::process(const FrontEndInput& in) const {
     trackCornersInto(f);      // last -> current correspondences
     scoreAndConfirm(f);       // III-C, Eq. 5-6
     judgeEpipolar(f);         // III-C, Eq. 7-8
-    addDepthEvidence(f);      // post-paper: Dynamic.Depth.enabled
-    addBaselineEvidence(f);   // post-paper: Dynamic.BaselineTracks.enabled, Dynamic.RigidMovers.enabled
+    addEvidence(f);           // post-paper: the evidence sources (evidence_source.h)
     decideMask(f);            // III-C, the decision and the boundaries
     fillResult(f);
   }
@@ -173,65 +178,15 @@ void DynamicFrontEnd::judgeEpipolar(Frame& f) const {
   f.lap("epipolar");
 }
 
-// Depth evidence (depth_evidence.h): superpixels whose depth moved under the judged pose, for movers that carry too
-// few tracks to be scored.
-void DynamicFrontEnd::addDepthEvidence(Frame& f) const {
-  if (!options_.depth.enabled) return;
-  const FrontEndInput& in = f.in;
-  f.depth = frameDepthEvidence(in.depth, f.confirmation.refit.T_cw, in.last_depth, in.T_cw_last, in.baseline_depth,
-                               in.T_cw_baseline, camera_, depth_grid_, f.partition->segmentation,
-                               options_.reprojection.depth_edge_ratio, options_.depth);
-  for (const SuperpixelDepth& sp : f.depth.superpixels) f.depth_moving.push_back(sp.moving);
-  f.diag.depth_moving_superpixels = f.depth.moving_superpixels;
-  f.lap("depth");
-}
-
-// Long-baseline tracks (baseline_tracks.h): the tracked points against the frame Dynamic.Depth.baselineFrames back,
-// for movers too slow for one frame; then the rigid movers among them.
-void DynamicFrontEnd::addBaselineEvidence(Frame& f) const {
-  const FrontEndInput& in = f.in;
-  if (!options_.baseline_tracks.enabled || in.baseline_gray.empty()) return;
-  std::vector<cv::Point2f> points;
-  points.reserve(f.out.tracks.size());
-  for (const PointTrack& t : f.out.tracks) points.push_back(t.current);
-  // The pipeline's stage A builds the pyramids; otherwise they are built here.
-  const bool have_pyramids = !in.pyramid.empty() && !in.baseline_pyramid.empty();
-  const ImagePyramid pyramid = have_pyramids ? in.pyramid : buildPyramid(in.gray, options_.tracking);
-  const ImagePyramid baseline_pyramid =
-      have_pyramids ? in.baseline_pyramid : buildPyramid(in.baseline_gray, options_.tracking);
-  f.baseline = baselineMotion(points, pyramid, in.depth, f.confirmation.refit.T_cw, baseline_pyramid,
-                              in.T_cw_baseline, camera_, options_.tracking, options_.reprojection,
-                              options_.baseline_tracks);
-  const SuperpixelSegmentation& segmentation = f.partition->segmentation;
-  const int superpixels = static_cast<int>(segmentation.superpixels.size());
-  f.diag.baseline_points = static_cast<int>(f.baseline.points.size());
-  f.diag.baseline_moving_points = f.baseline.moving_points;
-  f.baseline_moving =
-      baselineMovingSuperpixels(f.baseline, segmentation.labels, superpixels, options_.baseline_tracks);
-  if (options_.rigid_movers.grow_over_surface)
-    f.baseline_points = baselinePointsPerSuperpixel(f.baseline, segmentation.labels, superpixels);
-  f.lap("baseline_tracks");
-  if (options_.rigid_movers.enabled) addRigidMovers(f);
-}
-
-// Rigid movers (rigid_movers.h): the moving long-baseline points' rigid motions, and the superpixels that follow one.
-void DynamicFrontEnd::addRigidMovers(Frame& f) const {
-  const FrontEndInput& in = f.in;
-  const SuperpixelSegmentation& segmentation = f.partition->segmentation;
-  const RigidMoverVerdict rigid = rigidMoverSuperpixels(
-      f.baseline, in.gray, in.depth, f.confirmation.refit.T_cw, in.baseline_gray, in.baseline_depth, in.T_cw_baseline,
-      camera_, segmentation.labels, static_cast<int>(segmentation.superpixels.size()), options_.reprojection,
-      options_.rigid_movers);
-  f.diag.rigid_movers = static_cast<int>(rigid.movers.size());
-  f.diag.rigid_superpixels = rigid.moving_superpixels;
-  for (std::size_t s = 0; s < rigid.moving.size() && s < f.baseline_moving.size(); ++s)
-    f.baseline_moving[s] = f.baseline_moving[s] || rigid.moving[s];
-  if (options_.rigid_movers.grow_over_surface) {
-    f.surface_seeds.seeds = rigid.moving;
-    f.surface_seeds.within =
-        superpixelsNearMovers(segmentation.superpixels, rigid.movers, options_.rigid_movers.region_reach_px);
+// The evidence sources, in their order; each is timed under its name.
+void DynamicFrontEnd::addEvidence(Frame& f) const {
+  const EvidenceContext context{f.in,    f.out.tracks,          *f.partition, f.regions, f.candidates,
+                                f.confirmation.refit.T_cw, camera_, options_};
+  for (const auto& source : sources_) {
+    if (!source->appliesTo(context)) continue;
+    source->addEvidence(context, f.evidence);
+    f.lap(source->name());
   }
-  f.lap("rigid_movers");
 }
 
 // Decision: the epipolar violators vote for clusters (and the evidence sources add theirs), then the mask follows the
@@ -241,26 +196,13 @@ void DynamicFrontEnd::decideMask(Frame& f) const {
   f.voting = voteClusters(f.epipolar.violators, f.regions.decision_map, f.candidates.cluster_scores,
                           f.confirmation.confirmed, options_, diag);
   std::vector<bool>& dynamic_cluster = f.voting.dynamic_cluster;
-  if (options_.depth.enabled) {
-    diag.depth_dynamic_clusters =
-        addDepthMovingClusters(f.depth, f.partition->segmentation, f.candidates.cluster_scores,
-                               options_.reprojection.min_points_per_cluster, options_.depth, dynamic_cluster);
-    diag.dynamic_clusters += diag.depth_dynamic_clusters;
-  }
-  if (!f.baseline_moving.empty()) {
-    const std::vector<bool> moved = baselineMovingClusters(
-        f.baseline, f.regions.decision_map, static_cast<int>(dynamic_cluster.size()), options_.baseline_tracks);
-    for (std::size_t c = 0; c < moved.size(); ++c)
-      if (moved[c] && !dynamic_cluster[c]) {
-        dynamic_cluster[c] = true;
-        ++diag.baseline_dynamic_clusters;
-        ++diag.dynamic_clusters;
-      }
-  }
-  const DynamicMask mask =
-      buildDynamicMask(f.in, f.out.tracks, *f.partition, f.regions, f.candidates, f.confirmation, f.epipolar,
-                       f.voting, f.depth_moving, options_, diag, f.baseline_moving, f.baseline_points,
-                       f.surface_seeds);
+  const FrameEvidence& evidence = f.evidence;
+  diag.depth_dynamic_clusters = addClusters(evidence.depth_clusters, dynamic_cluster);
+  diag.baseline_dynamic_clusters = addClusters(evidence.baseline_clusters, dynamic_cluster);
+  diag.dynamic_clusters += diag.depth_dynamic_clusters + diag.baseline_dynamic_clusters;
+  const MaskStages stages{f.in,           f.out.tracks,   *f.partition, f.regions,
+                          f.candidates,   f.confirmation, f.epipolar,   f.voting};
+  const DynamicMask mask = buildDynamicMask(stages, evidence.superpixels, options_, diag);
   cv::bitwise_or(f.out.mask, mask.mask, f.out.mask);
   f.lap("decision");
 }
@@ -277,8 +219,8 @@ void DynamicFrontEnd::fillResult(Frame& f) const {
   out.T_cw_judged = f.confirmation.refit.T_cw;
   out.dynamic_cluster = std::move(f.voting.dynamic_cluster);
   out.epipolar_distance_px = std::move(f.epipolar.distance_px);
-  out.baseline_bar_px = f.baseline.bar_px;
-  out.baseline_points = std::move(f.baseline.points);
+  out.baseline_bar_px = f.evidence.baseline.bar_px;
+  out.baseline_points = std::move(f.evidence.baseline.points);
 }
 
 }  // namespace amos::dynamic

@@ -20,26 +20,32 @@
 //   candidates = scoreCandidates(tracks, regions, prior);      // candidate_scoring.h, III-C Eq. 5-6
 //   confirmation = confirmUnderRefittedPose(candidates);       // pose_confirmation.h, III-C Eq. 5
 //   epipolar = fitEpipolarEvidence(confirmation.fit_tracks);   // epipolar_evidence.h, III-C Eq. 7-8
-//   depth = superpixelDepthEvidence(depth, last_depth);       // depth_evidence.h (Dynamic.Depth.enabled)
-//   baseline = baselineMotion(tracks, baseline_gray);          // baseline_tracks.h, Eq. 6 over ten frames
-//                                                              //   (Dynamic.BaselineTracks.enabled)
+//   for (source : sources) source->addEvidence(context, evidence);  // evidence_source.h: post-paper sources
+//                                                              //   (src/amos/evidence/, chosen by the options)
 //   voting = voteClusters(epipolar.violators, candidates, confirmation);  // cluster_voting.h, III-C
-//                                                              //   (+ the depth's and the baseline's clusters)
+//                                                              //   (+ the sources' clusters)
 //   mask |= buildDynamicMask(candidates, confirmation, epipolar, voting); // mask_building.h, III-C boundaries
 //
 // State: none. The caller keeps the last frame (gray, depth, pose) and the baseline frame (baseline_history.h) and
 // passes them in with the current frame, so one DynamicFrontEnd can be shared, tested and benchmarked frame pair by
 // frame pair. process() is const and thread-compatible (no mutable members).
+#include <memory>
+#include <vector>
+
 #include "amos/core/camera.h"
-#include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/dynamic_options.h"
+#include "amos/dynamic/evidence_source.h"
 #include "amos/dynamic/front_end_types.h"
 
 namespace amos::dynamic {
 
 class DynamicFrontEnd {
  public:
-  DynamicFrontEnd(const core::PinholeCamera& camera, const DynamicOptions& options);
+  using EvidenceSources = std::vector<std::shared_ptr<const EvidenceSource>>;
+
+  // `sources` are run in their order after the epipolar judgement (evidence::makeEvidenceSources builds them from
+  // the options; none for the paper's front end alone).
+  DynamicFrontEnd(const core::PinholeCamera& camera, const DynamicOptions& options, EvidenceSources sources);
 
   FrontEndResult process(const FrontEndInput& input) const;
 
@@ -57,15 +63,13 @@ class DynamicFrontEnd {
   void trackCornersInto(Frame& f) const;
   void scoreAndConfirm(Frame& f) const;
   void judgeEpipolar(Frame& f) const;
-  void addDepthEvidence(Frame& f) const;
-  void addBaselineEvidence(Frame& f) const;
-  void addRigidMovers(Frame& f) const;
+  void addEvidence(Frame& f) const;
   void decideMask(Frame& f) const;
   void fillResult(Frame& f) const;
 
   core::PinholeCamera camera_;
   DynamicOptions options_;
-  DepthSampleGrid depth_grid_;  // with Dynamic.Depth.enabled
+  EvidenceSources sources_;
 };
 
 }  // namespace amos::dynamic

@@ -10,12 +10,18 @@
 
 #include "amos/core/error.h"
 #include "amos/dynamic/test_scenes.h"
+#include "amos/evidence/evidence_sources.h"
 #include "amos/testing/shared_data.h"
 #include "amos/testing/synthetic_scene.h"
 #include "amos/testing/test_camera.h"
 
 namespace amos::dynamic {
 namespace {
+
+// The front end with the evidence sources its options turn on, as the pipeline builds it.
+DynamicFrontEnd frontEnd(const core::PinholeCamera& camera, const DynamicOptions& options) {
+  return DynamicFrontEnd(camera, options, evidence::makeEvidenceSources(camera, options));
+}
 
 // The scene of testing::crateScene: a wall at Z = 3 m, a floor at Y = 0.7 m, a static crate face at Z = 2 m, a
 // static pillar at Z = 1 m and a moving box face at Z = 1.5 m (X in [-0.4, 0], Y in [-0.2, 0.3], plus box_offset),
@@ -70,7 +76,7 @@ TEST(DynamicFrontEnd, GeometryModeMasksTheMovingBoxAndNotTheWall) {
   const SyntheticPair& pair = syntheticPair();
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrontEnd front_end(testCamera(), options);
+  const DynamicFrontEnd front_end = frontEnd(testCamera(), options);
   const FrontEndResult out = front_end.process(inputFor(pair));
   const DynamicDiagnostics& d = out.diagnostics;
   ASSERT_TRUE(d.geometry_ran);
@@ -109,9 +115,9 @@ TEST(DynamicFrontEnd, PerTrackBorderRuleFindsAMoverAlongTheImageEdge) {
   cv::bitwise_not(pair.current.box_mask, wall);
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const cv::Mat blocks = DynamicFrontEnd(testCamera(), options).process(inputFor(pair)).mask;
+  const cv::Mat blocks = frontEnd(testCamera(), options).process(inputFor(pair)).mask;
   options.boundary.border_blocks = false;
-  const cv::Mat per_track = DynamicFrontEnd(testCamera(), options).process(inputFor(pair)).mask;
+  const cv::Mat per_track = frontEnd(testCamera(), options).process(inputFor(pair)).mask;
   EXPECT_GT(coverage(per_track, pair.current.box_mask), 0.7);
   EXPECT_LT(coverage(blocks, pair.current.box_mask), 0.3);
   EXPECT_LT(coverage(per_track, wall), 0.02);
@@ -121,7 +127,7 @@ TEST(DynamicFrontEnd, PrecomputedPartitionGivesTheSameMask) {
   const SyntheticPair& pair = syntheticPair();
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrontEnd front_end(testCamera(), options);
+  const DynamicFrontEnd front_end = frontEnd(testCamera(), options);
   FrontEndInput in = inputFor(pair);
   const FrontEndResult computed_here = front_end.process(in);
   const GeometricPartition ahead =
@@ -141,7 +147,7 @@ TEST(DynamicFrontEnd, StaticSceneGivesAnEmptyMask) {
   still.current = render(pair.T_cw_current, Eigen::Vector3d::Zero());
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const FrontEndResult out = DynamicFrontEnd(cam, options).process(inputFor(still));
+  const FrontEndResult out = frontEnd(cam, options).process(inputFor(still));
   EXPECT_EQ(out.diagnostics.candidate_clusters, 0);
   EXPECT_EQ(out.diagnostics.dynamic_clusters, 0);
   EXPECT_EQ(cv::countNonZero(out.mask), 0);
@@ -156,16 +162,16 @@ TEST(DynamicFrontEnd, ModesCombinePriorAndGeometry) {
   DynamicOptions options;
 
   options.mode = DynamicMode::kNone;
-  EXPECT_EQ(cv::countNonZero(DynamicFrontEnd(cam, options).process(in).mask), 0);
+  EXPECT_EQ(cv::countNonZero(frontEnd(cam, options).process(in).mask), 0);
 
   options.mode = DynamicMode::kPrior;
-  FrontEndResult prior = DynamicFrontEnd(cam, options).process(in);
+  FrontEndResult prior = frontEnd(cam, options).process(in);
   EXPECT_FALSE(prior.diagnostics.geometry_ran);
   EXPECT_EQ(cv::countNonZero(prior.mask != in.prior_mask), 0);
   EXPECT_EQ(prior.diagnostics.prior_regions, 1);
 
   options.mode = DynamicMode::kFull;
-  FrontEndResult full = DynamicFrontEnd(cam, options).process(in);
+  FrontEndResult full = frontEnd(cam, options).process(in);
   EXPECT_EQ(coverage(full.mask, in.prior_mask), 1.0);
   EXPECT_GT(coverage(full.mask, pair.current.box_mask), 0.85);
 
@@ -173,7 +179,7 @@ TEST(DynamicFrontEnd, ModesCombinePriorAndGeometry) {
   FrontEndInput first = in;
   first.last_gray.release();
   first.last_depth.release();
-  FrontEndResult only_prior = DynamicFrontEnd(cam, options).process(first);
+  FrontEndResult only_prior = frontEnd(cam, options).process(first);
   EXPECT_FALSE(only_prior.diagnostics.geometry_ran);
   EXPECT_EQ(cv::countNonZero(only_prior.mask != in.prior_mask), 0);
 }
@@ -183,7 +189,7 @@ TEST(DynamicFrontEnd, UsesPrecomputedTracksAndRejectsBadInput) {
   const core::PinholeCamera cam = testCamera();
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrontEnd front_end(cam, options);
+  const DynamicFrontEnd front_end = frontEnd(cam, options);
   FrontEndInput in = inputFor(pair);
   const std::vector<PointTrack> tracks = trackCorners(in.last_gray, in.gray, options.tracking);
   in.tracks = &tracks;
@@ -237,7 +243,7 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
   EXPECT_LT(core::translationNorm(pose.T_cw), 0.1);  // 33 ms of hand-held motion
   in.T_cw_initial = pose.T_cw;
   in.tracks = &tracks;
-  const FrontEndResult out = DynamicFrontEnd(cam, options).process(in);
+  const FrontEndResult out = frontEnd(cam, options).process(in);
   const DynamicDiagnostics& d = out.diagnostics;
   EXPECT_TRUE(d.fundamental_ok);
   EXPECT_GT(d.tracks, 200);
@@ -261,7 +267,7 @@ TEST(DynamicFrontEnd, RunsOnRealBonnFrames) {
   EXPECT_EQ(whole, d.dynamic_superpixels);
   // With the per-superpixel mask switched off the mask is exactly the union of the dynamic clusters.
   options.boundary.superpixel_mask = false;
-  const FrontEndResult clusters = DynamicFrontEnd(cam, options).process(in);
+  const FrontEndResult clusters = frontEnd(cam, options).process(in);
   int expected = 0;
   for (int y = 0; y < clusters.cluster_map.rows; ++y)
     for (int x = 0; x < clusters.cluster_map.cols; ++x)
@@ -279,11 +285,11 @@ TEST(DynamicFrontEnd, FittingOnAllTracksLetsARigidMoverHide) {
   // LK run to 0.01 px: whether the bent F passes the box's tracks is decided by hundredths of a pixel here.
   options.tracking.lk_max_iterations = 30;
   options.tracking.lk_epsilon = 0.01;
-  const FrontEndResult all = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
+  const FrontEndResult all = frontEnd(testCamera(), options).process(inputFor(syntheticPair()));
   EXPECT_EQ(all.diagnostics.f_fit_points, all.diagnostics.tracks);
   EXPECT_LT(coverage(all.mask, syntheticPair().current.box_mask), 0.2);
   options.epipolar.min_fit_points = DynamicOptions{}.epipolar.min_fit_points;
-  const FrontEndResult outside = DynamicFrontEnd(testCamera(), options).process(inputFor(syntheticPair()));
+  const FrontEndResult outside = frontEnd(testCamera(), options).process(inputFor(syntheticPair()));
   EXPECT_LT(outside.diagnostics.f_fit_points, outside.diagnostics.tracks);
   EXPECT_GT(coverage(outside.mask, syntheticPair().current.box_mask), 0.85);
 }
@@ -298,13 +304,13 @@ TEST(DynamicFrontEnd, RefittedPoseFindsAMoverSlidingAlongItsEpipolarLines) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
   options.reprojection.refit_pose = false;
-  const FrontEndResult epipolar_only = DynamicFrontEnd(cam, options).process(inputFor(along));
+  const FrontEndResult epipolar_only = frontEnd(cam, options).process(inputFor(along));
   EXPECT_LT(coverage(epipolar_only.mask, along.current.box_mask), 0.2);
   { const auto& d = epipolar_only.diagnostics; std::cout << "DBG cand " << d.candidate_clusters << " dyn " << d.dynamic_clusters << " dynpts " << d.dynamic_points << " tracks " << d.tracks << " ffit " << d.f_fit_points << " finl " << d.f_final_inliers << " conf " << d.confirmed_clusters << " sp " << d.dynamic_superpixels << "\n"; }
   EXPECT_FALSE(epipolar_only.diagnostics.pose_refit_ok);
 
   options.reprojection.refit_pose = true;
-  const FrontEndResult refitted = DynamicFrontEnd(cam, options).process(inputFor(along));
+  const FrontEndResult refitted = frontEnd(cam, options).process(inputFor(along));
   const DynamicDiagnostics& d = refitted.diagnostics;
   EXPECT_TRUE(d.pose_refit_ok);
   EXPECT_GE(d.confirmed_clusters, 1);
@@ -330,9 +336,9 @@ TEST(DynamicFrontEnd, SuperpixelMaskFollowsTheMoverOutline) {
   auto precisionOf = [&](const cv::Mat& mask) {
     return coverage(pair.current.box_mask, mask);  // share of the mask on the box
   };
-  const FrontEndResult superpixels = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  const FrontEndResult superpixels = frontEnd(cam, options).process(inputFor(pair));
   options.boundary.superpixel_mask = false;
-  const FrontEndResult clusters = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  const FrontEndResult clusters = frontEnd(cam, options).process(inputFor(pair));
   const double sp_precision = precisionOf(superpixels.mask), cl_precision = precisionOf(clusters.mask);
   const double sp_recall = coverage(superpixels.mask, pair.current.box_mask);
   std::cout << "superpixel mask: precision " << sp_precision << " recall " << sp_recall << "; cluster mask: precision "
@@ -349,7 +355,7 @@ TEST(DynamicFrontEnd, SuperpixelMaskFollowsTheMoverOutline) {
 TEST(DynamicFrontEnd, LastMaskKeepsTracksOutOfTheFitsButDoesNotDecide) {
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const DynamicFrontEnd front_end(testCamera(), options);
+  const DynamicFrontEnd front_end = frontEnd(testCamera(), options);
   const FrontEndInput plain = inputFor(syntheticPair());
   const FrontEndResult without = front_end.process(plain);
   ASSERT_TRUE(without.diagnostics.pose_refit_ok);
@@ -380,7 +386,7 @@ TEST(DynamicFrontEnd, LastMaskKeepsTracksOutOfTheFitsButDoesNotDecide) {
 
   // Switched off, the last mask changes nothing.
   options.temporal.exclude_last_mask_from_fits = false;
-  const FrontEndResult off = DynamicFrontEnd(testCamera(), options).process(with_wall);
+  const FrontEndResult off = frontEnd(testCamera(), options).process(with_wall);
   EXPECT_EQ(off.diagnostics.pose_refit_points, without.diagnostics.pose_refit_points);
   EXPECT_EQ(cv::countNonZero(off.mask != without.mask), 0);
 
@@ -403,9 +409,9 @@ TEST(DynamicFrontEnd, OutlineTracksScoredByTheirDepthIntervalsFindTheMover) {
   pair.last.depth.setTo(0.f, inside);
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const FrontEndResult with = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  const FrontEndResult with = frontEnd(cam, options).process(inputFor(pair));
   options.reprojection.interval_errors = false;
-  const FrontEndResult without = DynamicFrontEnd(cam, options).process(inputFor(pair));
+  const FrontEndResult without = frontEnd(cam, options).process(inputFor(pair));
   EXPECT_GT(coverage(with.mask, pair.current.box_mask), coverage(without.mask, pair.current.box_mask));
   EXPECT_GT(coverage(with.mask, pair.current.box_mask), 0.5);
 }
@@ -427,11 +433,11 @@ TEST(DynamicFrontEnd, DepthEvidenceFindsATexturelessMover) {
   in.bgr = cv::Mat(in.bgr.size(), CV_8UC3, cv::Scalar(128, 128, 128));
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const FrontEndResult without = DynamicFrontEnd(testing::testCamera(), options).process(in);
+  const FrontEndResult without = frontEnd(testing::testCamera(), options).process(in);
   EXPECT_EQ(without.diagnostics.tracks, 0);
   EXPECT_EQ(cv::countNonZero(without.mask), 0);
   options.depth.enabled = true;
-  const FrontEndResult with = DynamicFrontEnd(testing::testCamera(), options).process(in);
+  const FrontEndResult with = frontEnd(testing::testCamera(), options).process(in);
   const cv::Mat& box = p.current.box_mask;
   const double found = cv::countNonZero(with.mask & box) / static_cast<double>(cv::countNonZero(box));
   const double spill = cv::countNonZero(with.mask & ~box) / static_cast<double>(box.total());
@@ -460,9 +466,9 @@ TEST(DynamicFrontEnd, BaselineTracksFindAMoverTooSlowForOneFrame) {
   in.T_cw_baseline = pose(0.0);
   DynamicOptions options;
   options.mode = DynamicMode::kGeometry;
-  const FrontEndResult without = DynamicFrontEnd(testCamera(), options).process(in);
+  const FrontEndResult without = frontEnd(testCamera(), options).process(in);
   options.baseline_tracks.enabled = true;
-  const FrontEndResult with = DynamicFrontEnd(testCamera(), options).process(in);
+  const FrontEndResult with = frontEnd(testCamera(), options).process(in);
   cv::Mat wall;
   cv::bitwise_not(current.box_mask, wall);
   EXPECT_LT(coverage(without.mask, current.box_mask), 0.2);

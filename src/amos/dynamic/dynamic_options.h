@@ -4,17 +4,15 @@
 // fitted to any sequence.
 #include <string>
 
-#include "amos/dynamic/baseline_tracks.h"
 #include "amos/dynamic/boundary_assignment.h"
 #include "amos/dynamic/corner_tracking.h"
-#include "amos/dynamic/depth_evidence.h"
 #include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/epipolar_check.h"
+#include "amos/dynamic/evidence_options.h"
 #include "amos/dynamic/geometric_clustering.h"
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/prior_propagation.h"
 #include "amos/dynamic/reprojection_scoring.h"
-#include "amos/dynamic/rigid_movers.h"
 
 namespace amos::dynamic {
 
@@ -49,7 +47,7 @@ struct DynamicOptions {
   // half of the features, enough to track, and the unmasked extraction keeps the per-frame cost (a masked one puts
   // the whole budget on the static part: more points to match, track and adjust). Before the map exists the mask
   // is used at any coverage: the frame alone must then supply Tracking.initMinDepthPoints static points.
-  // Bonn crowd slice: 16-20 frames lost and 23 before the map could start without it, none with it.
+  // Measurements: docs/experiments/front-end-defaults.md.
   double prior_masked_extraction_coverage = 0.5;
   DepthSlicOptions superpixel;       // Dynamic.Superpixel.*
   ClusteringOptions cluster;         // Dynamic.Cluster.*

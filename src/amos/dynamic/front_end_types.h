@@ -9,8 +9,8 @@
 
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
-#include "amos/dynamic/baseline_tracks.h"
-#include "amos/dynamic/depth_evidence.h"
+#include "amos/dynamic/baseline_motion.h"
+#include "amos/dynamic/evidence_options.h"
 #include "amos/dynamic/dynamic_options.h"
 
 namespace amos::dynamic {

@@ -1,7 +1,6 @@
 #include "amos/dynamic/mask_building.h"
 
 #include "amos/core/error.h"
-#include "amos/dynamic/rigid_movers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -95,11 +94,15 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
 
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
                                      const std::vector<bool>& dynamic_cluster,
-                                     const std::vector<TrackEvidence>& evidence, double static_bar_px,
-                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
-                                     const SuperpixelGraph* graph, const std::vector<bool>& depth_moving,
-                                     const std::vector<bool>& baseline_moving,
-                                     const std::vector<int>& baseline_points, const SurfaceSeeds& surface_seeds) {
+                                     const TrackSeeds& tracks, const cv::Mat& depth, const DynamicOptions& options,
+                                     const SuperpixelGraph* graph, const SuperpixelEvidence& moving) {
+  const std::vector<TrackEvidence>& evidence = tracks.evidence;
+  const double static_bar_px = tracks.static_bar_px;
+  const bool seed_outside = tracks.seed_outside;
+  const std::vector<bool>& depth_moving = moving.depth_moving;
+  const std::vector<bool>& baseline_moving = moving.baseline_moving;
+  const std::vector<int>& baseline_points = moving.baseline_points;
+  const SurfaceSeeds& surface_seeds = moving.surface_seeds;
   const int count = static_cast<int>(segmentation.superpixels.size());
   SuperpixelGraph computed;
   if (graph == nullptr) computed = superpixelGraph(segmentation, depth, options.reprojection.depth_edge_ratio);
@@ -117,14 +120,13 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   std::vector<bool> may_be_dynamic(count);
   for (int s = 0; s < count; ++s)
     may_be_dynamic[s] = dynamic_cluster[segmentation.superpixels[s].cluster] || seeds[s] == RegionLabel::kDynamic;
-  auto grow = [&](const std::vector<bool>& from, const std::vector<bool>& within) {
-    if (std::find(from.begin(), from.end(), true) == from.end()) return;
-    const std::vector<bool> surface = surfaceFromMovingSeeds(
-        segmentation.superpixels, g, seeds, border, from, baseline_points, options.superpixel.colour_scale,
-        options.superpixel.depth_scale_m, options.baseline_tracks.grow_dissimilarity, within);
+  if (std::find(surface_seeds.seeds.begin(), surface_seeds.seeds.end(), true) != surface_seeds.seeds.end()) {
+    const SurfaceSimilarity similarity{options.superpixel.colour_scale, options.superpixel.depth_scale_m,
+                                       options.baseline_tracks.grow_dissimilarity};
+    const std::vector<bool> surface =
+        surfaceFromMovingSeeds(segmentation.superpixels, g, seeds, border, surface_seeds, baseline_points, similarity);
     for (int s = 0; s < count; ++s) may_be_dynamic[s] = may_be_dynamic[s] || surface[s];
-  };
-  grow(surface_seeds.seeds, surface_seeds.within);
+  }
   const std::vector<RegionLabel> labels =
       growRegions(segmentation.superpixels, neighbours, seeds, may_be_dynamic, options.superpixel.colour_scale,
                   options.superpixel.depth_scale_m, g.occlusion_edges);
@@ -135,10 +137,12 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
 
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
-                                         const std::vector<bool>& moving_seeds,
-                                         const std::vector<int>& baseline_points, double colour_scale,
-                                         double depth_scale_m, double max_dissimilarity,
-                                         const std::vector<bool>& within) {
+                                         const SurfaceSeeds& moving, const std::vector<int>& baseline_points,
+                                         const SurfaceSimilarity& similarity) {
+  const std::vector<bool>& moving_seeds = moving.seeds;
+  const std::vector<bool>& within = moving.within;
+  const double colour_scale = similarity.colour_scale, depth_scale_m = similarity.depth_scale_m;
+  const double max_dissimilarity = similarity.max_dissimilarity;
   const std::size_t count = superpixels.size();
   core::require(graph.neighbours.size() == count && seeds.size() == count,
                 "surfaceFromMovingSeeds: the graph and the seeds must be of these superpixels");
@@ -169,15 +173,15 @@ std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpix
   return reached;
 }
 
-DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTrack>& tracks,
-                             const GeometricPartition& partition, const DecisionRegions& regions,
-                             const CandidateScoring& candidates, const PoseConfirmation& confirmation,
-                             const EpipolarEvidence& epipolar, const ClusterVoting& voting,
-                             const std::vector<bool>& depth_moving,
-                             const DynamicOptions& options, DynamicDiagnostics& diag,
-                             const std::vector<bool>& baseline_moving,
-                             const std::vector<int>& baseline_points,
-                             const SurfaceSeeds& surface_seeds) {
+DynamicMask buildDynamicMask(const MaskStages& stages, const SuperpixelEvidence& moving, const DynamicOptions& options,
+                             DynamicDiagnostics& diag) {
+  const FrontEndInput& in = stages.in;
+  const GeometricPartition& partition = stages.partition;
+  const DecisionRegions& regions = stages.regions;
+  const PoseConfirmation& confirmation = stages.confirmation;
+  const ClusterVoting& voting = stages.voting;
+  const std::vector<bool>& depth_moving = moving.depth_moving;
+  const std::vector<bool>& baseline_moving = moving.baseline_moving;
   DynamicMask out;
   out.mask = cv::Mat(in.gray.size(), CV_8U, cv::Scalar(0));
   const SuperpixelSegmentation& segmentation = partition.segmentation;
@@ -189,16 +193,17 @@ DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTra
   if (options.boundary.superpixel_mask && (any_dynamic_cluster || seed_outside || any_moving)) {
     // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
     std::vector<TrackEvidence> evidence =
-        seedingEvidence(tracks, candidates.lifted, confirmation.residuals, epipolar.distance_px, in.last_depth,
+        seedingEvidence(stages.tracks, stages.candidates.lifted, confirmation.residuals,
+                        stages.epipolar.distance_px, in.last_depth,
                         in.depth, segmentation, confirmation.static_bar_px, options);
     // Tracks outside the decision map (the border blocks, or the edge band of the per-track border rule) abstain.
     evidence.erase(std::remove_if(evidence.begin(), evidence.end(),
                                   [&](const TrackEvidence& t) { return labelAt(regions.decision_map, t.pixel) < 0; }),
                    evidence.end());
     out.dynamic_superpixel =
-        dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster, evidence, confirmation.static_bar_px,
-                           seed_outside, in.depth, options, partition.graph ? &*partition.graph : nullptr,
-                           depth_moving, baseline_moving, baseline_points, surface_seeds);
+        dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster,
+                           {evidence, confirmation.static_bar_px, seed_outside}, in.depth, options,
+                           partition.graph ? &*partition.graph : nullptr, moving);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);

@@ -26,6 +26,17 @@ struct SurfaceSeeds {
   std::vector<bool> within;
 };
 
+// The evidence sources' contribution to the mask, per superpixel (evidence_source.h; empty vectors without them):
+// depth_moving from the depth evidence and baseline_moving from the long-baseline tracks (or a rigid mover) seed it
+// as dynamic; baseline_points (long-baseline points per superpixel) and surface_seeds bound the growth over a
+// mover's plain surface (Dynamic.RigidMovers.growOverSurface).
+struct SuperpixelEvidence {
+  std::vector<bool> depth_moving;
+  std::vector<bool> baseline_moving;
+  std::vector<int> baseline_points;
+  SurfaceSeeds surface_seeds;
+};
+
 // Sets to 255 the pixels of mask (CV_8U) whose label in label_map (CV_32S, same size, each label an index into
 // marked) is marked.
 void markLabelledPixels(const cv::Mat& label_map, const std::vector<bool>& marked, cv::Mat& mask);
@@ -41,54 +52,65 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
                                            const cv::Mat& depth, const SuperpixelSegmentation& segmentation,
                                            double static_bar_px, const DynamicOptions& options);
 
+// The tracks' part of the seeding: their evidence, the static bar of their residuals, and whether a track may seed
+// a superpixel outside the dynamic clusters (Dynamic.Boundary.seedOutsideClusters with a refitted pose).
+struct TrackSeeds {
+  const std::vector<TrackEvidence>& evidence;
+  double static_bar_px;
+  bool seed_outside;
+};
+
 // Per superpixel, whether it is dynamic: seeds from the evidence (seedSuperpixels; also away from the dynamic
 // clusters with seed_outside), then seeded region growing (growRegions) that may enter a superpixel as dynamic only
 // in a dynamic cluster or from a dynamic seed, and never across an occlusion edge of depth (CV_32F metres).
 // `graph`: the superpixels' adjacency and occlusion edges when computed ahead (null: computed here).
-// `depth_moving`: per superpixel, whether its depth moved (depth_evidence.h; empty = no depth evidence): such a
-// superpixel that the tracks leave unlabelled is a dynamic seed (border superpixels excepted).
-// `baseline_moving`: per superpixel, whether its points moved over the long baseline (baseline_tracks.h; empty =
-// none): such a superpixel is a dynamic seed whatever its one-frame votes say (border superpixels excepted).
-// `baseline_points`: per superpixel, how many long-baseline points lie on it (empty = none). `surface_seeds` (none =
-// empty): the dynamic label may also enter, outside the dynamic clusters and within their `within` superpixels, the
-// superpixels that neither a track nor a long-baseline point measured and that are reached from a seed through
-// non-occlusion borders, each step between superpixels at most Dynamic.BaselineTracks.growDissimilarity apart
-// (surfaceFromMovingSeeds).
+// `moving`, the evidence sources' (SuperpixelEvidence): `depth_moving`, per superpixel, whether its depth moved
+// (evidence/depth_evidence.h; empty = no depth evidence): such a superpixel that the tracks leave unlabelled is a
+// dynamic seed (border superpixels excepted). `baseline_moving`: per superpixel, whether its points moved over the
+// long baseline (evidence/baseline_tracks.h; empty = none): such a superpixel is a dynamic seed whatever its
+// one-frame votes say (border superpixels excepted). `baseline_points`: per superpixel, how many long-baseline points
+// lie on it (empty = none). `surface_seeds` (none = empty): the dynamic label may also enter, outside the dynamic
+// clusters and within their `within` superpixels, the superpixels that neither a track nor a long-baseline point
+// measured and that are reached from a seed through non-occlusion borders, each step between superpixels at most
+// Dynamic.BaselineTracks.growDissimilarity apart (surfaceFromMovingSeeds).
 std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
-                                     const std::vector<bool>& dynamic_cluster,
-                                     const std::vector<TrackEvidence>& evidence, double static_bar_px,
-                                     bool seed_outside, const cv::Mat& depth, const DynamicOptions& options,
-                                     const SuperpixelGraph* graph = nullptr,
-                                     const std::vector<bool>& depth_moving = {},
-                                     const std::vector<bool>& baseline_moving = {},
-                                     const std::vector<int>& baseline_points = {},
-                                     const SurfaceSeeds& surface_seeds = {});
+                                     const std::vector<bool>& dynamic_cluster, const TrackSeeds& tracks,
+                                     const cv::Mat& depth, const DynamicOptions& options,
+                                     const SuperpixelGraph* graph = nullptr, const SuperpixelEvidence& moving = {});
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
-// dynamicSuperpixels): breadth-first from `moving_seeds` (the rigid movers' superpixels) over unmeasured, non-border
-// superpixels; only into the `within` ones (empty = any).
+// dynamicSuperpixels): breadth-first from `moving.seeds` (the rigid movers' superpixels) over unmeasured, non-border
+// superpixels; only into the `moving.within` ones (empty = any); each step at most similarity.max_dissimilarity.
+struct SurfaceSimilarity {
+  double colour_scale;       // Dynamic.Superpixel.colourScale
+  double depth_scale_m;      // Dynamic.Superpixel.depthScale
+  double max_dissimilarity;  // Dynamic.BaselineTracks.growDissimilarity
+};
 std::vector<bool> surfaceFromMovingSeeds(const std::vector<Superpixel>& superpixels, const SuperpixelGraph& graph,
                                          const std::vector<RegionLabel>& seeds, const std::vector<bool>& border,
-                                         const std::vector<bool>& moving_seeds,
-                                         const std::vector<int>& baseline_points, double colour_scale,
-                                         double depth_scale_m, double max_dissimilarity,
-                                         const std::vector<bool>& within = {});
+                                         const SurfaceSeeds& moving, const std::vector<int>& baseline_points,
+                                         const SurfaceSimilarity& similarity);
 
 struct DynamicMask {
   cv::Mat mask;                          // CV_8U, 255 = dynamic
   std::vector<bool> dynamic_superpixel;  // per superpixel (per-superpixel mask only, else empty)
 };
 
-// The geometric stage's mask (the caller masks the prior regions itself). depth_moving / baseline_moving: per superpixel, from the
-// depth evidence and the long-baseline tracks (empty without; see dynamicSuperpixels). Fills diag.dynamic_superpixels.
-DynamicMask buildDynamicMask(const FrontEndInput& in, const std::vector<PointTrack>& tracks,
-                             const GeometricPartition& partition, const DecisionRegions& regions,
-                             const CandidateScoring& candidates, const PoseConfirmation& confirmation,
-                             const EpipolarEvidence& epipolar, const ClusterVoting& voting,
-                             const std::vector<bool>& depth_moving,
-                             const DynamicOptions& options, DynamicDiagnostics& diag,
-                             const std::vector<bool>& baseline_moving = {},
-                             const std::vector<int>& baseline_points = {},
-                             const SurfaceSeeds& surface_seeds = {});
+// The earlier stages' results the mask is built from (references, valid during one process() call).
+struct MaskStages {
+  const FrontEndInput& in;
+  const std::vector<PointTrack>& tracks;
+  const GeometricPartition& partition;
+  const DecisionRegions& regions;
+  const CandidateScoring& candidates;
+  const PoseConfirmation& confirmation;
+  const EpipolarEvidence& epipolar;
+  const ClusterVoting& voting;
+};
+
+// The geometric stage's mask (the caller masks the prior regions itself). moving: the evidence sources' seeds and
+// surface growth (empty without; see dynamicSuperpixels). Fills diag.dynamic_superpixels.
+DynamicMask buildDynamicMask(const MaskStages& stages, const SuperpixelEvidence& moving, const DynamicOptions& options,
+                             DynamicDiagnostics& diag);
 
 }  // namespace amos::dynamic

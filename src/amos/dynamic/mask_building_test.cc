@@ -59,7 +59,12 @@ TEST(MaskBuilding, WholeClusters) {
   ClusterVoting voting;
   voting.dynamic_cluster = {false, true};
   DynamicDiagnostics diag;
-  const DynamicMask mask = buildDynamicMask(in, {}, partition, regions, {}, {}, {}, voting, {}, options, diag);
+  const std::vector<PointTrack> tracks;
+  const CandidateScoring candidates;
+  const PoseConfirmation confirmation;
+  const EpipolarEvidence epipolar;
+  const MaskStages stages{in, tracks, partition, regions, candidates, confirmation, epipolar, voting};
+  const DynamicMask mask = buildDynamicMask(stages, {}, options, diag);
   // The right half (border blocks included).
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(20, 0, 20, 40))), 800);
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 0);
@@ -76,12 +81,13 @@ TEST(MaskBuilding, ADynamicSeedGrowsOverItsClusterAndAStaticOneHoldsTheOther) {
                                                {{24, 15}, Eigen::Vector2d::Zero(), 0.0},
                                                {{26, 15}, Eigen::Vector2d::Zero(), 0.0}};
   const std::vector<bool> dynamic =
-      dynamicSuperpixels(partition.segmentation, border, {true, false}, evidence, 1.0, false,
+      dynamicSuperpixels(partition.segmentation, border, {true, false}, {evidence, 1.0, false},
                          cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)), DynamicOptions{});
   EXPECT_EQ(dynamic, leftHalfSuperpixels());
   // Without a dynamic seed a dynamic cluster is not marked whole.
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {true, false}, {evidence[2], evidence[3]}, 1.0,
-                               false, cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)), DynamicOptions{}),
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {true, false},
+                               {{evidence[2], evidence[3]}, 1.0, false}, cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)),
+                               DynamicOptions{}),
             std::vector<bool>(16, false));
 }
 
@@ -99,8 +105,8 @@ TEST(MaskBuilding, MovingSeedsGrowOverTheUnmeasuredSurfaceAroundThem) {
   DynamicOptions options;
   std::vector<bool> only_5(16, false);
   only_5[5] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points),
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
+                               nullptr, {{}, baseline_moving, baseline_points}),
             only_5);
   std::vector<bool> five_and_nine = only_5;
   five_and_nine[9] = true;
@@ -109,9 +115,9 @@ TEST(MaskBuilding, MovingSeedsGrowOverTheUnmeasuredSurfaceAroundThem) {
   SuperpixelGraph graph = superpixelGraph(partition.segmentation, depth, options.reprojection.depth_edge_ratio);
   const std::vector<RegionLabel> unseeded(16, RegionLabel::kUnlabelled);
   auto surface = [&](const SuperpixelGraph& g, const std::vector<RegionLabel>& seeds, double max_step) {
-    return surfaceFromMovingSeeds(partition.segmentation.superpixels, g, seeds, border, baseline_moving,
-                                  baseline_points, options.superpixel.colour_scale, options.superpixel.depth_scale_m,
-                                  max_step);
+    const SurfaceSimilarity similarity{options.superpixel.colour_scale, options.superpixel.depth_scale_m, max_step};
+    return surfaceFromMovingSeeds(partition.segmentation.superpixels, g, seeds, border, {baseline_moving, {}},
+                                  baseline_points, similarity);
   };
   EXPECT_EQ(surface(graph, unseeded, 1.0), five_and_nine);
   baseline_points[9] = 1;
@@ -141,23 +147,23 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   const DynamicOptions options;
   std::vector<bool> seeds_only(16, false);
   seeds_only[5] = seeds_only[10] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points),
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
+                               nullptr, {{}, baseline_moving, baseline_points}),
             seeds_only);
   std::vector<bool> grown = seeds_only;
   grown[9] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, {rigid, {}}),
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
+                               nullptr, {{}, baseline_moving, baseline_points, {rigid, {}}}),
             grown);
   // Bounded to the mover's region: with 9 outside it the label stays on the seeds; within it, it grows again.
   std::vector<bool> within(16, true);
   within[9] = false;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, {rigid, within}),
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
+                               nullptr, {{}, baseline_moving, baseline_points, {rigid, within}}),
             seeds_only);
   within[9] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {}, 1.0, false, depth, options,
-                               nullptr, {}, baseline_moving, baseline_points, {rigid, within}),
+  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
+                               nullptr, {{}, baseline_moving, baseline_points, {rigid, within}}),
             grown);
 }
 
@@ -176,8 +182,8 @@ TEST(MaskBuilding, PerSuperpixelMaskFromTheStagesFindings) {
   ClusterVoting voting;
   voting.dynamic_cluster = {true, false};
   DynamicDiagnostics diag;
-  const DynamicMask mask = buildDynamicMask(in, tracks, partition, regions, candidates, confirmation, epipolar,
-                                            voting, {}, DynamicOptions{}, diag);
+  const MaskStages stages{in, tracks, partition, regions, candidates, confirmation, epipolar, voting};
+  const DynamicMask mask = buildDynamicMask(stages, {}, DynamicOptions{}, diag);
   EXPECT_EQ(mask.dynamic_superpixel, leftHalfSuperpixels());
   EXPECT_EQ(diag.dynamic_superpixels, 8);
   EXPECT_EQ(cv::countNonZero(mask.mask(cv::Rect(0, 0, 20, 40))), 800);

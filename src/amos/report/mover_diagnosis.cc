@@ -15,6 +15,7 @@
 #include "amos/dynamic/mask_building.h"
 #include "amos/dynamic/mover_diagnostics.h"
 #include "amos/eval/ground_truth_masks.h"
+#include "amos/evidence/evidence_sources.h"
 #include "amos/io/dataset.h"
 #include "amos/io/trajectory.h"
 
@@ -85,7 +86,8 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
 
   dynamic::DynamicOptions dyn = settings.dynamic;
   dyn.mode = dynamic::DynamicMode::kGeometry;
-  const dynamic::DynamicFrontEnd front_end(core::PinholeCamera(settings.camera), dyn);
+  const core::PinholeCamera camera(settings.camera);
+  const dynamic::DynamicFrontEnd front_end(camera, dyn, evidence::makeEvidenceSources(camera, dyn));
   io::SequenceReader reader(std::move(index), settings.readerOptions());
   if (options.per_frame)
     out << "frame id name pixels marked tracks scored init_px judged_px epi_viol base_moving/base_points base_px "

@@ -14,6 +14,7 @@
 #include "amos/core/error.h"
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/reprojection_scoring.h"
+#include "amos/evidence/evidence_sources.h"
 #include "amos/segmentation/segment_masks.h"
 
 namespace amos::system {
@@ -42,7 +43,7 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
                                  std::unique_ptr<segmentation::SegmentationWorker> segmentation)
     : slam_(slam),
       options_(options),
-      front_end_(slam.sensor()->camera(), options),
+      front_end_(slam.sensor()->camera(), options, evidence::makeEvidenceSources(slam.sensor()->camera(), options)),
       scheduler_(slam.options().orb, options, std::move(segmentation)) {
   options_.check();
   if (scheduler_.tasks().segmentation)

@@ -1,4 +1,4 @@
-#include "amos/dynamic/baseline_tracks.h"
+#include "amos/evidence/baseline_tracks.h"
 
 #include <gtest/gtest.h>
 
@@ -7,11 +7,13 @@
 
 #include "amos/core/option_error.h"
 #include "amos/dynamic/dynamic_options.h"
-#include "amos/dynamic/box_wall_scene.h"
+#include "amos/evidence/box_wall_scene.h"
 #include "amos/dynamic/test_scenes.h"
 #include "amos/testing/test_camera.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
+
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 namespace {
 using box_wall::awayFromBox;
 using box_wall::Frame;
@@ -89,9 +91,10 @@ TEST(BaselineTracks, WithoutEnoughPointsNothingMoves) {
   s.motion(-0.012, 0.0, core::SE3::Identity(), &corners);
   corners.resize(10);  // below Dynamic.Reprojection.refitMinPoints (30)
   const Frame before = render(s.camera, s.c_before, -0.012), now = render(s.camera, s.c_now, 0.0);
-  const BaselineMotion m = baselineMotion(corners, now.gray, now.depth, poseAt(s.c_now), before.gray,
-                                          poseAt(s.c_before), s.camera, s.options.tracking, s.options.reprojection,
-                                          s.options.baseline_tracks);
+  const core::SE3 T_cw_now = poseAt(s.c_now), T_cw_before = poseAt(s.c_before);
+  const BaselineMotion m =
+      baselineMotion(corners, BaselineImages{now.gray, now.depth, T_cw_now, before.gray, T_cw_before}, s.camera,
+                     s.options);
   EXPECT_FALSE(m.ok);
   EXPECT_EQ(m.moving_points, 0);
 }
@@ -102,10 +105,11 @@ TEST(BaselineTracks, PyramidsBuiltBeforehandGiveTheSameResult) {
   std::vector<cv::Point2f> corners;
   const BaselineMotion from_gray = s.motion(-0.012, 0.0, core::SE3::Identity(), &corners);
   const Frame before = render(s.camera, s.c_before, -0.012), now = render(s.camera, s.c_now, 0.0);
+  const ImagePyramid pyramid = buildPyramid(now.gray, s.options.tracking);
+  const ImagePyramid baseline_pyramid = buildPyramid(before.gray, s.options.tracking);
+  const core::SE3 T_cw_now = poseAt(s.c_now), T_cw_before = poseAt(s.c_before);
   const BaselineMotion from_pyramids = baselineMotion(
-      corners, buildPyramid(now.gray, s.options.tracking), now.depth, poseAt(s.c_now),
-      buildPyramid(before.gray, s.options.tracking), poseAt(s.c_before), s.camera, s.options.tracking,
-      s.options.reprojection, s.options.baseline_tracks);
+      corners, BaselinePyramids{pyramid, now.depth, T_cw_now, baseline_pyramid, T_cw_before}, s.camera, s.options);
   ASSERT_EQ(from_gray.points.size(), from_pyramids.points.size());
   EXPECT_EQ(from_gray.moving_points, from_pyramids.moving_points);
   for (std::size_t i = 0; i < from_gray.points.size(); ++i)
@@ -149,4 +153,4 @@ TEST(BaselineTracks, OptionsAreChecked) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

@@ -1,4 +1,4 @@
-#include "amos/dynamic/depth_evidence.h"
+#include "amos/evidence/depth_evidence.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,9 @@
 #include "amos/dynamic/test_scenes.h"
 #include "amos/testing/test_camera.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
+
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 namespace {
 
 // A wall 3 m in front of the world origin (plane z = 3) and the front face of a box, a rectangle [x0, x1] x
@@ -49,8 +51,9 @@ struct Scene {
                          const core::SE3& pose_error = core::SE3::Identity()) const {
     const cv::Mat last = renderDepth(camera, c_last, box_last, noise_m, 1);
     const cv::Mat now = renderDepth(camera, c_now, box_now, noise_m, 2);
-    return superpixelDepthEvidence(now, last, poseAt(c_last), pose_error * poseAt(c_now), camera, grid, labels,
-                                   count, 0.05, options, free_space_only);
+    const core::SE3 T_cw_last = poseAt(c_last), T_cw = pose_error * poseAt(c_now);
+    return superpixelDepthEvidence({now, T_cw}, {last, T_cw_last}, grid, {labels, count},
+                                   {camera, 0.05, options, free_space_only});
   }
   // Pixel of a world point seen from `centre`.
   cv::Point pixel(const Eigen::Vector3d& centre, const Eigen::Vector3d& p_w) const {
@@ -176,4 +179,4 @@ TEST(DepthEvidence, OptionsAreChecked) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

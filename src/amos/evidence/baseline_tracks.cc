@@ -1,4 +1,4 @@
-#include "amos/dynamic/baseline_tracks.h"
+#include "amos/evidence/baseline_tracks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,15 +11,9 @@
 #include "amos/dynamic/frame_regions.h"
 #include "amos/dynamic/robust_scale.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
 
-void BaselineTrackOptions::check() const {
-  core::requirePositive(sigmas, "sigmas");
-  core::requireAtLeast(min_motion_px, "min_motion_px", 0.0);
-  core::requireAtLeast(min_votes, "min_votes", 1);
-  core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
-  core::requireAtLeast(grow_dissimilarity, "grow_dissimilarity", 0.0);
-}
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 
 namespace {
 
@@ -58,14 +52,16 @@ bool windowOnDepthEdge(const cv::Mat& depth, cv::Point2f p, int radius, double r
 
 }  // namespace
 
-BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const cv::Mat& gray, const cv::Mat& depth,
-                              const core::SE3& T_cw, const cv::Mat& baseline_gray, const core::SE3& T_cw_baseline,
-                              const core::PinholeCamera& camera, const CornerTrackingOptions& lk,
-                              const ReprojectionOptions& reprojection, const BaselineTrackOptions& options) {
+BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const BaselineImages& frames,
+                              const core::PinholeCamera& camera, const DynamicOptions& options) {
+  const cv::Mat& gray = frames.gray;
+  const cv::Mat& baseline_gray = frames.baseline_gray;
   core::require(gray.type() == CV_8UC1 && baseline_gray.type() == CV_8UC1 && gray.size() == baseline_gray.size(),
                 "baselineMotion: both images must be CV_8UC1 of one size");
-  return baselineMotion(points, buildPyramid(gray, lk), depth, T_cw, buildPyramid(baseline_gray, lk), T_cw_baseline,
-                        camera, lk, reprojection, options);
+  const ImagePyramid pyramid = buildPyramid(gray, options.tracking);
+  const ImagePyramid baseline_pyramid = buildPyramid(baseline_gray, options.tracking);
+  const BaselinePyramids pyramids{pyramid, frames.depth, frames.T_cw, baseline_pyramid, frames.T_cw_baseline};
+  return baselineMotion(points, pyramids, camera, options);
 }
 
 namespace {
@@ -78,11 +74,14 @@ struct FollowedPoint {
 };
 
 // Steps 1 and 2 of the header for `points`, and their residuals.
-std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
-                                              const cv::Mat& depth, const core::SE3& T_cw,
-                                              const ImagePyramid& baseline_pyramid, const core::SE3& T_cw_baseline,
+std::vector<FollowedPoint> followIntoBaseline(const std::vector<cv::Point2f>& points, const BaselinePyramids& frames,
                                               const core::PinholeCamera& camera, const CornerTrackingOptions& lk,
                                               const ReprojectionOptions& reprojection) {
+  const ImagePyramid& pyramid = frames.pyramid;
+  const ImagePyramid& baseline_pyramid = frames.baseline_pyramid;
+  const cv::Mat& depth = frames.depth;
+  const core::SE3& T_cw = frames.T_cw;
+  const core::SE3& T_cw_baseline = frames.T_cw_baseline;
   const cv::Mat& gray = pyramid.front();
   std::vector<FollowedPoint> out;
   // 1. The static world's prediction: lifted with the current depth, projected into the baseline frame.
@@ -163,7 +162,6 @@ void classifyInto(const std::vector<FollowedPoint>& followed, BaselineMotion& mo
   }
 }
 
-
 }  // namespace
 
 WindowStructure windowStructure(const cv::Mat& gray, int u, int v) {
@@ -182,19 +180,21 @@ WindowStructure windowStructure(const cv::Mat& gray, int u, int v) {
   return w;
 }
 
-BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const ImagePyramid& pyramid,
-                              const cv::Mat& depth, const core::SE3& T_cw, const ImagePyramid& baseline_pyramid,
-                              const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
-                              const CornerTrackingOptions& lk, const ReprojectionOptions& reprojection,
-                              const BaselineTrackOptions& options) {
+BaselineMotion baselineMotion(const std::vector<cv::Point2f>& points, const BaselinePyramids& frames,
+                              const core::PinholeCamera& camera, const DynamicOptions& all_options) {
+  const ImagePyramid& pyramid = frames.pyramid;
+  const ImagePyramid& baseline_pyramid = frames.baseline_pyramid;
+  const cv::Mat& depth = frames.depth;
+  const CornerTrackingOptions& lk = all_options.tracking;
+  const ReprojectionOptions& reprojection = all_options.reprojection;
+  const BaselineTrackOptions& options = all_options.baseline_tracks;
   options.check();
   core::require(!pyramid.empty() && !baseline_pyramid.empty() && pyramid.front().size() == baseline_pyramid.front().size(),
                 "baselineMotion: both pyramids must be built, from images of one size");
   core::require(depth.type() == CV_32F && depth.size() == pyramid.front().size(),
                 "baselineMotion: depth must be CV_32F metres of the image size");
   BaselineMotion out;
-  const std::vector<FollowedPoint> followed = followIntoBaseline(points, pyramid, depth, T_cw, baseline_pyramid,
-                                                                 T_cw_baseline, camera, lk, reprojection);
+  const std::vector<FollowedPoint> followed = followIntoBaseline(points, frames, camera, lk, reprojection);
   // 3. What the two tracked poses' relative error does to every point alike: the median residual (a small rotation
   // error shifts the image nearly uniformly, ~1 px per 0.1 deg), and the points' noise around it. Not a 6-DoF pose
   // refit: where the scene is two planes (a door and its wall) a translation and a rotation together explain a
@@ -240,4 +240,4 @@ std::vector<bool> baselineMovingClusters(const BaselineMotion& motion, const cv:
   return out;
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

@@ -1,15 +1,17 @@
-#include "amos/dynamic/rigid_movers.h"
+#include "amos/evidence/rigid_movers.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
 #include "amos/core/option_error.h"
-#include "amos/dynamic/box_wall_scene.h"
+#include "amos/evidence/box_wall_scene.h"
 #include "amos/dynamic/dynamic_options.h"
 #include "amos/dynamic/test_scenes.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
+
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 namespace {
 using box_wall::Frame;
 using box_wall::render;
@@ -37,8 +39,9 @@ Judged judge(const Scene& s, double box_before, double box_now, const RigidMover
   j.motion.moving_points = static_cast<int>(std::count_if(kept.begin(), kept.end(), [](const BaselinePoint& p) { return p.moving; }));
   const Frame before = render(s.camera, s.c_before, box_before), now = render(s.camera, s.c_now, box_now);
   j.labels = blockLabels(s.camera, j.count);
-  j.verdict = rigidMoverSuperpixels(j.motion, now.gray, now.depth, poseAt(s.c_now), before.gray, before.depth,
-                                    poseAt(s.c_before), s.camera, j.labels, j.count, s.options.reprojection, options);
+  const core::SE3 T_cw_now = poseAt(s.c_now), T_cw_before = poseAt(s.c_before);
+  const RigidMoverFrames frames{s.camera, {now.gray, now.depth, T_cw_now}, {before.gray, before.depth, T_cw_before}};
+  j.verdict = rigidMoverSuperpixels(j.motion, frames, {j.labels, j.count}, s.options.reprojection, options);
   return j;
 }
 
@@ -115,4 +118,4 @@ TEST(RigidMovers, OptionsAreChecked) {
 }
 
 }  // namespace
-}  // namespace amos::dynamic
+}  // namespace amos::evidence

@@ -9,13 +9,15 @@
 #include <vector>
 
 #include "amos/core/camera.h"
-#include "amos/dynamic/baseline_tracks.h"
+#include "amos/evidence/baseline_tracks.h"
 #include "amos/dynamic/corner_tracking.h"
 #include "amos/dynamic/dynamic_options.h"
 #include "amos/dynamic/test_scenes.h"
 #include "amos/testing/test_camera.h"
 
-namespace amos::dynamic::box_wall {
+namespace amos::evidence::box_wall {
+
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 
 // A textured wall 3 m in front of the world origin (plane z = 3) and the textured front face of a box (a square of
 // 0.6 m on the plane z = 1.5, centred at x = box_x), its texture moving with it; cameras look along +z without
@@ -87,10 +89,10 @@ struct Scene {
     const Frame before = render(camera, c_before, box_before), now = render(camera, c_now, box_now);
     const std::vector<cv::Point2f> corners = detectCorners(now.gray, options.tracking);
     if (corners_out) *corners_out = corners;
-    return baselineMotion(corners, now.gray, now.depth, poseAt(c_now), before.gray,
-                          baseline_pose_error * poseAt(c_before), camera, options.tracking, options.reprojection,
-                          options.baseline_tracks);
+    const core::SE3 T_cw_now = poseAt(c_now), T_cw_before = baseline_pose_error * poseAt(c_before);
+    const BaselineImages frames{now.gray, now.depth, T_cw_now, before.gray, T_cw_before};
+    return baselineMotion(corners, frames, camera, options);
   }
 };
 
-}  // namespace amos::dynamic::box_wall
+}  // namespace amos::evidence::box_wall

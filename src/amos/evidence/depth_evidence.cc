@@ -1,4 +1,4 @@
-#include "amos/dynamic/depth_evidence.h"
+#include "amos/evidence/depth_evidence.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,26 +6,9 @@
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
 
-namespace amos::dynamic {
+namespace amos::evidence {
 
-void DepthEvidenceOptions::check() const {
-  core::requireInRange(sample_step_px, "sample_step_px", 1, 32);
-  core::requirePositive(noise_base_m, "noise_base_m");
-  core::requireAtLeast(noise_quadratic, "noise_quadratic", 0.0);
-  core::requireAtLeast(noise_offset_m, "noise_offset_m", 0.0);
-  core::requirePositive(sigmas, "sigmas");
-  core::requireAtLeast(min_residual_m, "min_residual_m", 0.0);
-  core::requirePositive(max_depth_m, "max_depth_m");
-  core::requireInRange(min_relative_residual, "min_relative_residual", 0.0, 1.0);
-  core::requireAtLeast(min_samples, "min_samples", 1);
-  core::requireInRange(cluster_share, "cluster_share", 1e-6, 1.0);
-  core::requirePositive(violation_sigmas, "violation_sigmas");
-  core::requireInRange(violation_share, "violation_share", 1e-6, 1.0);
-  core::requireAtLeast(min_violations, "min_violations", 1);
-  core::requireAtLeast(unscored_cluster_superpixels, "unscored_cluster_superpixels", 1);
-  core::requireAtLeast(baseline_frames, "baseline_frames", 0);
-  core::requireInRange(baseline_relative_residual, "baseline_relative_residual", 0.0, 1.0);
-}
+using namespace dynamic;  // NOLINT(google-build-using-namespace): the front end's types
 
 DepthSampleGrid::DepthSampleGrid(const core::PinholeCamera& camera, int step_px) {
   core::require(step_px >= 1, "DepthSampleGrid: step must be >= 1");
@@ -90,21 +73,24 @@ LiftedDepthSamples liftDepthSamples(const cv::Mat& depth, const DepthSampleGrid&
   return out;
 }
 
-DepthEvidence superpixelDepthEvidence(const cv::Mat& depth, const cv::Mat& last_depth, const core::SE3& T_cw_last,
-                                      const core::SE3& T_cw, const core::PinholeCamera& camera,
-                                      const DepthSampleGrid& grid, const cv::Mat& labels, int count,
-                                      double depth_edge_ratio, const DepthEvidenceOptions& options,
-                                      bool free_space_only) {
-  core::require(depth.type() == CV_32F && last_depth.type() == CV_32F && depth.size() == last_depth.size(),
+DepthEvidence superpixelDepthEvidence(const PosedDepth& current, const PosedDepth& other, const DepthSampleGrid& grid,
+                                      const SuperpixelLabels& superpixels, const DepthComparison& comparison) {
+  core::require(current.depth.type() == CV_32F && other.depth.type() == CV_32F &&
+                    current.depth.size() == other.depth.size(),
                 "superpixelDepthEvidence: depth images must be CV_32F of one size");
-  return superpixelDepthEvidence(liftDepthSamples(depth, grid, labels, depth_edge_ratio, options), last_depth,
-                                 T_cw_last, T_cw, camera, count, depth_edge_ratio, options, free_space_only);
+  const LiftedDepthSamples lifted =
+      liftDepthSamples(current.depth, grid, superpixels.labels, comparison.depth_edge_ratio, comparison.options);
+  return superpixelDepthEvidence(lifted, superpixels.count, current.T_cw, other, comparison);
 }
 
-DepthEvidence superpixelDepthEvidence(const LiftedDepthSamples& current, const cv::Mat& last_depth,
-                                      const core::SE3& T_cw_last, const core::SE3& T_cw,
-                                      const core::PinholeCamera& camera, int count, double depth_edge_ratio,
-                                      const DepthEvidenceOptions& options, bool free_space_only) {
+DepthEvidence superpixelDepthEvidence(const LiftedDepthSamples& current, int count, const core::SE3& T_cw,
+                                      const PosedDepth& other, const DepthComparison& comparison) {
+  const cv::Mat& last_depth = other.depth;
+  const core::SE3& T_cw_last = other.T_cw;
+  const core::PinholeCamera& camera = comparison.camera;
+  const double depth_edge_ratio = comparison.depth_edge_ratio;
+  const DepthEvidenceOptions& options = comparison.options;
+  const bool free_space_only = comparison.free_space_only;
   core::require(last_depth.type() == CV_32F && last_depth.cols == camera.width() && last_depth.rows == camera.height(),
                 "superpixelDepthEvidence: the other frame's depth must be CV_32F of the camera's size");
   const core::SE3 T_last_cur = T_cw_last * T_cw.inverse();
@@ -217,40 +203,31 @@ std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const std::
   return out;
 }
 
-DepthEvidence frameDepthEvidence(const cv::Mat& depth, const core::SE3& T_cw, const cv::Mat& last_depth,
-                                 const core::SE3& T_cw_last, const cv::Mat& baseline_depth,
-                                 const core::SE3& T_cw_baseline, const core::PinholeCamera& camera,
-                                 const DepthSampleGrid& grid, const SuperpixelSegmentation& segmentation,
-                                 double depth_edge_ratio, const DepthEvidenceOptions& options) {
+DepthEvidence frameDepthEvidence(const DepthFrames& frames, const DepthSampleGrid& grid,
+                                 const SuperpixelSegmentation& segmentation, const DepthComparison& comparison) {
   const int count = static_cast<int>(segmentation.superpixels.size());
-  const LiftedDepthSamples current = liftDepthSamples(depth, grid, segmentation.labels, depth_edge_ratio, options);
-  DepthEvidence evidence =
-      superpixelDepthEvidence(current, last_depth, T_cw_last, T_cw, camera, count, depth_edge_ratio, options);
-  if (baseline_depth.empty()) return evidence;
-  DepthEvidenceOptions baseline = options;
-  baseline.min_relative_residual = options.baseline_relative_residual;
-  return combineDepthEvidence(evidence, superpixelDepthEvidence(current, baseline_depth, T_cw_baseline, T_cw, camera,
-                                                                count, depth_edge_ratio, baseline, true));
+  const LiftedDepthSamples current = liftDepthSamples(frames.current.depth, grid, segmentation.labels,
+                                                      comparison.depth_edge_ratio, comparison.options);
+  DepthEvidence evidence = superpixelDepthEvidence(current, count, frames.current.T_cw, frames.last, comparison);
+  if (frames.baseline.depth.empty()) return evidence;
+  DepthEvidenceOptions baseline = comparison.options;
+  baseline.min_relative_residual = comparison.options.baseline_relative_residual;
+  const DepthComparison free_space{comparison.camera, comparison.depth_edge_ratio, baseline, true};
+  const DepthEvidence over_baseline =
+      superpixelDepthEvidence(current, count, frames.current.T_cw, frames.baseline, free_space);
+  return combineDepthEvidence(evidence, over_baseline);
 }
 
-int addDepthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
-                           const std::vector<ClusterScore>& cluster_scores, int min_points,
-                           const DepthEvidenceOptions& options, std::vector<bool>& dynamic_cluster) {
+std::vector<bool> depthMovingClusters(const DepthEvidence& evidence, const SuperpixelSegmentation& segmentation,
+                                      const std::vector<ClusterScore>& cluster_scores, int min_points,
+                                      const DepthEvidenceOptions& options) {
   std::vector<int> cluster_of_superpixel;
   cluster_of_superpixel.reserve(segmentation.superpixels.size());
   for (const Superpixel& sp : segmentation.superpixels) cluster_of_superpixel.push_back(sp.cluster);
   std::vector<bool> scored;
   for (const ClusterScore& score : cluster_scores) scored.push_back(score.points >= min_points);
-  const std::vector<bool> moved = depthMovingClusters(evidence, cluster_of_superpixel, scored,
-                                                      static_cast<int>(dynamic_cluster.size()), options);
-  int added = 0;
-  for (std::size_t c = 0; c < moved.size() && c < dynamic_cluster.size(); ++c) {
-    if (moved[c] && !dynamic_cluster[c]) {
-      dynamic_cluster[c] = true;
-      ++added;
-    }
-  }
-  return added;
+  return depthMovingClusters(evidence, cluster_of_superpixel, scored, static_cast<int>(cluster_scores.size()),
+                             options);
 }
 
-}  // namespace amos::dynamic
+}  // namespace amos::evidence
