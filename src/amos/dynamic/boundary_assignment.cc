@@ -268,11 +268,14 @@ std::vector<RegionLabel> growRegions(const std::vector<Superpixel>& superpixels,
   return labels;
 }
 
-std::vector<RegionLabel> seedSuperpixels(const cv::Mat& labels, const std::vector<Superpixel>& superpixels,
+std::vector<RegionLabel> seedSuperpixels(const SuperpixelSegmentation& segmentation,
                                          const std::vector<std::vector<int>>& neighbours,
                                          const std::vector<bool>& border, const std::vector<bool>& dynamic_cluster,
-                                         const std::vector<TrackEvidence>& tracks, double static_px,
-                                         double epipolar_px, const SeedOptions& options) {
+                                         const std::vector<TrackEvidence>& tracks, const SeedBars& bars,
+                                         const SeedOptions& options) {
+  const cv::Mat& labels = segmentation.labels;
+  const std::vector<Superpixel>& superpixels = segmentation.superpixels;
+  const double static_px = bars.static_px, epipolar_px = bars.epipolar_px;
   const int n = static_cast<int>(superpixels.size());
   const int clusters = static_cast<int>(dynamic_cluster.size());
   core::require(labels.type() == CV_32S, "seedSuperpixels: labels must be CV_32S");

@@ -122,12 +122,17 @@ struct SeedOptions {
   // region (one may be an LK slip).
   int min_outside_votes = 2;
 };
+// The bars a track's evidence is read against: a residual below static_px votes static, an epipolar distance or
+// a residual beyond epipolar_px votes dynamic.
+struct SeedBars {
+  double static_px = 0, epipolar_px = 0;
+};
 
-std::vector<RegionLabel> seedSuperpixels(const cv::Mat& superpixel_labels, const std::vector<Superpixel>& superpixels,
+std::vector<RegionLabel> seedSuperpixels(const SuperpixelSegmentation& segmentation,
                                          const std::vector<std::vector<int>>& neighbours,
                                          const std::vector<bool>& border, const std::vector<bool>& dynamic_cluster,
-                                         const std::vector<TrackEvidence>& tracks, double static_px,
-                                         double epipolar_px, const SeedOptions& options = {});
+                                         const std::vector<TrackEvidence>& tracks, const SeedBars& bars,
+                                         const SeedOptions& options = {});
 
 // What the mask building needs of a frame's superpixels that depends on the frame alone: their adjacency
 // (superpixelNeighbours) and which shared borders are occlusion edges (occlusionEdges). A pipeline that prepares

@@ -212,6 +212,7 @@ TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
   // Cluster 0 is dynamic and moves by (3, 0) px; cluster 1 is static.
   const FiveByFiveBlocks b;
   const auto& [labels, sp, neighbours, border] = b;
+  const SuperpixelSegmentation segmentation{labels, {}, sp};
   const std::vector<bool> dynamic_cluster = {true, false};
   auto at = &FiveByFiveBlocks::at;
   const double inf = std::numeric_limits<double>::infinity();
@@ -226,7 +227,7 @@ TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
       {at(0), Eigen::Vector2d(3.0, 0.0), 0.1},   // border block: no vote
       {at(18), std::nullopt, inf},               // nothing known
   };
-  const auto seeds = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0);
+  const auto seeds = seedSuperpixels(segmentation, neighbours, border, dynamic_cluster, tracks, {2.0, 2.0});
   const RegionLabel D = RegionLabel::kDynamic, S = RegionLabel::kStatic, U = RegionLabel::kUnlabelled;
   EXPECT_EQ(seeds[6], D);
   EXPECT_EQ(seeds[7], D);
@@ -239,14 +240,14 @@ TEST(SuperpixelRegions, TracksSeedByTheirMotion) {
   EXPECT_EQ(seeds[18], U);
   // Two opposite votes leave a superpixel unlabelled.
   tracks.push_back({at(13), Eigen::Vector2d(3.0, 0.0), 0.1});
-  EXPECT_EQ(seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0)[13], U);
+  EXPECT_EQ(seedSuperpixels(segmentation, neighbours, border, dynamic_cluster, tracks, {2.0, 2.0})[13], U);
   // With no static cluster dynamic, a moving track outside any dynamic cluster only abstains.
-  const auto none = seedSuperpixels(labels, sp, neighbours, border, {false, false}, tracks, 2.0, 2.0);
+  const auto none = seedSuperpixels(segmentation, neighbours, border, {false, false}, tracks, {2.0, 2.0});
   EXPECT_EQ(none[6], U);
   EXPECT_EQ(none[12], S);
   // A dynamic cluster whose own tracks all look still (judged by violators outside it) gets no dynamic seed.
   const std::vector<TrackEvidence> still = {{at(12), Eigen::Vector2d(0.1, 0.0), 0.1}};
-  const auto quiet = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, still, 2.0, 2.0);
+  const auto quiet = seedSuperpixels(segmentation, neighbours, border, dynamic_cluster, still, {2.0, 2.0});
   EXPECT_EQ(quiet[6], U);
   EXPECT_EQ(quiet[12], S);
 }
@@ -256,6 +257,7 @@ TEST(SuperpixelRegions, TracksOutsideTheDynamicClustersSeedOnlyWhenAskedAndInPai
   // still ones.
   const FiveByFiveBlocks b;
   const auto& [labels, sp, neighbours, border] = b;
+  const SuperpixelSegmentation segmentation{labels, {}, sp};
   const std::vector<bool> dynamic_cluster = {false, false};
   auto at = &FiveByFiveBlocks::at;
   const Eigen::Vector2d moving(3.0, 0.0), still(0.1, 0.0);
@@ -266,15 +268,15 @@ TEST(SuperpixelRegions, TracksOutsideTheDynamicClustersSeedOnlyWhenAskedAndInPai
       {at(16), std::nullopt, 5.0},
   };
   const RegionLabel D = RegionLabel::kDynamic, S = RegionLabel::kStatic, U = RegionLabel::kUnlabelled;
-  const auto off = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0);
+  const auto off = seedSuperpixels(segmentation, neighbours, border, dynamic_cluster, tracks, {2.0, 2.0});
   EXPECT_EQ(off[7], U);
   EXPECT_EQ(off[13], S);
-  const auto on = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0, {true, 2});
+  const auto on = seedSuperpixels(segmentation, neighbours, border, dynamic_cluster, tracks, {2.0, 2.0}, {true, 2});
   EXPECT_EQ(on[7], D);
   EXPECT_EQ(on[17], U);  // one track may be an LK slip
   EXPECT_EQ(on[13], S);  // outvoted
   EXPECT_EQ(on[16], U);
-  const auto three = seedSuperpixels(labels, sp, neighbours, border, dynamic_cluster, tracks, 2.0, 2.0, {true, 3});
+  const auto three = seedSuperpixels(segmentation, neighbours, border, dynamic_cluster, tracks, {2.0, 2.0}, {true, 3});
   EXPECT_EQ(three[7], U);
 }
 

@@ -30,9 +30,11 @@ std::vector<std::optional<Eigen::Vector2d>> residualsUnder(const TrackPoints& li
 }
 
 CandidateScoring scoreCandidates(const std::vector<PointTrack>& tracks, const FrontEndInput& in,
-                                 const cv::Mat& decision_map, int num_clusters, const PriorRegions& prior,
-                                 const core::PinholeCamera& camera, const DynamicOptions& options,
-                                 DynamicDiagnostics& diag) {
+                                 const DecisionClusters& clusters, const core::PinholeCamera& camera,
+                                 const DynamicOptions& options, DynamicDiagnostics& diag) {
+  const cv::Mat& decision_map = clusters.decision_map;
+  const int num_clusters = clusters.count;
+  const PriorRegions& prior = clusters.prior;
   CandidateScoring scoring;
   scoring.lifted = liftTracks(tracks, in.last_depth, in.T_cw_last, camera, options);
   scoring.errors_px = residualNorms(residualsUnder(scoring.lifted, tracks, in.T_cw_last, in.T_cw_initial, camera));

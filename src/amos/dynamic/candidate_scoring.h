@@ -45,11 +45,17 @@ struct CandidateScoring {
   std::vector<bool> outside_candidates, outside_now;
 };
 
-// tracks: last -> current; prior: this frame's prior regions (empty when none are used). Fills
+// tracks: last -> current. Fills
 // diag.tracks_with_depth.
+// Where the decisions are made: the decision map (CV_32S cluster per pixel, -1 outside), its number of clusters, and
+// this frame's prior regions (empty when none are used).
+struct DecisionClusters {
+  const cv::Mat& decision_map;
+  int count;
+  const PriorRegions& prior;
+};
 CandidateScoring scoreCandidates(const std::vector<PointTrack>& tracks, const FrontEndInput& in,
-                                 const cv::Mat& decision_map, int num_clusters, const PriorRegions& prior,
-                                 const core::PinholeCamera& camera, const DynamicOptions& options,
-                                 DynamicDiagnostics& diag);
+                                 const DecisionClusters& clusters, const core::PinholeCamera& camera,
+                                 const DynamicOptions& options, DynamicDiagnostics& diag);
 
 }  // namespace amos::dynamic

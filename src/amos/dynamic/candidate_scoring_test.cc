@@ -36,9 +36,10 @@ TEST(CandidateScoring, TheMovingClusterIsACandidateAndItsTracksStayOutOfTheFits)
   prior.count = 1;
   prior.components = cv::Mat(100, 120, CV_32S, cv::Scalar(0));
   prior.components(cv::Rect(5, 15, 10, 10)).setTo(1);  // track 0 ends in a prior region
+  const cv::Mat clusters = leftRightClusters();
   DynamicDiagnostics diag;
   const CandidateScoring scoring =
-      scoreCandidates(tracks, in, leftRightClusters(), 2, prior, smallTestCamera(), DynamicOptions{}, diag);
+      scoreCandidates(tracks, in, {clusters, 2, prior}, smallTestCamera(), DynamicOptions{}, diag);
   EXPECT_EQ(diag.tracks_with_depth, 30);
   ASSERT_EQ(scoring.cluster_scores.size(), 2u);
   EXPECT_FALSE(scoring.cluster_scores[0].candidate);
@@ -56,7 +57,7 @@ TEST(CandidateScoring, TheMovingClusterIsACandidateAndItsTracksStayOutOfTheFits)
   DynamicOptions no_temporal;
   no_temporal.temporal.exclude_last_mask_from_fits = false;
   const CandidateScoring plain =
-      scoreCandidates(tracks, in, leftRightClusters(), 2, prior, smallTestCamera(), no_temporal, diag);
+      scoreCandidates(tracks, in, {clusters, 2, prior}, smallTestCamera(), no_temporal, diag);
   EXPECT_EQ(plain.outside_candidates, plain.outside_now);
 }
 

@@ -205,9 +205,18 @@ __attribute__((target("avx2"))) int assignRowAvx2(const AssignRow& row, int x, _
 }
 #endif
 
+// Eq. 1's scales: the grid step S (the image term's scale and the search window), 1 / colour scale, 1 / depth scale;
+// avx2: whether the CPU runs assignRowAvx2.
+struct AssignWeights {
+  float step, inv_colour, inv_depth;
+  bool avx2;
+};
+
 // One SLIC assignment pass: every pixel within +-step of a centre takes the nearest centre under Eq. 1.
-void assignPixels(const Planes& p, const std::vector<Centre>& centres, float step, float inv_colour, float inv_depth,
-                  bool avx2, cv::Mat& labels, cv::Mat& distance) {
+void assignPixels(const Planes& p, const std::vector<Centre>& centres, const AssignWeights& w, cv::Mat& labels,
+                  cv::Mat& distance) {
+  const float step = w.step, inv_colour = w.inv_colour, inv_depth = w.inv_depth;
+  const bool avx2 = w.avx2;
   (void)avx2;
   distance.setTo(std::numeric_limits<float>::max());
   const float inv_step = 1.f / step;
@@ -507,10 +516,10 @@ SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth
   std::vector<Centre> centres = seedCentres(p, options.num_superpixels, step);
   cv::Mat labels(p.height, p.width, CV_32S, cv::Scalar(-1));
   cv::Mat distance(p.height, p.width, CV_32F);
-  const float inv_colour = static_cast<float>(1.0 / options.colour_scale);
-  const float inv_depth = static_cast<float>(1.0 / options.depth_scale_m);
+  const AssignWeights weights{step, static_cast<float>(1.0 / options.colour_scale),
+                              static_cast<float>(1.0 / options.depth_scale_m), avx2};
   for (int it = 0; it < options.iterations; ++it) {
-    assignPixels(p, centres, step, inv_colour, inv_depth, avx2, labels, distance);
+    assignPixels(p, centres, weights, labels, distance);
     updateCentres(p, labels, centres);
   }
   // Pixels farther than one step from every centre (possible after centres drift) keep -1; give them to their
@@ -520,7 +529,7 @@ SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth
       if (labels.at<int>(y, x) < 0)
         labels.at<int>(y, x) = x > 0 ? labels.at<int>(y, x - 1) : (y > 0 ? labels.at<int>(y - 1, x) : 0);
   const int min_size = std::max(1, static_cast<int>(step * step / 4));
-  const int count = enforceConnectivity(p, labels, min_size, inv_colour, inv_depth);
+  const int count = enforceConnectivity(p, labels, min_size, weights.inv_colour, weights.inv_depth);
 
   SuperpixelSegmentation result;
   result.superpixels.resize(count);

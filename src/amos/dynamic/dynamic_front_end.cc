@@ -164,7 +164,7 @@ void DynamicFrontEnd::trackCornersInto(Frame& f) const {
 // Stage 1b (III-C, Eq. 5-6): the potential motion regions from the reprojection errors under the initial pose, and
 // every cluster judged again under the pose refitted without them.
 void DynamicFrontEnd::scoreAndConfirm(Frame& f) const {
-  f.candidates = scoreCandidates(f.out.tracks, f.in, f.regions.decision_map, f.diag.clusters, f.prior, camera_,
+  f.candidates = scoreCandidates(f.out.tracks, f.in, {f.regions.decision_map, f.diag.clusters, f.prior}, camera_,
                                  options_, f.diag);
   f.confirmation = confirmUnderRefittedPose(f.out.tracks, f.candidates, f.in.T_cw_last, f.in.T_cw_initial, camera_,
                                             options_.reprojection, f.diag);

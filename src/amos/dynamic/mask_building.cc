@@ -52,11 +52,13 @@ void markLabelledPixels(const cv::Mat& label_map, const std::vector<bool>& marke
   }
 }
 
-std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks, const TrackPoints& lifted,
-                                           const std::vector<std::optional<Eigen::Vector2d>>& residuals,
-                                           const std::vector<double>& epipolar_px, const cv::Mat& last_depth,
+std::vector<TrackEvidence> seedingEvidence(const JudgedTracks& judged, const cv::Mat& last_depth,
                                            const cv::Mat& depth, const SuperpixelSegmentation& segmentation,
                                            double static_bar_px, const DynamicOptions& options) {
+  const std::vector<PointTrack>& tracks = judged.tracks;
+  const TrackPoints& lifted = judged.lifted;
+  const std::vector<std::optional<Eigen::Vector2d>>& residuals = judged.residuals;
+  const std::vector<double>& epipolar_px = judged.epipolar_px;
   // A track moves with what fills its LK window. When the window (in either frame) holds an occlusion edge
   // (a depth step beyond the depth-edge ratio) that may be the other side's motion: a wall corner next to a
   // moving box follows the box. Such a track, or one whose current pixel shows another surface than its last
@@ -92,10 +94,14 @@ std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks
   return evidence;
 }
 
-std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
-                                     const std::vector<bool>& dynamic_cluster,
-                                     const TrackSeeds& tracks, const cv::Mat& depth, const DynamicOptions& options,
-                                     const SuperpixelGraph* graph, const SuperpixelEvidence& moving) {
+std::vector<bool> dynamicSuperpixels(const SuperpixelFrame& frame, const ClusterVerdicts& verdicts,
+                                     const TrackSeeds& tracks, const DynamicOptions& options,
+                                     const SuperpixelEvidence& moving) {
+  const SuperpixelSegmentation& segmentation = frame.segmentation;
+  const cv::Mat& depth = frame.depth;
+  const SuperpixelGraph* graph = frame.graph;
+  const std::vector<bool>& border = verdicts.border;
+  const std::vector<bool>& dynamic_cluster = verdicts.dynamic_cluster;
   const std::vector<TrackEvidence>& evidence = tracks.evidence;
   const double static_bar_px = tracks.static_bar_px;
   const bool seed_outside = tracks.seed_outside;
@@ -109,8 +115,8 @@ std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation,
   const SuperpixelGraph& g = graph != nullptr ? *graph : computed;
   const auto& neighbours = g.neighbours;
   std::vector<RegionLabel> seeds =
-      seedSuperpixels(segmentation.labels, segmentation.superpixels, neighbours, border, dynamic_cluster, evidence,
-                      static_bar_px, options.epipolar.dynamic_threshold_px,
+      seedSuperpixels(segmentation, neighbours, border, dynamic_cluster, evidence,
+                      SeedBars{static_bar_px, options.epipolar.dynamic_threshold_px},
                       SeedOptions{seed_outside, options.epipolar.min_dynamic_points});
   for (std::size_t s = 0; s < depth_moving.size() && s < seeds.size(); ++s)
     if (depth_moving[s] && seeds[s] == RegionLabel::kUnlabelled && !(s < border.size() && border[s]))
@@ -193,17 +199,16 @@ DynamicMask buildDynamicMask(const MaskStages& stages, const SuperpixelEvidence&
   if (options.boundary.superpixel_mask && (any_dynamic_cluster || seed_outside || any_moving)) {
     // Per superpixel (boundary_assignment.h): seeds from the tracks, then seeded region growing.
     std::vector<TrackEvidence> evidence =
-        seedingEvidence(stages.tracks, stages.candidates.lifted, confirmation.residuals,
-                        stages.epipolar.distance_px, in.last_depth,
-                        in.depth, segmentation, confirmation.static_bar_px, options);
+        seedingEvidence({stages.tracks, stages.candidates.lifted, confirmation.residuals, stages.epipolar.distance_px},
+                        in.last_depth, in.depth, segmentation, confirmation.static_bar_px, options);
     // Tracks outside the decision map (the border blocks, or the edge band of the per-track border rule) abstain.
     evidence.erase(std::remove_if(evidence.begin(), evidence.end(),
                                   [&](const TrackEvidence& t) { return labelAt(regions.decision_map, t.pixel) < 0; }),
                    evidence.end());
     out.dynamic_superpixel =
-        dynamicSuperpixels(segmentation, regions.border, voting.dynamic_cluster,
-                           {evidence, confirmation.static_bar_px, seed_outside}, in.depth, options,
-                           partition.graph ? &*partition.graph : nullptr, moving);
+        dynamicSuperpixels({segmentation, in.depth, partition.graph ? &*partition.graph : nullptr},
+                           {regions.border, voting.dynamic_cluster},
+                           {evidence, confirmation.static_bar_px, seed_outside}, options, moving);
     diag.dynamic_superpixels =
         static_cast<int>(std::count(out.dynamic_superpixel.begin(), out.dynamic_superpixel.end(), true));
     markLabelledPixels(segmentation.labels, out.dynamic_superpixel, out.mask);

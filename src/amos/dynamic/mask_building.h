@@ -46,9 +46,13 @@ void markLabelledPixels(const cv::Mat& label_map, const std::vector<bool>& marke
 // their superpixel's surface. residuals: per track under the judged pose; epipolar_px: per track;
 // static_bar_px: the residual a static track stays below (PoseConfirmation::static_bar_px). Uses
 // Dynamic.Reprojection.depthEdgeRatio and half of Dynamic.LK.window.
-std::vector<TrackEvidence> seedingEvidence(const std::vector<PointTrack>& tracks, const TrackPoints& lifted,
-                                           const std::vector<std::optional<Eigen::Vector2d>>& residuals,
-                                           const std::vector<double>& epipolar_px, const cv::Mat& last_depth,
+struct JudgedTracks {
+  const std::vector<PointTrack>& tracks;
+  const TrackPoints& lifted;                                      // their Eq. 6 points or depth intervals
+  const std::vector<std::optional<Eigen::Vector2d>>& residuals;  // per track, under the judged pose
+  const std::vector<double>& epipolar_px;                         // per track
+};
+std::vector<TrackEvidence> seedingEvidence(const JudgedTracks& judged, const cv::Mat& last_depth,
                                            const cv::Mat& depth, const SuperpixelSegmentation& segmentation,
                                            double static_bar_px, const DynamicOptions& options);
 
@@ -73,10 +77,20 @@ struct TrackSeeds {
 // clusters and within their `within` superpixels, the superpixels that neither a track nor a long-baseline point
 // measured and that are reached from a seed through non-occlusion borders, each step between superpixels at most
 // Dynamic.BaselineTracks.growDissimilarity apart (surfaceFromMovingSeeds).
-std::vector<bool> dynamicSuperpixels(const SuperpixelSegmentation& segmentation, const std::vector<bool>& border,
-                                     const std::vector<bool>& dynamic_cluster, const TrackSeeds& tracks,
-                                     const cv::Mat& depth, const DynamicOptions& options,
-                                     const SuperpixelGraph* graph = nullptr, const SuperpixelEvidence& moving = {});
+// The frame's superpixels, its depth (CV_32F metres) and, when computed ahead, their graph (null: computed here).
+struct SuperpixelFrame {
+  const SuperpixelSegmentation& segmentation;
+  const cv::Mat& depth;
+  const SuperpixelGraph* graph = nullptr;
+};
+// Per superpixel, whether it is a border block; per cluster, whether it is dynamic.
+struct ClusterVerdicts {
+  const std::vector<bool>& border;
+  const std::vector<bool>& dynamic_cluster;
+};
+std::vector<bool> dynamicSuperpixels(const SuperpixelFrame& frame, const ClusterVerdicts& verdicts,
+                                     const TrackSeeds& tracks, const DynamicOptions& options,
+                                     const SuperpixelEvidence& moving = {});
 
 // The superpixels that the dynamic label may enter beyond the dynamic clusters under growOverSurface (see
 // dynamicSuperpixels): breadth-first from `moving.seeds` (the rigid movers' superpixels) over unmeasured, non-border

@@ -75,19 +75,19 @@ TEST(MaskBuilding, WholeClusters) {
 TEST(MaskBuilding, ADynamicSeedGrowsOverItsClusterAndAStaticOneHoldsTheOther) {
   const GeometricPartition partition = blockPartition();
   const std::vector<bool> border = borderSuperpixels(partition.segmentation.labels, 16, 0);  // all but 5, 6, 9, 10
+  const cv::Mat flat(40, 40, CV_32F, cv::Scalar(2.f));
   // Two epipolar violators in superpixel 5 (dynamic cluster 0), two still tracks in superpixel 6 (cluster 1).
   const std::vector<TrackEvidence> evidence = {{{14, 15}, std::nullopt, 10.0},
                                                {{16, 15}, std::nullopt, 10.0},
                                                {{24, 15}, Eigen::Vector2d::Zero(), 0.0},
                                                {{26, 15}, Eigen::Vector2d::Zero(), 0.0}};
   const std::vector<bool> dynamic =
-      dynamicSuperpixels(partition.segmentation, border, {true, false}, {evidence, 1.0, false},
-                         cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)), DynamicOptions{});
+      dynamicSuperpixels({partition.segmentation, flat}, {border, {true, false}}, {evidence, 1.0, false},
+                         DynamicOptions{});
   EXPECT_EQ(dynamic, leftHalfSuperpixels());
   // Without a dynamic seed a dynamic cluster is not marked whole.
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {true, false},
-                               {{evidence[2], evidence[3]}, 1.0, false}, cv::Mat(40, 40, CV_32F, cv::Scalar(2.f)),
-                               DynamicOptions{}),
+  EXPECT_EQ(dynamicSuperpixels({partition.segmentation, flat}, {border, {true, false}},
+                               {{evidence[2], evidence[3]}, 1.0, false}, DynamicOptions{}),
             std::vector<bool>(16, false));
 }
 
@@ -105,8 +105,8 @@ TEST(MaskBuilding, MovingSeedsGrowOverTheUnmeasuredSurfaceAroundThem) {
   DynamicOptions options;
   std::vector<bool> only_5(16, false);
   only_5[5] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
-                               nullptr, {{}, baseline_moving, baseline_points}),
+  EXPECT_EQ(dynamicSuperpixels({partition.segmentation, depth}, {border, {false, false}}, {{}, 1.0, false}, options,
+                               {{}, baseline_moving, baseline_points}),
             only_5);
   std::vector<bool> five_and_nine = only_5;
   five_and_nine[9] = true;
@@ -147,23 +147,23 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   const DynamicOptions options;
   std::vector<bool> seeds_only(16, false);
   seeds_only[5] = seeds_only[10] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
-                               nullptr, {{}, baseline_moving, baseline_points}),
+  EXPECT_EQ(dynamicSuperpixels({partition.segmentation, depth}, {border, {false, false}}, {{}, 1.0, false}, options,
+                               {{}, baseline_moving, baseline_points}),
             seeds_only);
   std::vector<bool> grown = seeds_only;
   grown[9] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
-                               nullptr, {{}, baseline_moving, baseline_points, {rigid, {}}}),
+  EXPECT_EQ(dynamicSuperpixels({partition.segmentation, depth}, {border, {false, false}}, {{}, 1.0, false}, options,
+                               {{}, baseline_moving, baseline_points, {rigid, {}}}),
             grown);
   // Bounded to the mover's region: with 9 outside it the label stays on the seeds; within it, it grows again.
   std::vector<bool> within(16, true);
   within[9] = false;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
-                               nullptr, {{}, baseline_moving, baseline_points, {rigid, within}}),
+  EXPECT_EQ(dynamicSuperpixels({partition.segmentation, depth}, {border, {false, false}}, {{}, 1.0, false}, options,
+                               {{}, baseline_moving, baseline_points, {rigid, within}}),
             seeds_only);
   within[9] = true;
-  EXPECT_EQ(dynamicSuperpixels(partition.segmentation, border, {false, false}, {{}, 1.0, false}, depth, options,
-                               nullptr, {{}, baseline_moving, baseline_points, {rigid, within}}),
+  EXPECT_EQ(dynamicSuperpixels({partition.segmentation, depth}, {border, {false, false}}, {{}, 1.0, false}, options,
+                               {{}, baseline_moving, baseline_points, {rigid, within}}),
             grown);
 }
 
@@ -205,8 +205,9 @@ TEST(MaskBuilding, TracksOnOcclusionEdgesOrOffTheirSurfaceAbstain) {
   // The edge tracks' windows allow any depth from the near side (2 m) on: no point, an interval.
   lifted.intervals = {std::nullopt, DepthInterval{2.0, 3.0}, DepthInterval{2.0, 3.0}, std::nullopt};
   const std::vector<std::optional<Eigen::Vector2d>> residuals(4, Eigen::Vector2d(5, 0));
-  const std::vector<TrackEvidence> evidence = seedingEvidence(tracks, lifted, residuals, {7.0, 7.0, 7.0, 7.0}, depth,
-                                                              depth, partition.segmentation, 1.0, options);
+  const std::vector<double> epipolar = {7.0, 7.0, 7.0, 7.0};
+  const std::vector<TrackEvidence> evidence =
+      seedingEvidence({tracks, lifted, residuals, epipolar}, depth, depth, partition.segmentation, 1.0, options);
   // Kept: the track on the flat part with its epipolar distance, and the edge track that cannot be static whose
   // superpixel is the near (occluding) side, by its motion only. Abstaining: the edge track whose superpixel is the
   // far side, and the one off its superpixel's surface.
@@ -217,9 +218,7 @@ TEST(MaskBuilding, TracksOnOcclusionEdgesOrOffTheirSurfaceAbstain) {
   EXPECT_EQ(evidence[1].epipolar_px, 0.0);
   // A still edge track (residual below the static bar) abstains too.
   const std::vector<std::optional<Eigen::Vector2d>> small(4, Eigen::Vector2d(0.5, 0));
-  EXPECT_EQ(seedingEvidence(tracks, lifted, small, {7.0, 7.0, 7.0, 7.0}, depth, depth, partition.segmentation, 1.0,
-                            options)
-                .size(),
+  EXPECT_EQ(seedingEvidence({tracks, lifted, small, epipolar}, depth, depth, partition.segmentation, 1.0, options).size(),
             1u);
 }
 

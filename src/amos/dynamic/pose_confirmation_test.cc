@@ -37,8 +37,9 @@ struct Confirmed {
 Confirmed confirm(const Scene& scene, const DynamicOptions& options) {
   Confirmed c;
   DynamicDiagnostics scoring_diag;
-  c.candidates = scoreCandidates(scene.tracks, scene.in, scene.decision_map, 2, PriorRegions{}, smallTestCamera(),
-                                 options, scoring_diag);
+  const PriorRegions no_prior;
+  c.candidates =
+      scoreCandidates(scene.tracks, scene.in, {scene.decision_map, 2, no_prior}, smallTestCamera(), options, scoring_diag);
   c.confirmation = confirmUnderRefittedPose(scene.tracks, c.candidates, scene.in.T_cw_last, scene.in.T_cw_initial,
                                             smallTestCamera(), options.reprojection, c.diag);
   return c;
