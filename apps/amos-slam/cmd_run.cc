@@ -308,9 +308,11 @@ void addRunCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--strict", args->strict,
                 "A frame that cannot be read (missing, unreadable, wrong size, depth not 16-bit) is an error that "
                 "ends the run; by default it is skipped with a warning and counted in stats.json");
-  cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)");
+  cmd->add_option("--max-frames", args->max_frames, "Stop after this many frames (0 = all)")
+      ->check(nonNegativeWhole());
   cmd->add_option("--first-frame", args->first_frame,
-                  "Start at this frame of --sequence (0-based; the frames before it are skipped)");
+                  "Start at this frame of --sequence (0-based; the frames before it are skipped)")
+      ->check(nonNegativeWhole());
   auto* load_map = cmd->add_option("--load-map", args->load_map,
                                    "Start from this saved map (see --save-map) instead of an empty one: the first "
                                    "frame is relocalised in it, and the map is extended unless --localize");
@@ -323,15 +325,18 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                   "map points, covisibility, spanning tree and the camera), to --load-map it later");
   cmd->add_option("--progress-every", args->progress_every,
                   "When stderr is not a terminal, print a progress line every N frames (default 100); on a terminal "
-                  "the progress is one live line");
+                  "the progress is one live line")
+      ->check(nonNegativeWhole());
   cmd->add_flag("--save-masks", args->save_masks,
                 "Also write every frame's dynamic mask (masks/<rgb stamp>.png, 255 = dynamic) and overlays of a few "
                 "evenly spaced frames (overlays/)");
-  cmd->add_option("--overlays", args->overlays, "Overlay images written with --save-masks (default 8)");
+  cmd->add_option("--overlays", args->overlays, "Overlay images written with --save-masks (default 8)")
+      ->check(nonNegativeWhole());
   cmd->add_flag("--viewer", args->viewer.enabled,
                 "Serve a live view of the run (map, keyframes, trajectory, the frame with its dynamic mask, times) "
                 "on http://127.0.0.1:PORT/ while it goes; the address is printed on start");
-  cmd->add_option("--viewer-port", args->viewer.port, "Port of --viewer (default 8090; 0 = any free port)");
+  cmd->add_option("--viewer-port", args->viewer.port, "Port of --viewer (default 8090; 0 = any free port)")
+      ->check(portNumber());
   cmd->add_option("--viewer-bind", args->viewer.bind,
                   "Address --viewer listens on (default 127.0.0.1: this machine only; 0.0.0.0 = every interface)");
   cmd->add_flag("--viewer-hold", args->viewer.hold,

@@ -14,6 +14,7 @@
 #include <functional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <thread>
 #include <vector>
 
@@ -158,6 +159,25 @@ TEST(RunCommand, AClosedStdoutDoesNotKillTheRun) {
 
 // --output is checked before anything runs: a path under a file and a folder holding an earlier run are refused at
 // once (exit 1, nothing written); --overwrite replaces the earlier run.
+// Negative counts and ports beyond 65535 are refused by the parser, naming the flag (before, --first-frame -1 ran
+// as frame 18446744073709551615 and --viewer-port 70000 listened on 4464).
+TEST(RunCommand, NegativeOrOutOfRangeNumbersAreRefusedByTheParser) {
+  const fs::path out = outputDir("bad_numbers");
+  for (const auto& [flag, value, message] :
+       {std::tuple<std::string, std::string, std::string>{"--first-frame", "-1", "must be a whole number, 0 or more"},
+        {"--max-frames", "-5", "must be a whole number, 0 or more"},
+        {"--viewer-port", "70000", "must be a port, 0 (any free one) to 65535"}}) {
+    std::vector<std::string> args = runArgs(out / "run");
+    args.push_back(flag);
+    args.push_back(value);
+    const Finished f = runChild(args, out / "stdout");
+    ASSERT_TRUE(WIFEXITED(f.status));
+    EXPECT_NE(WEXITSTATUS(f.status), 0) << flag;
+    EXPECT_TRUE(contains(f.err, flag + ": " + message)) << f.err;
+    EXPECT_FALSE(fs::exists(out / "run" / "trajectory.txt")) << flag;
+  }
+}
+
 TEST(RunCommand, BadOutputIsRefusedBeforeTheRun) {
   const fs::path root = outputDir("bad_output");
   fs::create_directories(root);

@@ -31,4 +31,24 @@ void setCommandLine(int argc, char** argv) {
 
 const std::string& commandLine() { return storedCommandLine(); }
 
+CLI::Validator nonNegativeWhole() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        if (!value.empty() && value.find_first_not_of("0123456789") == std::string::npos) return "";
+        return "must be a whole number, 0 or more; got '" + value + "'";
+      },
+      "NUMBER>=0");
+}
+
+CLI::Validator portNumber() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        if (!value.empty() && value.size() <= 5 && value.find_first_not_of("0123456789") == std::string::npos &&
+            std::stoi(value) <= 65535)
+          return "";
+        return "must be a port, 0 (any free one) to 65535; got '" + value + "'";
+      },
+      "PORT");
+}
+
 }  // namespace amos::app

@@ -21,4 +21,9 @@ void addViewCommand(CLI::App& app, int& exit_code);
 void setCommandLine(int argc, char** argv);
 const std::string& commandLine();
 
+// A count or an index: a whole number, 0 or more. CLI11 would read "-1" into an unsigned option as 2^64 - 1.
+CLI::Validator nonNegativeWhole();
+// A TCP port: 0 (any free one) to 65535, instead of the port modulo 65536.
+CLI::Validator portNumber();
+
 }  // namespace amos::app
