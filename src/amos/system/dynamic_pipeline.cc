@@ -176,14 +176,14 @@ PersonMaskCarrier::Masks DynamicPipeline::personMasks(FrameSlot& slot,
   return masks;
 }
 
-DynamicPipeline::Judgement DynamicPipeline::judge(dynamic::FrontEndInput input) {
+cv::Mat DynamicPipeline::judge(dynamic::FrontEndInput input) {
   core::Stopwatch watch;
   const double cpu = threadCpuMs();
   dynamic::FrontEndResult judged = front_end_.process(input);
   times_.add("dynamic.front_end", watch.elapsedMs());
   times_.add("cpu.front_end", threadCpuMs() - cpu);
   for (const auto& [stage, ms] : judged.timings_ms) times_.add("dynamic." + stage, ms);
-  return {std::move(judged.mask)};
+  return std::move(judged.mask);
 }
 
 void DynamicPipeline::track(const TrackInput& input, ProcessedFrame& out) {
@@ -291,8 +291,7 @@ ProcessedFrame DynamicPipeline::processNext() {
       stage_a_cpu += partition->cpu_ms;
       input.partition = &partition->partition;
     }
-    Judgement judgement = judge(std::move(input));  // 5
-    track_input.dynamic_mask = judgement.mask;
+    track_input.dynamic_mask = judge(std::move(input));  // 5
     out.dynamic_mask = track_input.dynamic_mask;
   }
   core::Stopwatch wait;

@@ -158,11 +158,8 @@ class DynamicPipeline {
                                        const std::vector<dynamic::PointTrack>& tracks,
                                        std::optional<dynamic::PoseModel>& model);
   PersonMaskCarrier::Masks personMasks(FrameSlot& slot, const std::vector<dynamic::PointTrack>& tracks);
-  // What the judgement passes on: the dynamic mask.
-  struct Judgement {
-    cv::Mat mask;
-  };
-  Judgement judge(dynamic::FrontEndInput input);
+  // The dynamic mask (CV_8U, 255 = dynamic).
+  cv::Mat judge(dynamic::FrontEndInput input);
   void track(const TrackInput& input, ProcessedFrame& out);
   void remember(const ProcessedFrame& out, FrameMotionInput motion);
 
