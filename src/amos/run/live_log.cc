@@ -20,11 +20,12 @@ LiveLog::LiveLog(const std::string& dir)
 void LiveLog::onFrame(const FrameSnapshot& frame) {
   if (!trajectory_) return;
   try {
-    if (frame.state == tracking::TrackingState::kOk)
-      trajectory_->append(io::formatTumPose({frame.timestamp, frame.T_cw.inverse()}));
+    // frames.tsv first: a kill between the two writes leaves no pose without its frame line.
     frames_->append(fmt::format("{}\t{:.6f}\t{}\t{}\t{}\t{}\t{:.1f}\n", frame.index, frame.timestamp, frame.rgb_file,
                                 tracking::toString(frame.state), frame.inliers, frame.new_keyframe ? 1 : 0,
                                 frame.frame_ms));
+    if (frame.state == tracking::TrackingState::kOk)
+      trajectory_->append(io::formatTumPose({frame.timestamp, frame.T_cw.inverse()}));
   } catch (const core::Error& e) {
     spdlog::warn("{}; {} and {} are not written further (the final outputs are still written at the end)", e.what(),
                  kTrajectoryFile, kFramesFile);
