@@ -1,7 +1,9 @@
 // amos-slam run: SLAM over one RGB-D sequence, read as fast as possible, replayed at its recorded rate
 // (--realtime) or live from a camera (--camera openni2[:URI]; Ctrl-C ends the session), optionally recorded
 // (--record DIR). Writes trajectory.txt, keyframes.txt, map.ply, stats.json and settings_used.yaml (the settings
-// it ran with) into --output (with --save-masks also masks/ and overlays/) and prints where the frames came from
+// it ran with) into --output (with --save-masks also masks/ and overlays/), trajectory_live.txt and frames.tsv
+// frame by frame as it goes (a killed run leaves them), and run_manifest.json (what it writes there, for
+// --overwrite); the folder is locked for the run (report/output_folder.h). Prints where the frames came from
 // (delivered / processed / dropped, latency), ATE / RPE when the sequence has ground truth and the dynamic mask's
 // pixel precision / recall / IoU when it has ground-truth mover masks. With the viewer module it also writes
 // report.html, and --viewer serves a live view of the run (run_watchers.h). All work is in amos::run /
@@ -12,16 +14,20 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
+#include <semaphore.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <exception>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -30,6 +36,7 @@
 #include "amos/config/settings_writer.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/core/stop_request.h"
 #include "amos/report/output_folder.h"
 #include "amos/report/run_report.h"
 #include "amos/run/sequence_run.h"
@@ -58,38 +65,66 @@ std::string runOptionsJson(const RunArgs& a) {
   return j.dump();
 }
 
-// SIGINT (Ctrl-C) and SIGTERM end the run at the next frame boundary: mapping is stopped and the outputs are
-// written for the frames processed so far; exit status 128 + the signal (130, 143). The handler only stores the
-// signal in lock-free atomics and restores the default actions, so a second signal ends the program at once.
-std::atomic<bool> g_stop{false};
+// SIGINT (Ctrl-C) and SIGTERM end the run at the next frame boundary (a paced or live source's wait for its next
+// frame at once): mapping is stopped and the outputs are written for the frames processed so far; exit status 128 +
+// the signal (130, 143). The handler only does what is async-signal-safe: it keeps the first signal's number and
+// posts a semaphore, on which a watcher thread waits to request the stop (core::StopRequest wakes the waits). A
+// second signal ends the program at once (the default action), after one line on stderr saying that what is on
+// disk stays valid (the per-frame files are flushed line by line, the others written whole and renamed).
 std::atomic<int> g_signal{0};
-static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
-              "set from a signal handler");
+sem_t g_signal_posted;
+char g_second_signal_line[1024] = {0};  // the line a second signal writes, made before the handler is installed
+std::size_t g_second_signal_length = 0;
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
 
 extern "C" void onStopSignal(int signal_number) {
-  g_signal.store(signal_number);
-  g_stop.store(true);
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  int none = 0;
+  if (g_signal.compare_exchange_strong(none, signal_number)) {
+    sem_post(&g_signal_posted);
+    return;
+  }
+  const ssize_t written = write(STDERR_FILENO, g_second_signal_line, g_second_signal_length);
+  (void)written;
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
 }
 
-// Installs onStopSignal for SIGINT and SIGTERM for its lifetime (the run and the writing of its outputs).
+// Installs onStopSignal for SIGINT and SIGTERM, and the watcher thread, for its lifetime (the run and the writing
+// of its outputs). `output`: the output folder the second signal's line names.
 class StopSignals {
  public:
-  StopSignals() {
-    g_stop.store(false);
+  explicit StopSignals(const std::string& output) {
+    const std::string line = fmt::format(
+        "amos-slam: second signal, ending at once; what is on disk in {} stays valid (trajectory_live.txt and "
+        "frames.tsv hold every frame tracked so far)\n",
+        output);
+    g_second_signal_length = std::min(line.size(), sizeof(g_second_signal_line));
+    std::copy_n(line.data(), g_second_signal_length, g_second_signal_line);
     g_signal.store(0);
+    sem_init(&g_signal_posted, 0, 0);
+    watcher_ = std::thread([this] {
+      while (sem_wait(&g_signal_posted) != 0 && errno == EINTR) {
+      }
+      if (g_signal.load() != 0) stop_.request();  // else: woken by the destructor
+    });
     std::signal(SIGINT, onStopSignal);
     std::signal(SIGTERM, onStopSignal);
   }
   ~StopSignals() {
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
+    sem_post(&g_signal_posted);  // wakes the watcher when no signal came
+    watcher_.join();
+    sem_destroy(&g_signal_posted);
   }
   StopSignals(const StopSignals&) = delete;
   StopSignals& operator=(const StopSignals&) = delete;
-  const std::atomic<bool>* flag() const { return &g_stop; }
+  core::StopRequest* request() { return &stop_; }
   int received() const { return g_signal.load(); }
+
+ private:
+  core::StopRequest stop_;
+  std::thread watcher_;  // last: started once the rest exists
 };
 
 const char* signalName(int signal_number) {
@@ -186,12 +221,23 @@ void writeSettingsUsed(const config::Settings& settings, const run::SequenceRunO
                              "Repeat the run: the same command line with --config <this file>."});
 }
 
-// --save-map: the map as the run left it (mapping finished), with its size and the time it took.
-void saveMap(const system::SlamSystem& slam, const std::string& path) {
+// --save-map: the map as the run left it (mapping finished); returns the summary's line (its size and the time
+// it took).
+std::string saveMap(const system::SlamSystem& slam, const std::string& path) {
   core::Stopwatch watch;
   const mapio::MapFileSummary saved = slam.saveMap(path);
-  std::cout << fmt::format("map saved to {}: {} keyframes, {} map points, {:.1f} MB in {:.0f} ms\n", path,
-                           saved.keyframes, saved.map_points, saved.bytes / 1e6, watch.elapsedMs());
+  return fmt::format("map saved to {}: {} keyframes, {} map points, {:.1f} MB in {:.0f} ms\n", path, saved.keyframes,
+                     saved.map_points, saved.bytes / 1e6, watch.elapsedMs());
+}
+
+// What this run writes into --output (its manifest, report/output_folder.h).
+std::vector<std::string> outputNames(const RunArgs& args) {
+  std::vector<std::string> names = {"trajectory_live.txt", "frames.tsv",     "trajectory.txt",
+                                    "keyframes.txt",       "map.ply",        "stats.json",
+                                    "settings_used.yaml"};
+  if (args.save_masks) names.insert(names.end(), {"masks", "overlays"});
+  for (const std::string& name : RunWatchers::outputNames()) names.push_back(name);
+  return names;
 }
 
 // The run's options from the command line (all but the observers, the progress display and the stop flag).
@@ -213,6 +259,7 @@ run::SequenceRunOptions sequenceRunOptions(const RunArgs& args) {
   options.localize = args.localize;
   options.models_dir = args.models;
   if (args.save_masks) options.masks_output_dir = args.output;
+  options.live_log_dir = args.output;
   options.overlay_count = args.overlays;
   return options;
 }
@@ -221,8 +268,13 @@ void runSlam(const RunArgs& args, int& exit_code) {
   core::require(!args.sequence.empty() || !args.camera.empty(),
                 "run: give --sequence DIR (a recorded sequence) or --camera openni2[:URI] (a live camera)");
   const config::Settings settings = config::loadSettings(args.config);
-  // Before anything else runs (models, the camera, the first frame): a wrong --output is found at once.
-  report::prepareOutputFolder(args.output, args.overwrite);
+  // Before anything else runs (models, the camera, the first frame): a wrong output path is found at once, the
+  // input is never written, and the output folder is this run's until it ends.
+  report::refuseInsideInput(args.record, "--record", args.sequence);
+  report::refuseInsideInput(args.save_map, "--save-map", args.sequence);
+  report::checkOutputFile(args.save_map, "--save-map");
+  const report::OutputFolderLock lock =
+      report::prepareOutputFolder({args.output, args.overwrite, outputNames(args), args.sequence});
   RunWatchers watchers(args.viewer);
   const bool tty = isatty(fileno(stderr)) != 0;
   run::SequenceRunOptions options = sequenceRunOptions(args);
@@ -244,8 +296,8 @@ void runSlam(const RunArgs& args, int& exit_code) {
       spdlog::info("{}", line);
     }
   };
-  const StopSignals signals;
-  options.stop = signals.flag();
+  StopSignals signals(args.output);
+  options.stop = signals.request();
   if (options.source == run::FrameSourceKind::kCamera)
     spdlog::info("live session: Ctrl-C ends it and writes the outputs");
   run::SequenceRunResult result;
@@ -258,11 +310,27 @@ void runSlam(const RunArgs& args, int& exit_code) {
   if (line_open) std::fprintf(stderr, "\n");
   const int signal_number = signals.received();
   if (result.info.end.status == report::RunEnd::Status::kInterrupted) result.info.end.reason = signalName(signal_number);
+  // Every output is written whatever fails after the run: the map is saved right after the main files, and an
+  // error of the map or of report.html comes after the others are written.
   report::writeRunOutputs(args.output, *result.slam, result.info);
+  std::string map_saved;
+  std::exception_ptr map_error;
+  if (!args.save_map.empty() && !result.failure) {
+    try {
+      map_saved = saveMap(*result.slam, args.save_map);
+    } catch (const std::exception&) {
+      map_error = std::current_exception();
+    }
+  }
   writeSettingsUsed(settings, options, args);
-  watchers.writeReport(args.output, args.config, runOptionsJson(args));
+  try {
+    watchers.writeReport(args.output, args.config, runOptionsJson(args));
+  } catch (const std::exception& e) {
+    spdlog::warn("report.html not written: {}", e.what());
+  }
   printSummary(result, args.output);
-  if (!args.save_map.empty() && !result.failure) saveMap(*result.slam, args.save_map);
+  std::cout << map_saved << std::flush;  // now, not at exit: --viewer-hold may serve for hours with stdout in a file
+  if (map_error) std::rethrow_exception(map_error);
   if (signal_number == 0) watchers.holdIfAsked();
   result.rethrowFailure();  // main() reports it (stderr) and exits non-zero, after the outputs are written
   if (signal_number != 0) {
@@ -294,12 +362,12 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                   "DepthMapFactor, rgb.txt, depth.txt), to replay and evaluate later");
   cmd->add_option("--config", args->config, "Settings file (configs/*.yaml)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--output", args->output,
-                  "Output folder (created if needed; checked for writing before anything else runs)")
+                  "Output folder (created if needed; checked for writing before anything else runs; not inside "
+                  "--sequence; one run at a time)")
       ->required();
   cmd->add_flag("--overwrite", args->overwrite,
-                "Replace an earlier run in --output: its trajectory.txt, keyframes.txt, map.ply, stats.json, "
-                "settings_used.yaml, masks/, overlays/ and report.html are removed first (nothing else). Without it "
-                "such a folder is refused");
+                "Replace an earlier run in --output: what its run_manifest.json lists is removed first (nothing "
+                "else). Without it such a folder is refused; a folder without a manifest is never emptied");
   cmd->add_option("--mode", args->mode, "Dynamic front end: none (plain SLAM) | prior (person masks) | geometry (superpixel clusters + epipolar) | full (both, default)")
       ->check(CLI::IsMember({"none", "prior", "geometry", "full"}));
   cmd->add_option("--models", args->models, "Folder with the segmentation models");

@@ -83,12 +83,9 @@ TEST(RunCommand, SigintEndsTheRunWithItsOutputsAndStatus130) { expectStoppedBy(S
 
 TEST(RunCommand, SigtermEndsTheRunWithItsOutputsAndStatus143) { expectStoppedBy(SIGTERM, "SIGTERM"); }
 
-// A second signal ends the program at once (the default action). The run is made to wait after the first one: a
-// paced replay (--realtime) whose 6th frame is due a minute after the 5th, so the loop sits in the source's wait
-// when SIGTERM follows SIGINT.
-TEST(RunCommand, ASecondSignalEndsItAtOnce) {
-  const fs::path out = outputDir("second_signal");
-  const fs::path slow = outputDir("second_signal_sequence");
+// A copy of the test sequence, its first six frames, whose 6th frame comes `gap_s` seconds after the 5th.
+fs::path sequenceWithAGap(const std::string& name, double gap_s) {
+  const fs::path slow = outputDir(name);
   fs::copy(sequence(), slow, fs::copy_options::recursive);
   std::istringstream rows(readFile(slow / "associations.txt"));
   std::ofstream associations(slow / "associations.txt");
@@ -99,29 +96,61 @@ TEST(RunCommand, ASecondSignalEndsItAtOnce) {
     double t_rgb = 0, t_depth = 0;
     std::string rgb, depth;
     fields >> t_rgb >> rgb >> t_depth >> depth;
-    const double late = k == 5 ? 60.0 : 0.0;
+    const double late = k == 5 ? gap_s : 0.0;
     associations << std::fixed << t_rgb + late << " " << rgb << " " << t_depth + late << " " << depth << "\n";
     ++k;
   }
-  associations.close();
+  return slow;
+}
+
+// Ctrl-C is served at once by a --realtime replay waiting for a frame due ten minutes later (before, the replay sat
+// out the gap: 11.5 minutes on a Bonn sequence). The run ends with its outputs and status 130.
+TEST(RunCommand, SigintEndsARealtimeRunWaitingOutAGapAtOnce) {
+  const fs::path out = outputDir("gap_sigint");
   std::vector<std::string> args = runArgs(out);
-  args[2] = slow.string();
+  args[2] = sequenceWithAGap("gap_sigint_sequence", 600.0).string();
   args.push_back("--realtime");
   bool sent = false;
-  const auto start = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point sent_at;
   const Finished f = runChild(args, out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
     if (!sent && contains(line, "frame 5/6")) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the loop waits for the 6th frame by then
       kill(pid, SIGINT);
-      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      sent_at = std::chrono::steady_clock::now();
+      sent = true;
+    }
+  });
+  ASSERT_TRUE(sent) << f.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - sent_at, std::chrono::seconds(20));
+  ASSERT_TRUE(WIFEXITED(f.status)) << f.err;
+  EXPECT_EQ(WEXITSTATUS(f.status), 130) << f.err;
+  EXPECT_EQ(poses(out / "trajectory.txt"), 5u);
+  EXPECT_EQ(poses(out / "trajectory_live.txt"), 5u);
+  expectNoPartialFiles(out);
+}
+
+// A second signal ends the program at once (the default action), with one line on stderr saying that what is on
+// disk stays valid; the per-frame trajectory is whole.
+TEST(RunCommand, ASecondSignalEndsItAtOnceAndSaysTheFilesStayValid) {
+  const fs::path out = outputDir("second_signal");
+  bool sent = false;
+  const auto start = std::chrono::steady_clock::now();
+  const Finished f = runChild(runArgs(out), out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
+    if (!sent && contains(line, "frame 5/")) {
+      kill(pid, SIGINT);
       kill(pid, SIGTERM);
       sent = true;
     }
   });
   ASSERT_TRUE(sent) << f.err;
   ASSERT_TRUE(WIFSIGNALED(f.status)) << f.err;
-  EXPECT_EQ(WTERMSIG(f.status), SIGTERM);
+  EXPECT_TRUE(WTERMSIG(f.status) == SIGTERM || WTERMSIG(f.status) == SIGINT) << WTERMSIG(f.status);
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
-  if (fs::exists(out)) expectNoPartialFiles(out);
+  EXPECT_TRUE(contains(f.err, "second signal, ending at once; what is on disk in " + out.string() + " stays valid"))
+      << f.err;
+  EXPECT_GE(poses(out / "trajectory_live.txt"), 5u);
+  const std::string live = readFile(out / "trajectory_live.txt");
+  EXPECT_EQ(live.back(), '\n');
 }
 
 // Not a terminal: one progress line per --progress-every frames on stderr, never a carriage return; stdout holds
@@ -188,22 +217,147 @@ TEST(RunCommand, BadOutputIsRefusedBeforeTheRun) {
   EXPECT_TRUE(contains(f.err, "'" + (root / "file").string() + "' is a file")) << f.err;
   EXPECT_TRUE(f.out.empty()) << f.out;
 
-  fs::create_directories(root / "earlier");
-  std::ofstream(root / "earlier" / "stats.json") << "{}";
-  std::ofstream(root / "earlier" / "notes.txt") << "mine";
-  f = runChild(runArgs(root / "earlier"), root / "stdout");
-  EXPECT_EQ(WEXITSTATUS(f.status), 1);
-  EXPECT_TRUE(contains(f.err, "holds an earlier run (stats.json)")) << f.err;
-  EXPECT_EQ(readFile(root / "earlier" / "stats.json"), "{}");
+  // Files no run manifest lists are never replaced, with --overwrite neither.
+  fs::create_directories(root / "foreign");
+  std::ofstream(root / "foreign" / "stats.json") << "{}";
+  for (const bool overwrite : {false, true}) {
+    std::vector<std::string> args = runArgs(root / "foreign");
+    if (overwrite) args.push_back("--overwrite");
+    f = runChild(args, root / "stdout");
+    EXPECT_EQ(WEXITSTATUS(f.status), 1);
+    EXPECT_TRUE(contains(f.err, overwrite ? "has no run manifest (run_manifest.json)"
+                                          : "holds stats.json, which no run manifest (run_manifest.json) lists"))
+        << f.err;
+    EXPECT_TRUE(contains(f.err, "away")) << f.err;  // says what to do: move them away
+    EXPECT_EQ(readFile(root / "foreign" / "stats.json"), "{}");
+  }
 
+  // An earlier run (its manifest) is refused without --overwrite, replaced with it; other files stay.
   std::vector<std::string> args = runArgs(root / "earlier");
-  args.push_back("--overwrite");
   args.push_back("--max-frames");
   args.push_back("3");
   f = runChild(args, root / "stdout");
+  ASSERT_EQ(WEXITSTATUS(f.status), 0) << f.err;
+  std::ofstream(root / "earlier" / "notes.txt") << "mine";
+  f = runChild(args, root / "stdout");
+  EXPECT_EQ(WEXITSTATUS(f.status), 1);
+  EXPECT_TRUE(contains(f.err, "holds an earlier run (trajectory_live.txt, frames.tsv, trajectory.txt")) << f.err;
+  args.back() = "4";
+  args.push_back("--overwrite");
+  f = runChild(args, root / "stdout");
   EXPECT_EQ(WEXITSTATUS(f.status), 0) << f.err;
-  EXPECT_EQ(poses(root / "earlier" / "trajectory.txt"), 3u);
+  EXPECT_EQ(poses(root / "earlier" / "trajectory.txt"), 4u);
   EXPECT_EQ(readFile(root / "earlier" / "notes.txt"), "mine");
+}
+
+// Inputs are never written: --output, --record and --save-map inside the sequence folder (also through a symlink)
+// are refused before anything runs, and nothing is created there.
+TEST(RunCommand, OutputsInsideTheInputAreRefused) {
+  const fs::path root = outputDir("inside_input");
+  const fs::path input = root / "sequence";
+  fs::create_directories(root);
+  fs::copy(sequence(), input, fs::copy_options::recursive);
+  fs::create_directory_symlink(input, root / "link");
+  std::size_t entries = 0;
+  for (auto it = fs::recursive_directory_iterator(input); it != fs::recursive_directory_iterator(); ++it) ++entries;
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--output", (input / "out").string()}, "--output '" + (input / "out").string() + "' lies inside"},
+      {{"--output", input.string()}, "--output '" + input.string() + "' is the input"},
+      {{"--output", (root / "link" / "out").string()}, "lies inside the input sequence folder"},
+      {{"--output", (root / "out").string(), "--record", (root / "link" / "rec").string()}, "--record '"},
+      {{"--output", (root / "out2").string(), "--save-map", (input / "map.bin").string()}, "--save-map '"}};
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> args = {"run", "--sequence", input.string(), "--config",
+                                     std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml", "--mode", "none"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Finished f = runChild(args, root / "stdout");
+    ASSERT_TRUE(WIFEXITED(f.status));
+    EXPECT_EQ(WEXITSTATUS(f.status), 1) << extra[1];
+    EXPECT_TRUE(contains(f.err, message)) << f.err;
+    EXPECT_TRUE(contains(f.err, "a run never writes into its input")) << f.err;
+  }
+  std::size_t after = 0;
+  for (auto it = fs::recursive_directory_iterator(input); it != fs::recursive_directory_iterator(); ++it) ++after;
+  EXPECT_EQ(after, entries);
+}
+
+// --save-map is checked before the first frame: a path whose folder does not exist is refused at once (before,
+// the whole run went and then the map was lost).
+TEST(RunCommand, ABadSaveMapPathIsRefusedBeforeTheRun) {
+  const fs::path out = outputDir("bad_save_map");
+  std::vector<std::string> args = runArgs(out);
+  args.push_back("--save-map");
+  args.push_back((out.parent_path() / "no_such_folder" / "map.bin").string());
+  const Finished f = runChild(args, out.string() + ".stdout");
+  ASSERT_TRUE(WIFEXITED(f.status));
+  EXPECT_EQ(WEXITSTATUS(f.status), 1);
+  EXPECT_TRUE(contains(f.err, "does not exist")) << f.err;
+  EXPECT_FALSE(contains(f.err, "frame 1/")) << f.err;
+  EXPECT_FALSE(fs::exists(out / "trajectory.txt"));
+}
+
+// One run per output folder: a second run on a folder in use is refused at once, naming the first one's PID.
+TEST(RunCommand, ASecondRunOnTheSameOutputIsRefusedNamingThePid) {
+  const fs::path out = outputDir("busy");
+  std::vector<std::string> first = runArgs(out);
+  first[2] = sequenceWithAGap("busy_sequence", 600.0).string();
+  first.push_back("--realtime");
+  Finished second;
+  pid_t first_pid = 0;
+  const Finished f = runChild(first, out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
+    if (first_pid == 0 && contains(line, "frame 5/6")) {  // waiting ten minutes for the 6th frame
+      first_pid = pid;
+      second = runChild(runArgs(out), out.string() + ".second");
+      kill(pid, SIGINT);
+    }
+  });
+  ASSERT_NE(first_pid, 0) << f.err;
+  ASSERT_TRUE(WIFEXITED(second.status));
+  EXPECT_EQ(WEXITSTATUS(second.status), 1);
+  EXPECT_TRUE(contains(second.err, "is in use by another run (PID " + std::to_string(first_pid) + ",")) << second.err;
+  EXPECT_EQ(WEXITSTATUS(f.status), 130) << f.err;
+  EXPECT_EQ(poses(out / "trajectory.txt"), 5u);  // the first run's outputs, untouched by the second
+  EXPECT_FALSE(fs::exists(out / ".amos-run.lock"));
+}
+
+// A ground truth that cannot be read is a warning naming the file and the line, before the first frame; the run
+// goes on without evaluation and exits 0 with all its outputs.
+TEST(RunCommand, ABadGroundTruthIsAWarningAndTheRunGoesOn) {
+  const fs::path root = outputDir("bad_gt");
+  const fs::path input = root / "sequence";
+  fs::create_directories(root);
+  fs::copy(sequence(), input, fs::copy_options::recursive);
+  const std::string gt = readFile(input / "groundtruth.txt");
+  std::ofstream(input / "groundtruth.txt") << gt.substr(0, gt.size() - 20);  // the last line cut short
+  std::vector<std::string> args = runArgs(root / "out");
+  args[2] = input.string();
+  const Finished f = runChild(args, root / "stdout");
+  ASSERT_TRUE(WIFEXITED(f.status));
+  EXPECT_EQ(WEXITSTATUS(f.status), 0) << f.err;
+  const std::size_t warning = f.err.find((input / "groundtruth.txt").string() + ":");
+  ASSERT_NE(warning, std::string::npos) << f.err;
+  EXPECT_LT(warning, f.err.find("frame 1/")) << f.err;
+  EXPECT_TRUE(contains(f.err, "the run goes on without evaluation")) << f.err;
+  EXPECT_EQ(poses(root / "out" / "trajectory.txt"), static_cast<std::size_t>(kFrames));
+  for (const char* file : {"keyframes.txt", "map.ply", "stats.json", "settings_used.yaml"})
+    EXPECT_TRUE(fs::exists(root / "out" / file)) << file;
+  EXPECT_FALSE(nlohmann::json::parse(readFile(root / "out" / "stats.json")).contains("evaluation"));
+}
+
+// A run in which every frame was skipped fails (exit 1, saying so) instead of succeeding with nothing.
+TEST(RunCommand, ARunWithEveryFrameSkippedFails) {
+  const fs::path root = outputDir("all_skipped");
+  const fs::path input = root / "sequence";
+  fs::create_directories(root);
+  fs::copy(sequence(), input, fs::copy_options::recursive);
+  for (const auto& e : fs::directory_iterator(input / "rgb")) fs::resize_file(e.path(), 100);
+  std::vector<std::string> args = runArgs(root / "out");
+  args[2] = input.string();
+  const Finished f = runChild(args, root / "stdout");
+  ASSERT_TRUE(WIFEXITED(f.status));
+  EXPECT_EQ(WEXITSTATUS(f.status), 1) << f.err;
+  EXPECT_TRUE(contains(f.err, "was skipped (unreadable 40): nothing was tracked")) << f.err;
+  EXPECT_TRUE(fs::exists(root / "out" / "stats.json"));
 }
 
 }  // namespace

@@ -124,6 +124,49 @@ TEST(RunViewer, EndpointsShowTheRunWhileItGoes) {
   EXPECT_EQ(data["settings"]["options"]["mode"], "geometry");
 }
 
+// With --viewer-hold and stdout in a file (not a terminal), the summary is in the file when the run ends, while
+// the viewer still serves: not only once Ctrl-C has ended the program.
+TEST(RunViewer, HeldRunHasWrittenItsSummary) {
+  const fs::path out = outputDir("held_summary");
+  std::vector<std::string> args = runArgs(syntheticSequence("static_xyz", 40), "none", out);
+  for (const char* a : {"--viewer", "--viewer-port", "0", "--viewer-hold"}) args.emplace_back(a);
+  const fs::path stdout_file = out.string() + ".stdout";
+  std::string while_held;
+  const Finished f = runChild(args, stdout_file, [&](const std::string& line, pid_t pid) {
+    if (contains(line, "still serving")) {
+      while_held = readFile(stdout_file);
+      kill(pid, SIGINT);
+    }
+  });
+  ASSERT_TRUE(WIFEXITED(f.status)) << f.err;
+  EXPECT_EQ(WEXITSTATUS(f.status), 0) << f.err;
+  EXPECT_TRUE(contains(while_held, "frames 40  tracked 40")) << while_held;
+  EXPECT_TRUE(contains(while_held, "outputs written to " + out.string())) << while_held;
+}
+
+// A viewer port in use (here by another viewer) is an error at start naming the port; nothing runs.
+TEST(RunViewer, APortInUseIsRefusedAtStart) {
+  const fs::path out = outputDir("port_in_use");
+  int port = 0;
+  Finished second;
+  std::vector<std::string> first = runArgs(syntheticSequence("static_xyz", 40), "none", out / "first");
+  for (const char* a : {"--viewer", "--viewer-port", "0", "--viewer-hold"}) first.emplace_back(a);
+  const Finished f = runChild(first, out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
+    if (const auto p = viewerPort(line)) port = *p;
+    if (contains(line, "still serving")) {
+      std::vector<std::string> args = runArgs(syntheticSequence("static_xyz", 40), "none", out / "second");
+      args.insert(args.end(), {"--viewer", "--viewer-port", std::to_string(port)});
+      second = runChild(args, out.string() + ".second");
+      kill(pid, SIGINT);
+    }
+  });
+  ASSERT_GT(port, 0) << f.err;
+  ASSERT_TRUE(WIFEXITED(second.status));
+  EXPECT_EQ(WEXITSTATUS(second.status), 1) << second.err;
+  EXPECT_TRUE(contains(second.err, "port " + std::to_string(port) + " is in use")) << second.err;
+  EXPECT_FALSE(contains(second.err, "frame 1/")) << second.err;
+}
+
 // --load-map passes through the viewer: the page shows the map the run started from and says where it came from.
 TEST(RunViewer, ALoadedMapIsShownFromTheStart) {
   const fs::path first = outputDir("map_first_half"), second = outputDir("map_second_half");

@@ -49,6 +49,8 @@ std::vector<run::RunObserver*> RunWatchers::observers() {
   return out;
 }
 
+std::vector<std::string> RunWatchers::outputNames() { return {"report.html"}; }
+
 void RunWatchers::writeReport(const std::string& output, const std::string& config_file,
                               const std::string& options_json) {
   core::Stopwatch watch;
@@ -75,6 +77,7 @@ RunWatchers::RunWatchers(const ViewerArgs& viewer) {
 }
 RunWatchers::~RunWatchers() = default;
 std::vector<run::RunObserver*> RunWatchers::observers() { return {}; }
+std::vector<std::string> RunWatchers::outputNames() { return {}; }
 void RunWatchers::writeReport(const std::string&, const std::string&, const std::string&) {}
 void RunWatchers::holdIfAsked() {}
 #endif

@@ -23,6 +23,8 @@ class RunWatchers {
   explicit RunWatchers(const ViewerArgs& viewer);
   ~RunWatchers();
   std::vector<run::RunObserver*> observers();
+  // What writeReport writes into the output folder (report.html; nothing without the viewer module).
+  static std::vector<std::string> outputNames();
   // Writes <output>/report.html from what was recorded and the run's stats.json (after writeRunOutputs).
   void writeReport(const std::string& output, const std::string& config_file, const std::string& options_json);
   // With --viewer-hold: serves until SIGINT / SIGTERM.

@@ -216,6 +216,7 @@ OpenNI2Source::OpenNI2Source(const OpenNI2Options& options) : impl_(std::make_un
 OpenNI2Source::~OpenNI2Source() = default;
 
 std::optional<io::RgbdFrame> OpenNI2Source::next() { return impl_->slot.take(); }
+void OpenNI2Source::cancel() { impl_->slot.close(); }
 std::optional<io::RgbdFrame> OpenNI2Source::poll() { return impl_->slot.tryTake(); }
 io::SourceStats OpenNI2Source::stats() const { return impl_->slot.stats(); }
 const std::string& OpenNI2Source::description() const { return impl_->description; }

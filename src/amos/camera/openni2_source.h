@@ -37,6 +37,8 @@ class OpenNI2Source : public io::FrameSource {
   OpenNI2Source& operator=(const OpenNI2Source&) = delete;
 
   std::optional<io::RgbdFrame> next() override;
+  // A next() that waits for the device returns nullopt at once.
+  void cancel() override;
   std::optional<io::RgbdFrame> poll() override;
   std::size_t size() const override { return 0; }
   io::SourceStats stats() const override;

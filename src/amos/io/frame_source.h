@@ -3,7 +3,8 @@
 // (SequenceReader), a folder replayed at its recorded rate (RealtimeReplay), a live camera
 // (camera::OpenNI2Source).
 //
-// Thread-safety: next() and poll() are called from one consumer thread; stats() may be called from any thread.
+// Thread-safety: next() and poll() are called from one consumer thread; stats() and cancel() may be called from any
+// thread.
 // A source that produces at its own rate (replay, camera) keeps only the newest frame waiting (NewestFrameSlot):
 // a frame that arrives while an older one still waits replaces it, and the older one is counted as dropped.
 // Every frame handed out has RgbdFrame::arrival set: the moment it became available to the consumer.
@@ -56,6 +57,10 @@ class FrameSource {
   // Frames in the stream; 0 = unknown (live).
   virtual std::size_t size() const = 0;
   virtual SourceStats stats() const = 0;
+  // Ends the stream early (a stop request), from any thread: a next() that waits for a frame returns nullopt at
+  // once, and so do later calls. For the sources whose next() can wait for long (a replay's gap in time stamps, a
+  // camera that stalls); a folder, which never waits for more than one frame's decoding, ignores it.
+  virtual void cancel() {}
 };
 
 }  // namespace amos::io

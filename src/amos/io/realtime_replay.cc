@@ -26,13 +26,17 @@ struct RealtimeReplay::Impl {
       : total(index.frames.size()), reader(std::move(index), options), clock([this] { run(); }) {}
 
   ~Impl() {
+    cancel();
+    if (clock.joinable()) clock.join();
+  }
+
+  void cancel() {
     {
       std::lock_guard<std::mutex> lock(mutex);
       stop = true;
     }
     wake.notify_all();
     slot.close();
-    if (clock.joinable()) clock.join();
   }
 
   // False when stopped before `due`.
@@ -75,6 +79,7 @@ RealtimeReplay::~RealtimeReplay() = default;
 
 std::optional<RgbdFrame> RealtimeReplay::next() { return impl_->slot.take(); }
 std::optional<RgbdFrame> RealtimeReplay::poll() { return impl_->slot.tryTake(); }
+void RealtimeReplay::cancel() { impl_->cancel(); }
 std::size_t RealtimeReplay::size() const { return impl_->total; }
 SourceStats RealtimeReplay::stats() const {
   SourceStats stats = impl_->slot.stats();

@@ -31,6 +31,8 @@ class RealtimeReplay : public FrameSource {
   std::optional<RgbdFrame> poll() override;
   std::size_t size() const override;
   SourceStats stats() const override;
+  // Stops the clock at once, however long the wait for the next time stamp: next() returns nullopt.
+  void cancel() override;
   // t0 of the schedule above; nullopt until the first frame has been decoded.
   std::optional<std::chrono::steady_clock::time_point> startTime() const;
 

@@ -217,5 +217,21 @@ TEST_F(ReplaySequence, DestructionWakesTheWaitingClock) {
   EXPECT_LT(destroyed_at - start, std::chrono::seconds(5));
 }
 
+// A stop request reaches a consumer that waits in next() for a frame due in ten minutes: cancel() from another
+// thread ends the wait at once (before, Ctrl-C waited out a long gap in the time stamps).
+TEST_F(ReplaySequence, CancelEndsAWaitForALateFrameAtOnce) {
+  RealtimeReplay replay(write({1.0, 601.0}), smallOptions());
+  ASSERT_EQ(replay.next()->index, 0u);
+  const Clock::time_point start = Clock::now();
+  std::thread canceller([&] {
+    std::this_thread::sleep_for(milliseconds(100));
+    replay.cancel();
+  });
+  EXPECT_FALSE(replay.next().has_value());
+  canceller.join();
+  EXPECT_LT(Clock::now() - start, std::chrono::seconds(5));
+  EXPECT_FALSE(replay.next().has_value());
+}
+
 }  // namespace
 }  // namespace amos::io

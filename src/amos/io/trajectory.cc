@@ -102,17 +102,25 @@ std::vector<StampedPose> readTumTrajectoryWithPoses(const std::string& path, con
   return std::move(read.poses);
 }
 
-void writeTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses) {
-  std::string text = "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n";
+std::string formatTumPose(const StampedPose& pose) {
+  const Eigen::Vector3d t = pose.T_wc.translation();
+  const Eigen::Quaterniond q(pose.T_wc.linear());
   char line[256];
+  const int n = std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", pose.timestamp, t.x(),
+                              t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+  core::require(n > 0 && n < static_cast<int>(sizeof(line)),
+                fmt::format("pose at {} does not fit a trajectory line", pose.timestamp));
+  return std::string(line, static_cast<std::size_t>(n));
+}
+
+void writeTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses) {
+  std::string text = kTumTrajectoryHeader;
   for (const StampedPose& pose : poses) {
-    const Eigen::Vector3d t = pose.T_wc.translation();
-    const Eigen::Quaterniond q(pose.T_wc.linear());
-    const int n = std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", pose.timestamp,
-                                t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
-    core::require(n > 0 && n < static_cast<int>(sizeof(line)),
-                  fmt::format("trajectory file '{}': pose at {} does not fit a line", path, pose.timestamp));
-    text.append(line, static_cast<std::size_t>(n));
+    try {
+      text += formatTumPose(pose);
+    } catch (const core::Error& e) {
+      throw core::Error(fmt::format("trajectory file '{}': {}", path, e.what()));
+    }
   }
   writeFileAtomically(path, text);
 }

@@ -36,4 +36,8 @@ std::vector<StampedPose> readTumTrajectoryWithPoses(const std::string& path, con
 // temporary name and renamed (atomic_file.h). Throws core::Error when the file cannot be written.
 void writeTumTrajectory(const std::string& path, const std::vector<StampedPose>& poses);
 
+// The header comment and one pose's line as writeTumTrajectory writes them (for files written a line at a time).
+inline constexpr const char* kTumTrajectoryHeader = "# timestamp tx ty tz qx qy qz qw (camera-to-world)\n";
+std::string formatTumPose(const StampedPose& pose);
+
 }  // namespace amos::io

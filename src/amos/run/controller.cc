@@ -60,6 +60,14 @@ LoopOutcome RunController::run() {
     if (options_.paced) {
       // A feeder thread hands frames to stage A as they arrive (paced_feeder.h).
       PacedFeeder feeder(source_, pipeline_);
+      // A stop wakes the feeder's wait and the source's at once (a replay may wait minutes for a late time stamp).
+      core::StopRequest::Subscription wake;
+      if (options_.stop != nullptr) {
+        wake = options_.stop->onStop([&] {
+          feeder.stop();
+          source_.cancel();
+        });
+      }
       while (!stopRequested() && feeder.nextForStageB())
         if (!consume(pipeline_.processNext())) break;
     } else {
@@ -73,12 +81,13 @@ LoopOutcome RunController::run() {
   } catch (...) {
     outcome_.failure = std::current_exception();
   }
+  if (!outcome_.interrupted) stopRequested();  // a stop that ended a paced source's wait
   if (!outcome_.failure) outcome_.failure = source_failure_;
   return outcome_;
 }
 
 bool RunController::stopRequested() {
-  outcome_.interrupted = options_.stop != nullptr && options_.stop->load();
+  outcome_.interrupted = options_.stop != nullptr && options_.stop->requested();
   return outcome_.interrupted;
 }
 

@@ -7,13 +7,13 @@
 // With a folder the next frame is always pushed into the pipeline's stage A while the current one is in stage B
 // (one frame of look-ahead, system/dynamic_pipeline.h); with a paced or live source a feeder thread pushes each
 // frame into stage A as soon as stage A is free (paced_feeder.h).
-#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <functional>
 #include <vector>
 
 #include "amos/core/stage_timer.h"
+#include "amos/core/stop_request.h"
 #include "amos/io/frame_source.h"
 #include "amos/report/run_report.h"
 #include "amos/run/run_observer.h"
@@ -31,8 +31,9 @@ struct SequenceProgress {
 struct ControllerOptions {
   bool paced = false;          // a paced or live source (a feeder thread) instead of a folder read at once
   std::size_t max_frames = 0;  // end after this many processed frames (0 = when the source ends)
-  // When set, the loop ends after the frame being processed once it reads true.
-  const std::atomic<bool>* stop = nullptr;
+  // When set, the loop ends after the frame being processed once a stop is requested; with a paced or live source
+  // the request also ends the wait for the next frame at once (FrameSource::cancel), whatever the time stamps.
+  core::StopRequest* stop = nullptr;
   std::function<void(const SequenceProgress&)> on_frame;  // after every frame, after the observers (progress)
 };
 

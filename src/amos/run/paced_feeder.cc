@@ -49,8 +49,8 @@ void PacedFeeder::run() {
 
 bool PacedFeeder::nextForStageB() {
   std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait(lock, [&] { return pushed_ > taken_ || ended_; });
-  if (pushed_ > taken_) {
+  changed_.wait(lock, [&] { return pushed_ > taken_ || ended_ || stopping_; });
+  if (pushed_ > taken_ && !stopping_) {
     ++taken_;
     changed_.notify_all();
     return true;

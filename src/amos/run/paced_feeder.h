@@ -13,7 +13,8 @@
 //     ...
 //   }
 //
-// Thread safety: nextForStageB() and stop() are called from the thread that runs stage B.
+// Thread safety: nextForStageB() is called from the thread that runs stage B; stop() from any thread (a stop
+// request).
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -33,10 +34,11 @@ class PacedFeeder {
   PacedFeeder(const PacedFeeder&) = delete;
   PacedFeeder& operator=(const PacedFeeder&) = delete;
 
-  // Blocks until a pushed frame waits for stage B (true: the caller processes it next) or the stream has ended
-  // (false). Rethrows what ended the feeding in error (a source error, a refused push).
+  // Blocks until a pushed frame waits for stage B (true: the caller processes it next), the stream has ended or
+  // stop() was called (false). Rethrows what ended the feeding in error (a source error, a refused push).
   bool nextForStageB();
-  // The thread pushes no frame after the one it may be pushing now; the destructor joins it. Idempotent.
+  // The thread pushes no frame after the one it may be pushing now, and nextForStageB() returns false; the
+  // destructor joins the thread (cancel the source first when its next() may wait long). Idempotent.
   void stop();
 
  private:

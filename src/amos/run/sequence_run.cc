@@ -16,7 +16,9 @@
 #include "amos/eval/ground_truth_masks.h"
 #include "amos/io/dataset.h"
 #include "amos/io/frame_source.h"
+#include "amos/io/png_reader.h"
 #include "amos/io/realtime_replay.h"
+#include "amos/run/live_log.h"
 #include "amos/run/mask_scoring.h"
 #include "amos/run/mask_writing.h"
 #include "amos/run/recording.h"
@@ -125,6 +127,31 @@ std::optional<io::SequenceIndex> indexFrames(const SequenceRunOptions& options) 
   return index;
 }
 
+// Settings that cannot fit the input are an error before the run, not a run that skips every frame as the wrong
+// size: the first frame whose colour image's header can be read (io::pngHeaderSize; a bad first file is the
+// reader's to report) must have Camera.width x Camera.height, and so must its depth image.
+void checkSettingsFitTheInput(const io::SequenceIndex& index, const config::Settings& settings,
+                              const SequenceRunOptions& options) {
+  constexpr std::size_t kFramesLooked = 10;
+  const io::ReaderOptions reader = settings.readerOptions();
+  for (std::size_t i = 0; i < std::min(kFramesLooked, index.frames.size()); ++i) {
+    const io::AssociatedFrame& frame = index.frames[i];
+    const std::optional<cv::Size> rgb = io::pngHeaderSize(frame.rgb_file);
+    if (!rgb) continue;
+    const std::pair<std::string, std::optional<cv::Size>> images[] = {
+        {frame.rgb_file, rgb}, {frame.depth_file, io::pngHeaderSize(frame.depth_file)}};
+    for (const auto& [file, size] : images) {
+      if (!size || (size->width == reader.width && size->height == reader.height)) continue;
+      throw core::Error(fmt::format(
+          "Camera.width x Camera.height is {}x{} in {}, but the sequence's frames are {}x{} ('{}'): set them (and "
+          "the intrinsics) for the camera that recorded {}, or use its config",
+          reader.width, reader.height, options.config_label.empty() ? "the settings" : options.config_label,
+          size->width, size->height, file, options.sequence_dir));
+    }
+    return;
+  }
+}
+
 std::unique_ptr<system::SlamSystem> makeSlam(const config::Settings& settings, const SequenceRunOptions& options) {
   system::SlamOptions slam_options = config::slamOptionsFromSettings(settings, options.deterministic);
   slam_options.after_keyframe = options.after_keyframe;
@@ -155,12 +182,14 @@ std::unique_ptr<io::FrameSource> openSource(const config::Settings& settings, co
 
 // The run's own observers, made from the settings and options, and added to the controller before the caller's.
 struct OwnObservers {
+  std::unique_ptr<LiveLog> live_log;
   std::unique_ptr<Recording> recording;
   std::unique_ptr<MaskScoring> scoring;
   std::unique_ptr<MaskWriting> writing;
   std::unique_ptr<TrajectoryEvaluation> evaluation;
 
   void addTo(RunController& controller) {
+    if (live_log) controller.addObserver(*live_log, /*output=*/true);
     if (recording) controller.addObserver(*recording);
     if (scoring) controller.addObserver(*scoring, /*output=*/true);
     if (writing) controller.addObserver(*writing, /*output=*/true);
@@ -176,6 +205,7 @@ OwnObservers makeOwnObservers(const config::Settings& settings, const SequenceRu
   std::optional<eval::GroundTruthMasks> truth_masks;
   if (options.source != FrameSourceKind::kCamera) truth_masks = eval::GroundTruthMasks::find(options.sequence_dir);
   const bool save_masks = !options.masks_output_dir.empty();
+  if (!options.live_log_dir.empty()) own.live_log = std::make_unique<LiveLog>(options.live_log_dir);
   if (!options.record_dir.empty())
     own.recording = std::make_unique<Recording>(options.record_dir, settings.depth_factor);
   if (truth_masks) own.scoring = std::make_unique<MaskScoring>(std::move(*truth_masks), save_masks);
@@ -204,6 +234,18 @@ struct OpenRun {
   RunController& controller;
 };
 
+// A run in which no frame could be used is a failure, not a success with an empty trajectory.
+std::string allSkippedMessage(const io::SkippedFrames& skipped, const SequenceRunOptions& options) {
+  std::vector<std::string> reasons;
+  for (const io::FrameProblem problem : io::kFrameProblems) {
+    if (skipped.count(problem) > 0)
+      reasons.push_back(fmt::format("{} {}", io::frameProblemName(problem), skipped.count(problem)));
+  }
+  return fmt::format("every frame of {} was skipped ({}): nothing was tracked; see the warnings above",
+                     options.source == FrameSourceKind::kCamera ? options.camera : options.sequence_dir,
+                     fmt::join(reasons, ", "));
+}
+
 // After the loop: the pipeline and the observers finished, how the run ended, the source's counts, the times, the
 // trajectory and what the observers measured; then the observers' onEnd.
 void finishRun(SequenceRunResult& result, OpenRun& run, LoopOutcome loop, const SequenceRunOptions& options) {
@@ -217,6 +259,9 @@ void finishRun(SequenceRunResult& result, OpenRun& run, LoopOutcome loop, const 
       if (!failure) failure = std::current_exception();
     }
   }
+  const io::SourceStats stats = run.source->stats();
+  if (!failure && !loop.interrupted && loop.processed == 0 && stats.skipped.total() > 0)
+    failure = std::make_exception_ptr(core::Error(allSkippedMessage(stats.skipped, options)));
   if (failure) {
     result.failure = failure;
     result.info.end = {report::RunEnd::Status::kFailed, errorMessage(failure)};
@@ -224,7 +269,6 @@ void finishRun(SequenceRunResult& result, OpenRun& run, LoopOutcome loop, const 
     result.info.end = {report::RunEnd::Status::kInterrupted, "stop requested"};
   }
   report::SourceReport& source_report = *result.info.source;
-  const io::SourceStats stats = run.source->stats();
   source_report.delivered = stats.delivered;
   source_report.dropped = stats.dropped;
   result.info.skipped_frames = stats.skipped;
@@ -244,7 +288,14 @@ void finishRun(SequenceRunResult& result, OpenRun& run, LoopOutcome loop, const 
   result.info.deterministic = options.deterministic;
   result.info.config = options.config_label;
   result.trajectory = result.slam->trajectory();
-  for (RunObserver* o : run.controller.observers()) o->addToInfo(result.trajectory, result.info);
+  // What the observers measure never costs the run its outputs: an error here is a warning.
+  for (RunObserver* o : run.controller.observers()) {
+    try {
+      o->addToInfo(result.trajectory, result.info);
+    } catch (const std::exception& e) {
+      spdlog::warn("after the run: {}; the outputs are written without it", e.what());
+    }
+  }
   for (RunObserver* o : run.controller.observers()) o->onEnd(result.trajectory, result.info);
 }
 
@@ -258,6 +309,7 @@ void SequenceRunResult::rethrowFailure() const {
 SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options) {
   SequenceRunResult result;
   std::optional<io::SequenceIndex> index = indexFrames(options);
+  if (index) checkSettingsFitTheInput(*index, settings, options);
   const std::string gt_file = index ? index->groundtruth_file : std::string();
   if (index && (!index->association.file.empty() || index->association.duplicate_rows > 0))
     result.info.association = index->association;

@@ -11,7 +11,6 @@
 // that arrives while the pipeline is busy replaces the waiting one (the source counts it as dropped). The
 // trajectory holds the processed frames; RunInfo::source says how many were delivered, processed and dropped and
 // how long each processed frame took from its arrival to its pose.
-#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <functional>
@@ -20,6 +19,7 @@
 #include <vector>
 
 #include "amos/config/settings.h"
+#include "amos/core/stop_request.h"
 #include "amos/io/trajectory.h"
 #include "amos/report/run_report.h"
 #include "amos/run/controller.h"
@@ -68,10 +68,14 @@ struct SequenceRunOptions {
   // overlay_count evenly spaced frames to <masks_output_dir>/overlays/ (see mask_outputs.h). "" = do not.
   std::string masks_output_dir;
   std::size_t overlay_count = 8;
+  // The output folder: trajectory_live.txt and frames.tsv are appended there frame by frame (live_log.h), so any
+  // end of the program leaves the frames tracked until then. "" = not written.
+  std::string live_log_dir;
   std::function<void(const SequenceProgress&)> on_frame;  // called after every frame (progress display)
-  // When set, the run ends after the frame being processed once it reads true (SIGINT / SIGTERM): RunInfo::end is
-  // then kInterrupted, and everything is finished and kept as at the end of the stream.
-  const std::atomic<bool>* stop = nullptr;
+  // When set, the run ends after the frame being processed once a stop is requested (SIGINT / SIGTERM), and a
+  // paced or live source's wait for its next frame ends at once: RunInfo::end is then kInterrupted, and everything
+  // is finished and kept as at the end of the stream.
+  core::StopRequest* stop = nullptr;
   // Called in the mapping thread after each keyframe is mapped (system::SlamOptions::after_keyframe).
   mapping::KeyFrameHook after_keyframe;
   // Watch the run (live viewer, report recorder; run_observer.h). Not owned; they must outlive the call.

@@ -152,5 +152,61 @@ TEST(SequenceRunDamagedInput, DropoutsBeforeTheMapDelayItsStart) {
   EXPECT_EQ(r.trajectory.size(), kFrames - 3u);
 }
 
+// Settings that cannot fit the input are an error before the run: a sequence whose frames are 320x240 with a
+// config that says 640x480 (before, every frame was skipped as wrong_size and the run "succeeded" empty).
+TEST(SequenceRunDamagedInput, ACameraSizeThatDoesNotFitTheFramesIsAnErrorBeforeTheRun) {
+  const fs::path dir = freshSequence("wrong_camera_size");
+  const auto frames = framesOf(dir);
+  cv::Mat small;
+  cv::resize(cv::imread(frames[0].rgb_file), small, {320, 240});
+  cv::imwrite(frames[0].rgb_file, small);
+  SequenceRunOptions options;
+  options.sequence_dir = dir.string();
+  options.config_label = kTum3;
+  try {
+    runSequence(config::loadSettings(kTum3), options);
+    FAIL() << "expected a core::Error";
+  } catch (const core::Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("Camera.width x Camera.height is 640x480 in " + kTum3), std::string::npos) << message;
+    EXPECT_NE(message.find("are 320x240 ('" + frames[0].rgb_file + "')"), std::string::npos) << message;
+  }
+}
+
+// A run in which every frame was skipped is a failure with a message, not a success with an empty trajectory.
+TEST(SequenceRunDamagedInput, ARunWithEveryFrameSkippedIsAFailure) {
+  const fs::path dir = freshSequence("all_skipped");
+  for (const io::AssociatedFrame& f : framesOf(dir)) fs::resize_file(f.rgb_file, fs::file_size(f.rgb_file) / 3);
+  const SequenceRunResult r = runOn(dir, "none");
+  EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kFailed);
+  ASSERT_TRUE(r.failure);
+  EXPECT_NE(r.info.end.reason.find("every frame of " + dir.string() + " was skipped (unreadable 30)"),
+            std::string::npos)
+      << r.info.end.reason;
+  EXPECT_THROW(r.rethrowFailure(), core::Error);
+  EXPECT_EQ(r.slam->stats().frames, 0u);
+}
+
+// An observer whose measurement fails after the run (what a failing evaluation does) costs nothing: the run
+// returns, complete, and its outputs can be written.
+TEST(SequenceRunDamagedInput, AFailureAfterTheRunLeavesTheOutputs) {
+  struct FailingMeasure : RunObserver {
+    void onFrame(const FrameSnapshot&) override {}
+    void addToInfo(const std::vector<io::StampedPose>&, report::RunInfo&) override {
+      throw core::Error("evaluation failed");
+    }
+  } failing;
+  SequenceRunOptions options;
+  options.sequence_dir = freshSequence("failing_measure").string();
+  options.mode = "none";
+  options.deterministic = true;
+  options.observers = {&failing};
+  const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
+  EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kComplete);
+  EXPECT_FALSE(r.failure);
+  EXPECT_EQ(r.trajectory.size(), static_cast<std::size_t>(kFrames));
+  EXPECT_TRUE(r.info.evaluation);  // the run's own evaluation came first
+}
+
 }  // namespace
 }  // namespace amos::run

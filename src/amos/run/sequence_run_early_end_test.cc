@@ -3,11 +3,13 @@
 // says how it ended.
 #include <gtest/gtest.h>
 
-#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <sstream>
 #include <string>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +18,7 @@
 #include "amos/report/run_report.h"
 #include "amos/run/sequence_run.h"
 #include "amos/synth/sequence.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::run {
 namespace {
@@ -49,11 +52,11 @@ nlohmann::json writtenStats(const SequenceRunResult& r, const std::string& name)
 // with exactly 5 frames, in every mode.
 TEST(SequenceRunEarlyEnd, StopEndsTheRunAtTheNextFrameBoundary) {
   for (const std::string mode : {"none", "geometry"}) {
-    std::atomic<bool> stop{false};
+    core::StopRequest stop;
     SequenceRunOptions options = optionsFor(mode);
     options.stop = &stop;
     options.on_frame = [&stop](const SequenceProgress& p) {
-      if (p.processed == 5) stop.store(true);
+      if (p.processed == 5) stop.request();
     };
     const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
     EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kInterrupted) << mode;
@@ -70,7 +73,8 @@ TEST(SequenceRunEarlyEnd, StopEndsTheRunAtTheNextFrameBoundary) {
 
 // A stop requested before the first frame ends the run with none: outputs are still written (empty).
 TEST(SequenceRunEarlyEnd, StopBeforeTheFirstFrame) {
-  std::atomic<bool> stop{true};
+  core::StopRequest stop;
+  stop.request();
   SequenceRunOptions options = optionsFor("none");
   options.stop = &stop;
   const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
@@ -78,6 +82,59 @@ TEST(SequenceRunEarlyEnd, StopBeforeTheFirstFrame) {
   EXPECT_EQ(r.slam->stats().frames, 0u);
   EXPECT_TRUE(r.trajectory.empty());
   EXPECT_EQ(writtenStats(r, "stop_first")["end"]["status"], "interrupted");
+}
+
+// A copy of the test sequence whose 6th frame comes ten minutes after the 5th (its first 8 frames).
+fs::path sequenceWithALongGap() {
+  const fs::path dir = amos::testing::scratchDirForThisTest("amos_gap_") / "sequence";
+  fs::copy(optionsFor("none").sequence_dir, dir, fs::copy_options::recursive);
+  std::ifstream in(dir / "associations.txt");
+  std::stringstream rows;
+  rows << in.rdbuf();
+  in.close();
+  std::ofstream out(dir / "associations.txt");
+  int k = 0;
+  for (std::string row; std::getline(rows, row) && k < 8;) {
+    if (row.empty() || row[0] == '#') continue;
+    std::istringstream fields(row);
+    double t_rgb = 0, t_depth = 0;
+    std::string rgb, depth;
+    fields >> t_rgb >> rgb >> t_depth >> depth;
+    const double late = k >= 5 ? 600.0 : 0.0;
+    out << std::fixed << t_rgb + late << " " << rgb << " " << t_depth + late << " " << depth << "\n";
+    ++k;
+  }
+  return dir;
+}
+
+// A stop requested while a --realtime replay waits for a frame due ten minutes later ends the run at once: the
+// wait is woken, not sat out (before, Ctrl-C waited 11.5 minutes on a Bonn sequence's gap).
+TEST(SequenceRunEarlyEnd, StopEndsAPacedRunWaitingForALateFrameAtOnce) {
+  SequenceRunOptions options = optionsFor("none");
+  options.sequence_dir = sequenceWithALongGap().string();
+  options.source = FrameSourceKind::kRealtime;
+  core::StopRequest stop;
+  options.stop = &stop;
+  std::thread requester;
+  options.on_frame = [&](const SequenceProgress& p) {
+    // The 5th frame is never dropped: it is the newest one for ten minutes.
+    if (p.frame == 5 && !requester.joinable()) {
+      requester = std::thread([&stop] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the loop is waiting for the 6th by then
+        stop.request();
+      });
+    }
+  };
+  const auto start = std::chrono::steady_clock::now();
+  const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
+  const auto took = std::chrono::steady_clock::now() - start;
+  ASSERT_TRUE(requester.joinable());
+  requester.join();
+  EXPECT_LT(took, std::chrono::seconds(30));
+  EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kInterrupted);
+  EXPECT_FALSE(r.failure);
+  EXPECT_LE(r.slam->stats().frames, 5u);
+  EXPECT_EQ(r.info.source->delivered, 5u);
 }
 
 // A failure of the mapping thread (injected at the third keyframe, after loop closing's hook) ends the run at the

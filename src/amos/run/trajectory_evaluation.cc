@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <exception>
 #include <utility>
 
 #include "amos/core/error.h"
@@ -11,29 +12,24 @@
 namespace amos::run {
 
 TrajectoryEvaluation::TrajectoryEvaluation(std::string groundtruth_file, config::GroundTruthFormat format)
-    : groundtruth_file_(std::move(groundtruth_file)), format_(format) {}
-
-std::vector<io::StampedPose> TrajectoryEvaluation::readGroundTruth() const {
-  std::vector<io::StampedPose> gt = io::readTumTrajectory(groundtruth_file_);
-  if (format_ == config::GroundTruthFormat::kBonn) gt = eval::bonnMarkerToCamera(gt);
-  return gt;
-}
-
-std::vector<io::StampedPose> TrajectoryEvaluation::groundTruthForObservers() const {
-  if (groundtruth_file_.empty()) return {};
+    : groundtruth_file_(std::move(groundtruth_file)) {
+  if (groundtruth_file_.empty()) return;
   try {
-    return readGroundTruth();
-  } catch (const core::Error&) {
-    return {};
+    ground_truth_ = io::readTumTrajectoryWithPoses(groundtruth_file_, "ground-truth file");
+    if (format == config::GroundTruthFormat::kBonn) ground_truth_ = eval::bonnMarkerToCamera(ground_truth_);
+  } catch (const std::exception& e) {
+    spdlog::warn("{}; the run goes on without evaluation (fix the file and run `amos-slam eval` on the outputs)",
+                 e.what());
+    ground_truth_.clear();
+    usable_ = false;
   }
 }
 
 void TrajectoryEvaluation::addToInfo(const std::vector<io::StampedPose>& trajectory, report::RunInfo& info) {
-  if (groundtruth_file_.empty() || trajectory.size() < 2) return;
-  const std::vector<io::StampedPose> gt = readGroundTruth();
+  if (ground_truth_.empty() || trajectory.size() < 2) return;
   try {
-    info.evaluation = eval::evaluate(gt, trajectory);
-  } catch (const core::Error& e) {
+    info.evaluation = eval::evaluate(ground_truth_, trajectory);
+  } catch (const std::exception& e) {
     spdlog::warn("no evaluation against {}: {}", groundtruth_file_, e.what());
   }
 }

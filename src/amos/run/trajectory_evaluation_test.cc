@@ -3,6 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+
+#include "amos/core/log_capture.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::run {
 namespace {
@@ -44,9 +48,57 @@ TEST(TrajectoryEvaluation, NothingWithoutGroundTruthOrPoses) {
   none.addToInfo(line(10, 0.02), info);
   EXPECT_FALSE(info.evaluation);
   TrajectoryEvaluation missing("/nonexistent/groundtruth.txt", config::GroundTruthFormat::kTum);
+  EXPECT_FALSE(missing.usable());
   EXPECT_TRUE(missing.groundTruthForObservers().empty());
   missing.addToInfo(line(1, 0.02), info);
   EXPECT_FALSE(info.evaluation);
+}
+
+// A bad ground-truth file is found when the observer is made (before the run's first frame): a warning naming
+// the file and the line, no evaluation at the end, and nothing thrown, so the run and its outputs go on.
+TEST(TrajectoryEvaluation, ABadGroundTruthIsAWarningBeforeTheRun) {
+  const fs::path dir = amos::testing::scratchDirForThisTest("amos_bad_gt_");
+  const std::string good = "1.0 0 0 0 0 0 0 1\n2.0 0.1 0 0 0 0 0 1\n";
+  const struct {
+    std::string name, text, where;
+  } cases[] = {{"bad_first_line", "timestamp tx ty tz qx qy qz qw\n" + good, ":1:"},
+               {"truncated_last_line", good + "3.0 0.2 0 0 0", ":3:"},
+               {"unparsable", good + "3.0 0.2 x 0 0 0 0 1\n", ":3:"},
+               {"empty", "", "is empty"}};
+  for (const auto& c : cases) {
+    const std::string file = (dir / (c.name + ".txt")).string();
+    std::ofstream(file) << c.text;
+    core::LogCapture log;
+    TrajectoryEvaluation evaluation(file, config::GroundTruthFormat::kTum);
+    EXPECT_FALSE(evaluation.usable()) << c.name;
+    EXPECT_TRUE(evaluation.groundTruthForObservers().empty()) << c.name;
+    const std::vector<std::string> lines = log.lines();
+    ASSERT_EQ(lines.size(), 1u) << c.name;
+    EXPECT_EQ(lines[0].rfind("warning ", 0), 0u) << lines[0];
+    EXPECT_NE(lines[0].find(file), std::string::npos) << lines[0];
+    EXPECT_NE(lines[0].find(c.where), std::string::npos) << lines[0];
+    EXPECT_NE(lines[0].find("the run goes on without evaluation"), std::string::npos) << lines[0];
+    report::RunInfo info;
+    EXPECT_NO_THROW(evaluation.addToInfo(line(10, 0.02), info));
+    EXPECT_FALSE(info.evaluation) << c.name;
+  }
+}
+
+// A trajectory that cannot be evaluated against a good ground truth (no stamp in common) is a warning, not an
+// error that would cost the run its outputs.
+TEST(TrajectoryEvaluation, AnEvaluationThatFailsIsAWarning) {
+  const fs::path dir = amos::testing::scratchDirForThisTest("amos_failed_eval_");
+  const std::string gt_file = (dir / "groundtruth.txt").string();
+  io::writeTumTrajectory(gt_file, line(60, 0.02));
+  TrajectoryEvaluation evaluation(gt_file, config::GroundTruthFormat::kTum);
+  std::vector<io::StampedPose> far = line(10, 0.02);
+  for (io::StampedPose& p : far) p.timestamp += 1000.0;
+  report::RunInfo info;
+  core::LogCapture log;
+  EXPECT_NO_THROW(evaluation.addToInfo(far, info));
+  EXPECT_FALSE(info.evaluation);
+  ASSERT_FALSE(log.lines().empty());
+  EXPECT_NE(log.lines()[0].find("no evaluation against " + gt_file), std::string::npos) << log.lines()[0];
 }
 
 }  // namespace

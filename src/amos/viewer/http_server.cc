@@ -33,15 +33,22 @@ ViewerServer::ViewerServer(LiveState& state, ServerOptions options)
   server_->set_write_timeout(3, 0);
   server_->set_read_timeout(3, 0);
   server_->set_keep_alive_max_count(100);
+  server_->new_task_queue = [] { return new httplib::ThreadPool(kRequestThreads); };
+  // SO_REUSEADDR only (a port in TIME_WAIT can be bound again), not httplib's default SO_REUSEPORT, with which a
+  // second process binds a port in use and the two share its connections.
+  server_->set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<void*>(&yes), sizeof(yes));
+  });
   addRoutes();
   if (options_.port == 0) {
     port_ = server_->bind_to_any_port(options_.bind);
   } else {
     port_ = server_->bind_to_port(options_.bind, options_.port) ? options_.port : -1;
   }
-  core::require(port_ > 0, fmt::format("viewer: cannot listen on {}:{} (in use, or not an address of this machine); "
-                                       "choose another with --viewer-port / --viewer-bind",
-                                       options_.bind, options_.port));
+  core::require(port_ > 0, fmt::format("viewer: cannot listen on {}:{}: port {} is in use (or {} is not an address "
+                                       "of this machine); choose another with --viewer-port / --viewer-bind",
+                                       options_.bind, options_.port, options_.port, options_.bind));
   thread_ = std::thread([this] {
     // The request threads httplib starts from here inherit this mask: SIGINT / SIGTERM stay with the main thread.
     sigset_t signals;
@@ -122,6 +129,14 @@ void ViewerServer::addRoutes() {
       return;
     }
     res.set_header("Cache-Control", "no-store");
+    if (event_streams_.fetch_add(1) >= kMaxEventStreams) {
+      event_streams_.fetch_sub(1);
+      res.status = 503;
+      res.set_header("Retry-After", "5");
+      res.set_content(fmt::format("too many event streams open (at most {}): close a tab\n", kMaxEventStreams),
+                      "text/plain");
+      return;
+    }
     auto cursor = std::make_shared<std::uint64_t>(since);
     res.set_chunked_content_provider("text/event-stream", [this, cursor](std::size_t, httplib::DataSink& sink) {
       const EventBatch batch = state_.eventsAfter(*cursor, std::chrono::seconds(1));
@@ -140,7 +155,7 @@ void ViewerServer::addRoutes() {
       }
       if (out.empty()) out = ": idle\n\n";  // finds a browser that went away
       return sink.write(out.data(), out.size());
-    });
+    }, [this](bool) { event_streams_.fetch_sub(1); });
   });
   s.Get(R"(/files/(.*))", [this](const httplib::Request& req, httplib::Response& res) {
     const std::string request = req.matches[1];

@@ -8,8 +8,12 @@
 //                              "reload" when the browser fell too far behind; a comment every second otherwise
 //   GET /api/frame.jpg         the current frame with its dynamic mask and keypoints (404 before the first)
 //   GET /files/PATH            a file of the finished run (`view` only; run_folder.h: anything outside -> 403)
-// Requests run in the server's own threads, which never touch the SLAM run: a slow or vanished browser costs only
-// its own connection (a write times out after a few seconds).
+// Requests run in the server's own threads (kRequestThreads), which never touch the SLAM run: a slow or vanished
+// browser costs only its own connection (a write times out after a few seconds). An event stream holds its thread
+// while it is open, so at most kMaxEventStreams are served at once (more get 503): the other requests always have
+// threads left, whatever the number of open tabs. The port is this process's alone: a port in use, by another
+// viewer too, is an error at start (no SO_REUSEPORT sharing, which would let two processes listen on it).
+#include <atomic>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -31,6 +35,9 @@ struct ServerOptions {
 
 class ViewerServer {
  public:
+  static constexpr int kRequestThreads = 20;
+  static constexpr int kMaxEventStreams = 12;
+
   // Binds and starts serving; throws core::Error naming the address when it cannot bind.
   ViewerServer(LiveState& state, ServerOptions options);
   ~ViewerServer();
@@ -50,6 +57,7 @@ class ViewerServer {
   std::string three_js_, orbit_controls_js_;
   std::unique_ptr<httplib::Server> server_;
   int port_ = 0;
+  std::atomic<int> event_streams_{0};
   std::thread thread_;
 };
 

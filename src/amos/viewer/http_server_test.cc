@@ -5,9 +5,16 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <fstream>
 #include <thread>
 
+#include "amos/core/error.h"
 #include "amos/testing/scratch_dir.h"
 #include "amos/viewer/frame_image.h"
 
@@ -114,6 +121,61 @@ TEST(ViewerServer, EventStreamDeliversUpdatesAfterTheGivenSeq) {
   EXPECT_NE(received.find("id: 2\nevent: update\ndata: {"), std::string::npos) << received;
   EXPECT_EQ(received.find("id: 1\n"), std::string::npos) << received;
   EXPECT_NE(received.find("[9,1.0,2.0,3.0]"), std::string::npos) << received;
+}
+
+// A port in use, by another viewer too, is an error at start naming the port: no SO_REUSEPORT sharing, with which
+// the second server listened beside the first and took half of its connections.
+TEST(ViewerServer, APortInUseIsAnErrorNamingIt) {
+  const auto first = serve();
+  LiveState state;
+  ServerOptions options;
+  options.port = first->server->port();
+  try {
+    ViewerServer second(state, options);
+    FAIL() << "a second server listens on port " << options.port;
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("port " + std::to_string(options.port) + " is in use"), std::string::npos)
+        << e.what();
+  }
+}
+
+// An event stream opened by hand: the request sent, its first bytes read (it is being served), left open.
+int openEventStream(int port) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+  if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) return -1;
+  const std::string request = "GET /api/events HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
+  if (send(fd, request.data(), request.size(), 0) != static_cast<ssize_t>(request.size())) return -1;
+  char head[16];
+  if (recv(fd, head, sizeof(head), 0) <= 0) return -1;
+  return fd;
+}
+
+// Eight open tabs (event streams, each holding a request thread) do not block the other requests; beyond the
+// limit a stream is refused, not queued behind the others.
+TEST(ViewerServer, OpenEventStreamsDoNotBlockOtherRequests) {
+  const auto s = serve();
+  std::vector<int> streams;
+  for (int i = 0; i < 8; ++i) {
+    streams.push_back(openEventStream(s->server->port()));
+    ASSERT_GE(streams.back(), 0) << i;
+  }
+  auto c = s->client();
+  c.set_read_timeout(3, 0);
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = c.Get("/api/state");
+  ASSERT_TRUE(r) << "no answer with 8 event streams open";
+  EXPECT_EQ(r->status, 200);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+  for (int i = 8; i < ViewerServer::kMaxEventStreams; ++i) streams.push_back(openEventStream(s->server->port()));
+  const auto refused = c.Get("/api/events");
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 503);
+  EXPECT_EQ(c.Get("/api/state")->status, 200);
+  for (const int fd : streams) close(fd);
 }
 
 }  // namespace
