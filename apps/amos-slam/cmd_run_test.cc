@@ -124,8 +124,11 @@ TEST(RunCommand, SigintEndsARealtimeRunWaitingOutAGapAtOnce) {
   EXPECT_LT(std::chrono::steady_clock::now() - sent_at, std::chrono::seconds(20));
   ASSERT_TRUE(WIFEXITED(f.status)) << f.err;
   EXPECT_EQ(WEXITSTATUS(f.status), 130) << f.err;
-  EXPECT_EQ(poses(out / "trajectory.txt"), 5u);
-  EXPECT_EQ(poses(out / "trajectory_live.txt"), 5u);
+  // --realtime drops a frame that arrives while SLAM is busy, so a loaded machine may track fewer than five.
+  const std::size_t tracked = poses(out / "trajectory.txt");
+  EXPECT_GE(tracked, 1u);
+  EXPECT_LE(tracked, 5u);
+  EXPECT_EQ(poses(out / "trajectory_live.txt"), tracked);
   expectNoPartialFiles(out);
 }
 
