@@ -30,7 +30,7 @@ TEST(Settings, ShippedConfigsParseWithTheirCalibration) {
   EXPECT_DOUBLE_EQ(tum2.camera.fx, 520.908620);
   EXPECT_DOUBLE_EQ(tum2.camera.k3, 0.917205);
   EXPECT_DOUBLE_EQ(tum2.depth_factor, 5208.0);
-  EXPECT_EQ(tum2.orb.num_features, 1000);
+  EXPECT_EQ(tum2.orb.num_features, 2000);
   EXPECT_NEAR(tum2.closeDepthThreshold(), 40.0 * 40.0 / 520.908620, 1e-12);
   const Settings bonn = loadSettings(dir + "bonn.yaml");
   EXPECT_DOUBLE_EQ(bonn.camera.cy, 237.756098);
