@@ -229,7 +229,7 @@ namespace {
 // band's time, stacked (colour, depth, instances and incidence alike).
 RenderedImage exposeColor(const SequenceGenerator& generator, double t) {
   const std::vector<ExposureBand> bands = exposureBands(generator.options().sensor, t);
-  if (bands.size() == 1) return generator.renderExactAt(t, true, true, true);
+  if (bands.size() == 1) return generator.renderExactAt(bands[0].t, true, true, true);
   const core::CameraIntrinsics& k = generator.intrinsics();
   RenderedImage out;
   out.color = cv::Mat(k.height, k.width, CV_32FC3);
