@@ -1,5 +1,6 @@
 // amos-slam eval: ATE / RPE of an estimated TUM trajectory against ground truth, with the TUM benchmark's
-// conventions (evaluate_ate.py; evaluate_rpe.py --fixed_delta --delta 1 --delta_unit s). All work is in amos::eval.
+// conventions (evaluate_ate.py; evaluate_rpe.py --fixed_delta --delta 1 --delta_unit s), and the frame-to-frame
+// jitter (RPE over one frame, step and path lengths). All work is in amos::eval.
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -32,6 +33,17 @@ std::string statsRow(const char* name, const eval::ErrorStats& s, int decimals) 
                      cell(s.min), cell(s.max), s.count);
 }
 
+// The frame-to-frame jitter (eval/jitter.h) in one line, millimetres.
+std::string jitterLine(const eval::JitterResult& j) {
+  if (j.steps.empty()) return "jitter (1 frame): n/a (no consecutive associated poses)\n";
+  return fmt::format(
+      "jitter (1 frame): RPE trans rmse {:.2f} mm, median {:.2f} mm; rot median {:.3f} deg; step median "
+      "estimate {:.2f} mm / ground truth {:.2f} mm; path estimate {:.3f} m / ground truth {:.3f} m ({} pairs{})\n",
+      1000 * j.trans_m.rmse, 1000 * j.trans_m.median, j.rot_deg.median, 1000 * j.est_step_median_m,
+      1000 * j.gt_step_median_m, j.est_path_m, j.gt_path_m, j.steps.size(),
+      j.gaps ? fmt::format(", {} gaps left out", j.gaps) : "");
+}
+
 std::string table(const EvalArgs& args, const eval::EvaluationResult& r) {
   std::string out;
   out += fmt::format("ground truth : {} ({} poses{})\n", args.gt_file, r.gt_poses,
@@ -46,6 +58,7 @@ std::string table(const EvalArgs& args, const eval::EvaluationResult& r) {
   out += statsRow("ATE [m]", r.ate.error_m, 6);
   out += statsRow("RPE trans [m]", r.rpe.trans_m, 6);
   out += statsRow("RPE rot [deg]", r.rpe.rot_deg, 6);
+  out += "\n" + jitterLine(r.jitter);
   return out;
 }
 

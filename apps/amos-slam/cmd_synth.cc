@@ -23,6 +23,10 @@ struct SynthArgs {
   bool list = false;
   bool no_movers = false;
   bool exact = false;
+  bool no_depth_noise = false;
+  bool no_color_noise = false;
+  double depth_time_offset_ms = 0;
+  double rolling_shutter_ms = 0;
 };
 
 void listPresets() {
@@ -51,7 +55,26 @@ void addSynthCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--person-cutouts", args->options.person_cutout_dir,
                   "Folder with rgb/ and mask/ person cut-outs (e.g. ../shared/data/person_masks) worn by the people");
   cmd->add_flag("--motion-blur", args->options.sensor.motion_blur, "Average the colour over the exposure time");
-  cmd->add_flag("--exact", args->exact, "No sensor noise (depth still quantised to 1/5000 m and range-limited)");
+  cmd->add_flag("--exact", args->exact,
+                "No sensor noise (depth still quantised to 1/5000 m and range-limited): --no-depth-noise and "
+                "--no-color-noise together");
+  cmd->add_flag("--no-depth-noise", args->no_depth_noise,
+                "Exact depth (no z^2 noise, no holes; still quantised to 1/5000 m and range-limited); colour unchanged");
+  cmd->add_flag("--no-color-noise", args->no_color_noise, "Exact colour (no optical blur, no pixel noise); depth unchanged");
+  cmd->add_flag("--disparity-quantisation", args->options.sensor.disparity.enabled,
+                "Depth in the steps of a structured-light sensor's 1/8-pixel disparity (Kinect v1: baseline 7.5 cm, "
+                "f 580 px, about 2.87e-3 z^2 m)");
+  cmd->add_option("--depth-time-offset-ms", args->depth_time_offset_ms,
+                  "Take the depth image this many milliseconds after the colour image (camera and movers then; "
+                  "stamped so in depth.txt); magnitude below half a frame interval")
+      ->capture_default_str();
+  cmd->add_option("--rolling-shutter-ms", args->rolling_shutter_ms,
+                  "Rolling-shutter readout of the colour image: row r exposed at t + (r / height - 0.5) * readout "
+                  "(0 = global shutter; 20-30 ms for a Kinect-class colour sensor)")
+      ->capture_default_str();
+  cmd->add_option("--rolling-shutter-band", args->options.sensor.rolling_shutter_band_rows,
+                  "Rows rendered at one time under a rolling shutter")
+      ->capture_default_str();
   cmd->add_option("--contact-sheet", args->contact_sheet, "Write a PNG contact sheet of frames, depth and masks");
   cmd->add_option("--contact-columns", args->contact_columns, "Frames on the contact sheet")->capture_default_str();
   cmd->callback([args, &exit_code] {
@@ -63,10 +86,11 @@ void addSynthCommand(CLI::App& app, int& exit_code) {
     if (args->output.empty() && args->contact_sheet.empty())
       throw core::Error("synth: give --output DIR and/or --contact-sheet FILE.png (or --list)");
     args->options.movers = !args->no_movers;
-    if (args->exact) {
-      args->options.sensor.depth.enabled = false;
-      args->options.sensor.color.enabled = false;
-    }
+    synth::SensorOptions& sensor = args->options.sensor;
+    if (args->exact || args->no_depth_noise) sensor.depth.enabled = false;
+    if (args->exact || args->no_color_noise) sensor.color.enabled = false;
+    sensor.depth_time_offset_s = args->depth_time_offset_ms / 1000.0;
+    sensor.rolling_shutter_s = args->rolling_shutter_ms / 1000.0;
     if (!args->output.empty()) {
       const synth::SequenceSummary s = synth::renderSequence(args->options, args->output);
       spdlog::info(

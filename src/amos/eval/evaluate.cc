@@ -43,6 +43,11 @@ EvaluationResult evaluate(const std::vector<io::StampedPose>& gt, const std::vec
   rpe_options.scale = r.ate.alignment.scale;  // 1 for rigid alignment: exactly the script's default
   r.rpe = computeRpe(gt, est, rpe_options);
 
+  JitterOptions jitter_options;
+  jitter_options.association = ate_options.association;
+  jitter_options.scale = r.ate.alignment.scale;
+  r.jitter = computeJitter(gt, est, jitter_options);
+
   const ErrorStats& a = r.ate.error_m;
   r.ate_rmse_m = a.rmse;
   r.ate_mean_m = a.mean;
@@ -87,6 +92,17 @@ nlohmann::json toJson(const EvaluationResult& r) {
                     {"scale", r.alignment.scale},
                     {"rotation", {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2)}},
                     {"translation", {t.x(), t.y(), t.z()}}};
+  const JitterResult& jt = r.jitter;
+  j["jitter"] = {{"rpe1_trans_rmse_m", number(jt.trans_m.rmse)},
+                 {"rpe1_trans_median_m", number(jt.trans_m.median)},
+                 {"rpe1_rot_rmse_deg", number(jt.rot_deg.rmse)},
+                 {"rpe1_rot_median_deg", number(jt.rot_deg.median)},
+                 {"gt_step_median_m", number(jt.gt_step_median_m)},
+                 {"est_step_median_m", number(jt.est_step_median_m)},
+                 {"est_path_m", number(jt.est_path_m)},
+                 {"gt_path_m", number(jt.gt_path_m)},
+                 {"pairs", jt.steps.size()},
+                 {"gaps", jt.gaps}};
   return j;
 }
 

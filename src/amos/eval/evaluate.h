@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "amos/eval/ate.h"
+#include "amos/eval/jitter.h"
 #include "amos/eval/rpe.h"
 #include "amos/io/trajectory.h"
 
@@ -42,6 +43,7 @@ struct EvaluationResult {
   // Details: per-pair ATE errors and positions, RPE pairs and full statistics.
   AteResult ate;
   RpeResult rpe;
+  JitterResult jitter;  // RPE over one frame, step lengths and path lengths (jitter.h)
 };
 
 // Throws core::Error when either trajectory is empty, or fewer than two estimated poses associate with ground truth.
@@ -51,7 +53,8 @@ EvaluationResult evaluate(const std::vector<io::StampedPose>& gt, const std::vec
 // Keys: ate_rmse_m ate_mean_m ate_median_m ate_std_m ate_min_m ate_max_m ate_pairs rpe_trans_rmse_m
 // rpe_trans_mean_m rpe_trans_median_m rpe_trans_max_m rpe_rot_rmse_deg rpe_rot_mean_deg rpe_rot_median_deg
 // rpe_rot_max_deg rpe_pairs rpe_delta_s gt_poses est_poses alignment{type, scale, rotation (row-major 3x3),
-// translation}. NaN values become null.
+// translation} jitter{rpe1_trans_rmse_m, rpe1_trans_median_m, rpe1_rot_rmse_deg, rpe1_rot_median_deg,
+// gt_step_median_m, est_step_median_m, est_path_m, gt_path_m, pairs, gaps}. NaN values become null.
 nlohmann::json toJson(const EvaluationResult& result);
 
 }  // namespace amos::eval

@@ -134,8 +134,12 @@ Renderer::Renderer(const core::CameraIntrinsics& intrinsics, const RenderOptions
 }
 
 RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, const TextureBank& textures,
-                               const Lighting& lighting, const core::SE3& T_cw, bool with_color) const {
-  const int W = intr_.width, H = intr_.height;
+                               const Lighting& lighting, const core::SE3& T_cw, bool with_color,
+                               const RowBand& band) const {
+  const int W = intr_.width;
+  const int row0 = band.begin, row1 = band.end < 0 ? intr_.height : band.end;  // rows [row0, row1)
+  core::require(row0 >= 0 && row0 < row1 && row1 <= intr_.height, "synth renderer: row band outside the image");
+  const int H = row1 - row0;  // rows rendered; buffers and outputs are indexed by y - row0
   const double near = options_.near_m;
   const Eigen::Matrix3d R = T_cw.linear();
 
@@ -213,8 +217,8 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
         vmin = std::min(vmin, pv[i]);
         vmax = std::max(vmax, pv[i]);
       }
-      const int y0 = std::max(0, static_cast<int>(std::floor(vmin)) - 1);
-      const int y1 = std::min(H - 1, static_cast<int>(std::ceil(vmax)) + 1);
+      const int y0 = std::max(row0, static_cast<int>(std::floor(vmin)) - 1);
+      const int y1 = std::min(row1 - 1, static_cast<int>(std::ceil(vmax)) + 1);
       const Texture* alpha_tex =
           p.surface->alpha_test && p.surface->texture >= 0 ? &textures[p.surface->texture] : nullptr;
       for (int y = y0; y <= y1; ++y) {
@@ -240,8 +244,8 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
         const int x1 = std::min(W - 1, static_cast<int>(std::ceil(xr)) + 1);
         const double ry = ray_y_[static_cast<std::size_t>(y)];
         const double ny = p.n.y() * ry + p.n.z(), uy = p.du.y() * ry + p.du.z(), vy = p.dv.y() * ry + p.dv.z();
-        float* zrow = zbuf.data() + static_cast<std::size_t>(y) * W;
-        int* idrow = idbuf.data() + static_cast<std::size_t>(y) * W;
+        float* zrow = zbuf.data() + static_cast<std::size_t>(y - row0) * W;
+        int* idrow = idbuf.data() + static_cast<std::size_t>(y - row0) * W;
         for (int x = x0; x <= x1; ++x) {
           const double rx = ray_x_[static_cast<std::size_t>(x)];
           const double denom = p.n.x() * rx + ny;
@@ -271,7 +275,7 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
         for (double b : {-1.0, 1.0})
           for (double c : {-1.0, 1.0}) box.push_back(p.o + p.radius * Vector3d(a, b, c));
     }
-    int x0 = 0, x1 = W - 1, y0 = 0, y1 = H - 1;
+    int x0 = 0, x1 = W - 1, y0 = row0, y1 = row1 - 1;
     bool any_in_front = false, all_in_front = true;
     for (const Vector3d& c : box) {
       any_in_front |= c.z() > near;
@@ -289,12 +293,12 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
       }
       x0 = std::max(0, static_cast<int>(std::floor(umin)) - 1);
       x1 = std::min(W - 1, static_cast<int>(std::ceil(umax)) + 1);
-      y0 = std::max(0, static_cast<int>(std::floor(vmin)) - 1);
-      y1 = std::min(H - 1, static_cast<int>(std::ceil(vmax)) + 1);
+      y0 = std::max(row0, static_cast<int>(std::floor(vmin)) - 1);
+      y1 = std::min(row1 - 1, static_cast<int>(std::ceil(vmax)) + 1);
     }
     for (int y = y0; y <= y1; ++y) {
-      float* zrow = zbuf.data() + static_cast<std::size_t>(y) * W;
-      int* idrow = idbuf.data() + static_cast<std::size_t>(y) * W;
+      float* zrow = zbuf.data() + static_cast<std::size_t>(y - row0) * W;
+      int* idrow = idbuf.data() + static_cast<std::size_t>(y - row0) * W;
       for (int x = x0; x <= x1; ++x) {
         const Vector3d d(ray_x_[static_cast<std::size_t>(x)], ray_y_[static_cast<std::size_t>(y)], 1.0);
         const double t = p.kind == Kind::kCylinder ? hitCylinder(p, d, near) : hitSphere(p, d, near);
@@ -323,13 +327,13 @@ RenderedImage Renderer::render(const std::vector<const SceneGeometry*>& parts, c
   }
   const double f_mean = std::sqrt(intr_.fx * intr_.fy);
 
-  for (int y = 0; y < H; ++y) {
-    float* zrow = out.depth.ptr<float>(y);
-    std::uint16_t* irow = out.instance.ptr<std::uint16_t>(y);
-    float* crow = out.incidence.ptr<float>(y);
-    cv::Vec3f* colrow = with_color ? out.color.ptr<cv::Vec3f>(y) : nullptr;
+  for (int y = row0; y < row1; ++y) {
+    float* zrow = out.depth.ptr<float>(y - row0);
+    std::uint16_t* irow = out.instance.ptr<std::uint16_t>(y - row0);
+    float* crow = out.incidence.ptr<float>(y - row0);
+    cv::Vec3f* colrow = with_color ? out.color.ptr<cv::Vec3f>(y - row0) : nullptr;
     for (int x = 0; x < W; ++x) {
-      const std::size_t k = static_cast<std::size_t>(y) * W + x;
+      const std::size_t k = static_cast<std::size_t>(y - row0) * W + x;
       const int id = idbuf[k];
       if (id < 0) continue;
       const Prepared& p = prims[static_cast<std::size_t>(id)];

@@ -31,6 +31,12 @@ struct RenderOptions {
   void check() const;
 };
 
+// Image rows [begin, end) (end < 0: to the last row); a renderer given a band renders only those rows.
+struct RowBand {
+  int begin = 0;
+  int end = -1;
+};
+
 struct RenderedImage {
   cv::Mat color;      // CV_32FC3, B G R in 0..255 (not clamped); empty when not asked for
   cv::Mat depth;      // CV_32F, z along the optical axis in metres; 0 where no surface was hit
@@ -43,8 +49,11 @@ class Renderer {
   explicit Renderer(const core::CameraIntrinsics& intrinsics, const RenderOptions& options = {});
 
   // Renders the union of `parts` seen from the camera pose T_cw. Textures are needed only with `with_color`.
+  // With a band, only its rows are rendered and the images hold just them (their row 0 is image row
+  // band.begin), each pixel exactly as in the whole image: a rolling shutter renders the image band by band.
   RenderedImage render(const std::vector<const SceneGeometry*>& parts, const TextureBank& textures,
-                       const Lighting& lighting, const core::SE3& T_cw, bool with_color = true) const;
+                       const Lighting& lighting, const core::SE3& T_cw, bool with_color = true,
+                       const RowBand& band = {}) const;
 
   const core::CameraIntrinsics& intrinsics() const { return intr_; }
 

@@ -1,5 +1,6 @@
 #include "amos/synth/sensor_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -19,6 +20,17 @@ void DepthNoiseOptions::check() const {
   core::require(edge_jump_m > 0 && edge_jump_relative >= 0, "synth.sensor.depth.edge_jump_m must be > 0");
 }
 
+void DisparityQuantisationOptions::check() const {
+  core::require(baseline_m > 0 && focal_px > 0 && subpixel > 0,
+                "synth.sensor.disparity.baseline_m, focal_px and subpixel must be > 0");
+}
+
+double DisparityQuantisationOptions::quantise(double z) const {
+  const double fb = focal_px * baseline_m;
+  const double steps = std::max(1.0, std::round(fb / z * subpixel));
+  return fb * subpixel / steps;
+}
+
 void ColorNoiseOptions::check() const {
   core::require(sigma >= 0, "synth.sensor.color.sigma must be >= 0");
   core::require(blur_sigma_px >= 0 && blur_sigma_px < 5, "synth.sensor.color.blur_sigma_px must be in [0, 5)");
@@ -30,8 +42,27 @@ void SensorOptions::check() const {
   core::require(exposure_s >= 0 && exposure_s < 1 / fps, "synth.sensor.exposure_s must be in [0, 1 / fps)");
   core::require(motion_blur_samples >= 1 && motion_blur_samples <= 64,
                 "synth.sensor.motion_blur_samples must be in [1, 64]");
+  core::require(std::abs(depth_time_offset_s) < 0.5 / fps,
+                "synth.sensor.depth_time_offset_s must be below half a frame interval (0.5 / fps) in magnitude");
+  core::require(rolling_shutter_s >= 0 && rolling_shutter_s <= 1 / fps,
+                "synth.sensor.rolling_shutter_s must be in [0, 1 / fps]");
+  core::require(rolling_shutter_band_rows >= 1 && rolling_shutter_band_rows <= intrinsics.height,
+                "synth.sensor.rolling_shutter_band_rows must be in [1, image height]");
   depth.check();
+  disparity.check();
   color.check();
+}
+
+std::vector<ExposureBand> exposureBands(const SensorOptions& o, double t) {
+  const int H = o.intrinsics.height;
+  if (o.rolling_shutter_s <= 0) return {{0, H, t}};
+  std::vector<ExposureBand> bands;
+  for (int begin = 0; begin < H; begin += o.rolling_shutter_band_rows) {
+    const int end = std::min(H, begin + o.rolling_shutter_band_rows);
+    const double middle_row = 0.5 * (begin + end - 1);
+    bands.push_back({begin, end, t + (middle_row / H - 0.5) * o.rolling_shutter_s});
+  }
+  return bands;
 }
 
 core::CameraIntrinsics SensorOptions::tumFr3Intrinsics() {
@@ -90,6 +121,7 @@ cv::Mat SensorModel::measureDepth(const cv::Mat& exact, const cv::Mat& incidence
         if (u > 1 - o.dropout_probability) continue;
         zm = zt + depthSigma(o, zt) * gaussian_[bits];
       }
+      if (options_.disparity.enabled && zm > 0) zm = options_.disparity.quantise(zm);
       const long v = std::lround(zm * o.depth_factor);
       if (v > 0 && v < 65536) d[x] = static_cast<std::uint16_t>(v);
     }

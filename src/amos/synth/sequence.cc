@@ -209,15 +209,45 @@ std::vector<std::uint16_t> SequenceGenerator::movingInstances(double t) const {
 }
 
 RenderedImage SequenceGenerator::renderExact(int index, bool with_static, bool with_movers, bool with_color) const {
+  return renderExactAt(time(index), with_static, with_movers, with_color);
+}
+
+RenderedImage SequenceGenerator::renderExactAt(double t, bool with_static, bool with_movers, bool with_color,
+                                               const RowBand& band) const {
   const Impl& m = *impl_;
-  const double t = time(index);
   const core::SE3 T_wc = m.path->poseWc(t);
   const SceneGeometry dynamic = m.moverGeometry(t, T_wc.translation());
   std::vector<const SceneGeometry*> parts;
   if (with_static) parts.push_back(&m.room.geometry);
   if (with_movers) parts.push_back(&dynamic);
-  return m.renderer->render(parts, m.textures, m.room.lighting, T_wc.inverse(), with_color);
+  return m.renderer->render(parts, m.textures, m.room.lighting, T_wc.inverse(), with_color, band);
 }
+
+namespace {
+
+// The colour image exposed at time t: one render, or under a rolling shutter one render per row band, each at its
+// band's time, stacked (colour, depth, instances and incidence alike).
+RenderedImage exposeColor(const SequenceGenerator& generator, double t) {
+  const std::vector<ExposureBand> bands = exposureBands(generator.options().sensor, t);
+  if (bands.size() == 1) return generator.renderExactAt(bands[0].t, true, true, true);
+  const core::CameraIntrinsics& k = generator.intrinsics();
+  RenderedImage out;
+  out.color = cv::Mat(k.height, k.width, CV_32FC3);
+  out.depth = cv::Mat(k.height, k.width, CV_32F);
+  out.instance = cv::Mat(k.height, k.width, CV_16U);
+  out.incidence = cv::Mat(k.height, k.width, CV_32F);
+  for (const ExposureBand& b : bands) {
+    const RenderedImage part = generator.renderExactAt(b.t, true, true, true, {b.begin, b.end});
+    const cv::Range rows(b.begin, b.end);
+    part.color.copyTo(out.color.rowRange(rows));
+    part.depth.copyTo(out.depth.rowRange(rows));
+    part.instance.copyTo(out.instance.rowRange(rows));
+    part.incidence.copyTo(out.incidence.rowRange(rows));
+  }
+  return out;
+}
+
+}  // namespace
 
 SyntheticFrame SequenceGenerator::render(int index) const {
   core::require(index >= 0 && index < impl_->frames, "synth: frame index out of range");
@@ -226,27 +256,30 @@ SyntheticFrame SequenceGenerator::render(int index) const {
   SyntheticFrame f;
   f.index = index;
   f.timestamp = timestamp(index);
+  f.depth_timestamp = f.timestamp + so.depth_time_offset_s;
   const double t = time(index);
   f.T_wc = m.path->poseWc(t);
-  RenderedImage img = renderExact(index, true, true, true);
+  RenderedImage img = exposeColor(*this, t);
   if (so.motion_blur && so.motion_blur_samples > 1 && so.exposure_s > 0) {
     // Average the colour over the exposure; depth and masks stay at mid-exposure (the time stamp).
     cv::Mat sum = img.color.clone();
     for (int i = 0; i < so.motion_blur_samples; ++i) {
       const double ts = t + so.exposure_s * (i / (so.motion_blur_samples - 1.0) - 0.5);
       if (std::abs(ts - t) < 1e-12) continue;
-      const core::SE3 T_wc = m.path->poseWc(ts);
-      const SceneGeometry dynamic = m.moverGeometry(ts, T_wc.translation());
-      sum += m.renderer->render({&m.room.geometry, &dynamic}, m.textures, m.room.lighting, T_wc.inverse(), true).color;
+      sum += exposeColor(*this, ts).color;
     }
     const int used = so.motion_blur_samples % 2 == 1 ? so.motion_blur_samples : so.motion_blur_samples + 1;
     img.color = sum / used;
   }
+  // Depth: a global-shutter image at t + offset; the colour render's own when that is the same image.
+  const RenderedImage depth_img =
+      so.timingEffects() ? renderExactAt(t + so.depth_time_offset_s, true, true, false) : RenderedImage{};
+  const RenderedImage& depth_source = so.timingEffects() ? depth_img : img;
   Random rng(deriveSeed(m.options.seed, Stream::kSensor, static_cast<std::uint64_t>(index)));
   f.bgr = m.sensor->measureColor(img.color, rng);
-  f.depth_raw = m.sensor->measureDepth(img.depth, img.incidence, rng);
+  f.depth_raw = m.sensor->measureDepth(depth_source.depth, depth_source.incidence, rng);
   f.depth_raw.convertTo(f.depth, CV_32F, 1.0 / so.depth.depth_factor);
-  f.exact_depth = img.depth;
+  f.exact_depth = depth_source.depth;
   f.mask = img.instance;
   f.moving = movingInstances(t);
   if (m.preset->coveredAt(t)) {  // a hand over the lens: no light, no infrared pattern

@@ -30,13 +30,16 @@ struct SequenceOptions {
 
 struct SyntheticFrame {
   int index = 0;
-  double timestamp = 0;
-  core::SE3 T_wc = core::SE3::Identity();  // ground truth, camera to world
+  double timestamp = 0;                    // the colour image's (mid-exposure) time stamp
+  double depth_timestamp = 0;              // the depth image's: timestamp + sensor.depth_time_offset_s
+  core::SE3 T_wc = core::SE3::Identity();  // ground truth at `timestamp`, camera to world
   cv::Mat bgr;                             // CV_8UC3, as written to rgb/
   cv::Mat depth_raw;                       // CV_16U, as written to depth/ (metres * depth_factor, 0 = no reading)
   cv::Mat depth;                           // CV_32F metres (depth_raw / depth_factor, 0 = no reading)
-  cv::Mat exact_depth;                     // CV_32F metres, the scene's true depth before the sensor model
-  cv::Mat mask;                            // CV_16U instance ids as written to masks/ (0 = static)
+  cv::Mat exact_depth;                     // CV_32F metres, the scene's true depth (at depth_timestamp) before
+                                           //   the sensor model
+  cv::Mat mask;                            // CV_16U instance ids as written to masks/ (0 = static), of the
+                                           //   colour image (row by row under a rolling shutter)
   std::vector<std::uint16_t> moving;       // instances moving at this instant (> 1 mm over the last 0.1 s)
 };
 
@@ -58,8 +61,12 @@ class SequenceGenerator {
 
   // The frame as the sensor delivers it, with its ground truth.
   SyntheticFrame render(int index) const;
-  // Exact render (no sensor model) with only the chosen layers, e.g. the movers alone, for tests.
+  // Exact render (no sensor model) with only the chosen layers, e.g. the movers alone, for tests: a global
+  // shutter image of frame `index` at its time stamp, or at any time t (seconds since the first frame; the
+  // camera path and the movers at t), optionally only the rows of `band`.
   RenderedImage renderExact(int index, bool with_static, bool with_movers, bool with_color) const;
+  RenderedImage renderExactAt(double t, bool with_static, bool with_movers, bool with_color,
+                              const RowBand& band = {}) const;
   // The movers' geometry at time t seen from camera_position_w (for tests and tools).
   SceneGeometry moverGeometry(double t, const Eigen::Vector3d& camera_position_w) const;
   std::vector<std::uint16_t> movingInstances(double t) const;

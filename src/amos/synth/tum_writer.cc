@@ -45,13 +45,14 @@ TumWriter::TumWriter(const std::string& output_dir, const SequenceGenerator& gen
 
 void TumWriter::add(const SyntheticFrame& f) {
   const std::string stamp = formatTimestamp(f.timestamp);
+  const std::string depth_stamp = formatTimestamp(f.depth_timestamp);  // differs with a depth time offset
   writePng((fs::path(dir_) / "rgb" / (stamp + ".png")).string(), f.bgr);
-  writePng((fs::path(dir_) / "depth" / (stamp + ".png")).string(), f.depth_raw);
+  writePng((fs::path(dir_) / "depth" / (depth_stamp + ".png")).string(), f.depth_raw);
   writePng((fs::path(dir_) / "masks" / (stamp + ".png")).string(), f.mask);
   rgb_ << stamp << " rgb/" << stamp << ".png\n";
-  depth_ << stamp << " depth/" << stamp << ".png\n";
+  depth_ << depth_stamp << " depth/" << depth_stamp << ".png\n";
   masks_ << stamp << " masks/" << stamp << ".png\n";
-  assoc_ << stamp << " rgb/" << stamp << ".png " << stamp << " depth/" << stamp << ".png\n";
+  assoc_ << stamp << " rgb/" << stamp << ".png " << depth_stamp << " depth/" << depth_stamp << ".png\n";
   const Eigen::Quaterniond q(f.T_wc.linear());
   const Eigen::Vector3d t = f.T_wc.translation();
   gt_ << stamp
@@ -98,6 +99,20 @@ void TumWriter::finish() {
         {"max_range_m", o.sensor.depth.max_range_m}}},
       {"motion_blur", o.sensor.motion_blur},
       {"mask_convention", "masks/*.png 16-bit: 0 = static scene, otherwise the instance id"}};
+  // The sensor effects one by one, written only when one of the later switches is used (colour and depth noise
+  // apart, disparity steps, timing), so that the sequences rendered before them keep their bytes.
+  const SensorOptions& so = o.sensor;
+  if (so.color.enabled != so.depth.enabled || so.disparity.enabled || so.timingEffects()) {
+    j["sequence"]["sensor_effects"] = {
+        {"depth_noise", so.depth.enabled},
+        {"color_noise", so.color.enabled},
+        {"disparity_quantisation", so.disparity.enabled},
+        {"depth_time_offset_s", so.depth_time_offset_s},
+        {"rolling_shutter_s", so.rolling_shutter_s},
+        {"rolling_shutter_band_rows", so.rolling_shutter_band_rows},
+        {"motion_blur", so.motion_blur},
+        {"ground_truth", "camera pose at the colour image's time stamp (mid-exposure; middle row)"}};
+  }
   std::ofstream out(fs::path(dir_) / "instances.json");
   core::require(out.good(), "synth: cannot write instances.json in " + dir_);
   out << j.dump(2) << "\n";

@@ -25,7 +25,8 @@ nlohmann::json positions(const std::vector<double>& stamps, const std::vector<Ei
 // Keys: run{...stats summary}, settings{file, text, options}, frames{index, t, state, extract_ms, build_ms,
 // track_ms, frame_ms, keypoints, removed, removed_fraction}, trajectory [[t,x,y,z]] (aligned to the ground truth
 // when there is one), ground_truth [[t,x,y,z]] (the associated poses), ate{t, error_m}, rpe{t, trans_m, rot_deg},
-// evaluation (eval::toJson), overlays [{index, t, jpeg (base64)}], stats (stats.json).
+// steps{t, est_m, gt_m, error_m} (frame-to-frame steps and their RPE, eval/jitter.h), evaluation (eval::toJson),
+// overlays [{index, t, jpeg (base64)}], stats (stats.json).
 nlohmann::json reportData(const ReportRecorder& recorder, const ReportInputs& inputs) {
   nlohmann::json d;
   d["stats"] = inputs.stats;
@@ -61,6 +62,15 @@ nlohmann::json reportData(const ReportRecorder& recorder, const ReportInputs& in
       rpe["rot_deg"].push_back(number(p.rot_error_rad * 180.0 / M_PI));
     }
     d["rpe"] = std::move(rpe);
+    nlohmann::json steps = {{"t", nlohmann::json::array()}, {"est_m", nlohmann::json::array()},
+                            {"gt_m", nlohmann::json::array()}, {"error_m", nlohmann::json::array()}};
+    for (const eval::JitterStep& s : e->jitter.steps) {
+      steps["t"].push_back(s.est_stamp_1);
+      steps["est_m"].push_back(number(s.est_step_m));
+      steps["gt_m"].push_back(number(s.gt_step_m));
+      steps["error_m"].push_back(number(s.trans_error_m));
+    }
+    d["steps"] = std::move(steps);
   } else {
     nlohmann::json t = nlohmann::json::array();
     for (const io::StampedPose& p : recorder.trajectory()) {

@@ -70,6 +70,9 @@ TEST(ReportHtml, HoldsTheRunAsParsableJsonAndNeedsNoNetwork) {
   EXPECT_EQ(d["ground_truth"].size(), 30u);
   EXPECT_EQ(d["ate"]["error_m"].size(), 30u);
   EXPECT_FALSE(d["rpe"]["t"].empty());
+  EXPECT_EQ(d["steps"]["est_m"].size(), 29u);  // frame-to-frame steps (eval/jitter.h)
+  EXPECT_NEAR(d["steps"]["gt_m"][0].get<double>(), std::hypot(0.05, 0.01 * std::sin(1.0), 0.02), 1e-12);
+  EXPECT_TRUE(d["evaluation"]["jitter"].contains("rpe1_trans_rmse_m"));
   EXPECT_EQ(d["settings"]["text"], inputs.settings_text);
   ASSERT_EQ(d["overlays"].size(), 2u);
   // The embedded overlay is a JPEG of the frame's size.
