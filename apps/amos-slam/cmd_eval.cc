@@ -33,16 +33,6 @@ std::string statsRow(const char* name, const eval::ErrorStats& s, int decimals) 
                      cell(s.min), cell(s.max), s.count);
 }
 
-// The frame-to-frame jitter (eval/jitter.h) in one line, millimetres.
-std::string jitterLine(const eval::JitterResult& j) {
-  if (j.steps.empty()) return "jitter (1 frame): n/a (no consecutive associated poses)\n";
-  return fmt::format(
-      "jitter (1 frame): RPE trans rmse {:.2f} mm, median {:.2f} mm; rot median {:.3f} deg; step median "
-      "estimate {:.2f} mm / ground truth {:.2f} mm; path estimate {:.3f} m / ground truth {:.3f} m ({} pairs{})\n",
-      1000 * j.trans_m.rmse, 1000 * j.trans_m.median, j.rot_deg.median, 1000 * j.est_step_median_m,
-      1000 * j.gt_step_median_m, j.est_path_m, j.gt_path_m, j.steps.size(),
-      j.gaps ? fmt::format(", {} gaps left out", j.gaps) : "");
-}
 
 std::string table(const EvalArgs& args, const eval::EvaluationResult& r) {
   std::string out;
@@ -58,7 +48,7 @@ std::string table(const EvalArgs& args, const eval::EvaluationResult& r) {
   out += statsRow("ATE [m]", r.ate.error_m, 6);
   out += statsRow("RPE trans [m]", r.rpe.trans_m, 6);
   out += statsRow("RPE rot [deg]", r.rpe.rot_deg, 6);
-  out += "\n" + jitterLine(r.jitter);
+  out += "\n" + eval::jitterLine(r.jitter);
   return out;
 }
 

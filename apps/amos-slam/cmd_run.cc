@@ -34,6 +34,7 @@
 
 #include "amos/config/settings.h"
 #include "amos/config/settings_writer.h"
+#include "amos/eval/jitter.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
 #include "amos/core/stop_request.h"
@@ -184,7 +185,7 @@ void printSummary(const run::SequenceRunResult& r, const std::string& output) {
       std::cout << fmt::format("  RPE(1 s) {:.4f} m  {:.3f} deg ({} pairs)", e.rpe_trans_rmse_m, e.rpe_rot_rmse_deg,
                                e.rpe_pairs);
     }
-    std::cout << "\n";
+    std::cout << "\n" << eval::jitterLine(e.jitter);
   }
   if (r.info.mask_accuracy) {
     const auto& m = *r.info.mask_accuracy;

@@ -1,5 +1,7 @@
 #include "amos/eval/jitter.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -61,6 +63,16 @@ JitterResult computeJitter(const std::vector<io::StampedPose>& gt_raw, const std
   r.est_step_median_m = computeErrorStats(est_steps).median;
   r.gt_step_median_m = computeErrorStats(gt_steps).median;
   return r;
+}
+
+std::string jitterLine(const JitterResult& j) {
+  if (j.steps.empty()) return "jitter (1 frame): n/a (no consecutive associated poses)\n";
+  return fmt::format(
+      "jitter (1 frame): RPE trans rmse {:.2f} mm, median {:.2f} mm; rot median {:.3f} deg; step median "
+      "estimate {:.2f} mm / ground truth {:.2f} mm; path estimate {:.3f} m / ground truth {:.3f} m ({} pairs{})\n",
+      1000 * j.trans_m.rmse, 1000 * j.trans_m.median, j.rot_deg.median, 1000 * j.est_step_median_m,
+      1000 * j.gt_step_median_m, j.est_path_m, j.gt_path_m, j.steps.size(),
+      j.gaps ? fmt::format(", {} gaps left out", j.gaps) : "");
 }
 
 }  // namespace amos::eval

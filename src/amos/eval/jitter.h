@@ -11,6 +11,7 @@
 // No alignment: RPE is invariant to a rigid change of the world frame; with Sim(3) the estimate's steps are
 // multiplied by the alignment's scale.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "amos/eval/associate.h"
@@ -44,5 +45,8 @@ struct JitterResult {
 // statistics), not an error.
 JitterResult computeJitter(const std::vector<io::StampedPose>& gt, const std::vector<io::StampedPose>& est,
                            const JitterOptions& options = {});
+
+// The figures in one line (millimetres and degrees), ending in a newline: `amos-slam eval` and `run` print it.
+std::string jitterLine(const JitterResult& j);
 
 }  // namespace amos::eval

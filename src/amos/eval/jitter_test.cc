@@ -41,6 +41,18 @@ TEST(Jitter, AlternatingOffsetsGiveTwiceTheirSizePerFrame) {
   EXPECT_NEAR(r.est_path_m, 100 * est_step, 1e-9);
 }
 
+TEST(Jitter, OneLineGivesTheFiguresInMillimetres) {
+  const std::vector<io::StampedPose> gt = straightLine(11, 0.002);
+  std::vector<io::StampedPose> est = gt;
+  for (std::size_t k = 0; k < est.size(); ++k) est[k].T_wc.translation().y() += (k % 2 == 0 ? 0.001 : -0.001);
+  const std::string line = jitterLine(computeJitter(gt, est));
+  EXPECT_NE(line.find("RPE trans rmse 2.00 mm, median 2.00 mm"), std::string::npos) << line;
+  EXPECT_NE(line.find("ground truth 2.00 mm"), std::string::npos) << line;
+  EXPECT_NE(line.find("(10 pairs)"), std::string::npos) << line;
+  EXPECT_EQ(line.back(), '\n');
+  EXPECT_NE(jitterLine(computeJitter(gt, {})).find("n/a"), std::string::npos);
+}
+
 TEST(Jitter, AlternatingRotationGivesTwiceItsAngle) {
   const double theta = 0.1 * M_PI / 180;  // +-0.1 deg about the optical axis
   const std::vector<io::StampedPose> gt = straightLine(60, 0.003);
