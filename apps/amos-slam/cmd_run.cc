@@ -371,7 +371,7 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                 "else). Without it such a folder is refused; a folder without a manifest is never emptied");
   cmd->add_option("--mode", args->mode, "Dynamic front end: none (plain SLAM) | prior (person masks) | geometry (superpixel clusters + epipolar) | full (both, default)")
       ->check(CLI::IsMember({"none", "prior", "geometry", "full"}));
-  cmd->add_option("--models", args->models, "Folder with the segmentation models");
+  cmd->add_option("--models", args->models, "Folder with the segmentation models and the place vocabulary (Place.vocabulary is looked for here first)");
   cmd->add_flag("--deterministic", args->deterministic,
                 "Bit-identical runs: local mapping in lock-step with tracking");
   cmd->add_flag("--strict", args->strict,

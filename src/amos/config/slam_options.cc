@@ -16,7 +16,7 @@ namespace amos::config {
 
 namespace fs = std::filesystem;
 
-system::SlamOptions slamOptionsFromSettings(const Settings& settings, bool deterministic) {
+system::SlamOptions slamOptionsFromSettings(const Settings& settings, bool deterministic, const std::string& models_dir) {
   system::SlamOptions o;
   o.camera = settings.camera;
   o.sensor.bf = settings.bf;
@@ -27,16 +27,18 @@ system::SlamOptions slamOptionsFromSettings(const Settings& settings, bool deter
   o.loop = settings.loop;
   o.covisibility = settings.covisibility;
   o.deterministic = deterministic;
-  o.vocabulary = loadPlaceVocabulary(settings);
+  o.vocabulary = loadPlaceVocabulary(settings, models_dir);
   return o;
 }
 
-std::shared_ptr<const place::Vocabulary> loadPlaceVocabulary(const Settings& settings) {
+std::shared_ptr<const place::Vocabulary> loadPlaceVocabulary(const Settings& settings, const std::string& models_dir) {
   const std::string& name = settings.place_vocabulary;
   if (name.empty()) return nullptr;
   std::vector<std::string> tried{name};
   if (!fs::exists(name)) {
     std::vector<std::string> dirs;
+    if (!models_dir.empty()) dirs.push_back(models_dir);
+    if (!settings.segmentation.models_dir.empty()) dirs.push_back(settings.segmentation.models_dir);
     if (const char* env = std::getenv("AMOS_MODELS"); env != nullptr && *env != 0) dirs.emplace_back(env);
     dirs.emplace_back("./models");
     dirs.emplace_back("../shared/models");

@@ -153,7 +153,7 @@ void checkSettingsFitTheInput(const io::SequenceIndex& index, const config::Sett
 }
 
 std::unique_ptr<system::SlamSystem> makeSlam(const config::Settings& settings, const SequenceRunOptions& options) {
-  system::SlamOptions slam_options = config::slamOptionsFromSettings(settings, options.deterministic);
+  system::SlamOptions slam_options = config::slamOptionsFromSettings(settings, options.deterministic, options.models_dir);
   slam_options.after_keyframe = options.after_keyframe;
   slam_options.tracking.localization_only = options.localize;
   core::require(!options.localize || !options.load_map.empty(),
