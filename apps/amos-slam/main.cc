@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::stderr_color_mt("amos"));
   CLI::App app{"Amos-SLAM: RGB-D SLAM for scenes with moving people and objects"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("amos-slam ") + AMOS_VERSION, "Print the version and exit");
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
   int exit_code = 0;
