@@ -226,7 +226,8 @@ void addSegmentCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--models", args->models,
                   "Folder with the ONNX models (else Segmentation.modelsDir, $AMOS_MODELS, ./models, "
                   "../shared/models)");
-  cmd->add_option("--settings", args->settings, "Settings YAML (for Segmentation.modelsDir)");
+  cmd->add_option("--config,--settings", args->settings,
+                  "Settings file (configs/*.yaml), for Segmentation.modelsDir (--settings: its former name)");
   cmd->add_option("--backend", args->segmenter.backend, "Segmentation backend")->capture_default_str();
   cmd->add_option("--input-size", args->segmenter.input_size, "Detector input size: 320 or 416")
       ->capture_default_str();
