@@ -215,7 +215,7 @@ TEST(ViewCommand, ServesAFinishedRunAndNothingOutsideIt) {
   std::ofstream(root / "secret.txt") << "SECRET";
   std::vector<std::pair<std::string, int>> answers;
   nlohmann::json state;
-  const Finished f = runChild({"view", run.string(), "--port", "0"}, root / "stdout",
+  const Finished f = runChild({"view", run.string(), "--viewer-port", "0"}, root / "stdout",
                               [&](const std::string& line, pid_t pid) {
     const auto port = viewerPort(line);
     if (!port) return;

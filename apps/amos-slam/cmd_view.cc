@@ -46,8 +46,9 @@ void addViewCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<ViewArgs>();
   auto* cmd = app.add_subcommand("view", "Serve the viewer's page for a finished run's output folder (until Ctrl-C)");
   cmd->add_option("folder", args->folder, "Output folder of `amos-slam run`")->required()->check(CLI::ExistingDirectory);
-  cmd->add_option("--port", args->port, "Port (default 8090; 0 = any free port)")->check(portNumber());
-  cmd->add_option("--bind", args->bind, "Address to listen on (default 127.0.0.1, this machine only)");
+  // Named as run's viewer flags; --port and --bind are their former names.
+  cmd->add_option("--viewer-port,--port", args->port, "Port (default 8090; 0 = any free port)")->check(portNumber());
+  cmd->add_option("--viewer-bind,--bind", args->bind, "Address to listen on (default 127.0.0.1, this machine only)");
   cmd->callback([args, &exit_code] {
     viewRun(*args);
     exit_code = 0;
