@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "amos/core/error.h"
+#include "amos/core/pose.h"
 
 namespace amos::eval {
 
@@ -49,7 +50,7 @@ JitterResult computeJitter(const std::vector<io::StampedPose>& gt_raw, const std
     s.est_step_m = est_motion.translation().norm();
     s.gt_step_m = gt_motion.translation().norm();
     s.trans_error_m = error.translation().norm();
-    s.rot_error_rad = std::acos(std::clamp((error.linear().trace() - 1.0) / 2.0, -1.0, 1.0));
+    s.rot_error_rad = core::rotationAngle(error);
     trans.push_back(s.trans_error_m);
     rot_deg.push_back(s.rot_error_rad * 180.0 / M_PI);
     est_steps.push_back(s.est_step_m);

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "amos/core/error.h"
+#include "amos/core/pose.h"
 #include "amos/eval/associate.h"
 
 namespace amos::eval {
@@ -100,7 +101,7 @@ RpeResult computeRpe(const std::vector<io::StampedPose>& gt_raw, const std::vect
     const core::SE3 gt_motion = gt[g1].T_wc.inverse() * gt[g0].T_wc;
     const core::SE3 error = est_motion.inverse() * gt_motion;
     RpePair pair{est_stamps[i], est_stamps[j], gt_stamps[g0], gt_stamps[g1], error.translation().norm(),
-                 std::acos(std::clamp((error.linear().trace() - 1.0) / 2.0, -1.0, 1.0))};
+                 core::rotationAngle(error)};
     trans_errors.push_back(pair.trans_error_m);
     rot_errors_deg.push_back(pair.rot_error_rad * 180.0 / M_PI);
     result.pairs.push_back(pair);
