@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "amos/testing/scratch_dir.h"
+
 namespace amos::config {
 namespace {
 
@@ -12,10 +14,8 @@ namespace fs = std::filesystem;
 
 // A folder holding a copy of the bundled vocabulary under a name no default folder has, so that only the folder
 // under test can give it.
-fs::path folderWithVocabulary(const std::string& name) {
-  const fs::path dir = fs::path(AMOS_BINARY_DIR) / "test_output" / "slam_options" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+fs::path folderWithVocabulary() {
+  const fs::path dir = testing::scratchDirForThisTest("slam_options_");
   fs::copy_file(fs::path(AMOS_SOURCE_DIR) / "models" / "orb_vocabulary.voc", dir / "only_here.voc");
   return dir;
 }
@@ -27,7 +27,7 @@ Settings settingsNaming(const std::string& vocabulary) {
 }
 
 TEST(PlaceVocabulary, IsFoundInTheModelsFolderOfTheCommandLine) {
-  const fs::path dir = folderWithVocabulary("cli");
+  const fs::path dir = folderWithVocabulary();
   EXPECT_EQ(loadPlaceVocabulary(settingsNaming("only_here.voc")), nullptr);  // no folder given: not found
   const auto vocabulary = loadPlaceVocabulary(settingsNaming("only_here.voc"), dir.string());
   ASSERT_NE(vocabulary, nullptr);
@@ -36,14 +36,14 @@ TEST(PlaceVocabulary, IsFoundInTheModelsFolderOfTheCommandLine) {
 }
 
 TEST(PlaceVocabulary, IsFoundInTheSettingsModelsFolder) {
-  const fs::path dir = folderWithVocabulary("settings");
+  const fs::path dir = folderWithVocabulary();
   Settings s = settingsNaming("only_here.voc");
   s.segmentation.models_dir = dir.string();
   EXPECT_NE(loadPlaceVocabulary(s), nullptr);
 }
 
 TEST(PlaceVocabulary, AnEmptyNameMeansThumbnails) {
-  EXPECT_EQ(loadPlaceVocabulary(settingsNaming(""), folderWithVocabulary("empty").string()), nullptr);
+  EXPECT_EQ(loadPlaceVocabulary(settingsNaming(""), folderWithVocabulary().string()), nullptr);
 }
 
 }  // namespace
