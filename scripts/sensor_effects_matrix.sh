@@ -83,25 +83,9 @@ cd "$root"
 
 # render_effect PRESET SEED SET -> prints the sequence folder; returns 1 on failure (cached as synth_lib's render)
 render_effect() {
-  local preset=$1 seed=$2 set=$3 name dir flags
-  name="${preset}_s${seed}_f${frames}_$(effect_tag "$set")"
-  dir="$out/sequences/$name"
+  local preset=$1 seed=$2 set=$3 flags
   mapfile -t flags < <(effect_flags "$set")
-  if [[ -f "$dir/.complete" ]]; then
-    log "render $name: cached"
-  else
-    rm -rf "$dir"
-    local t0=$SECONDS
-    log "render $name (${flags[*]}) ..."
-    if ! "$bin" synth --preset "$preset" --seed "$seed" --frames "$frames" --output "$dir" "${flags[@]}" \
-        > "$out/sequences/$name.log" 2>&1; then
-      log "render $name FAILED (log: $out/sequences/$name.log):"; tail -3 "$out/sequences/$name.log" >&2
-      return 1
-    fi
-    touch "$dir/.complete"
-    log "render $name done in $((SECONDS - t0)) s"
-  fi
-  printf '%s\n' "$dir"
+  render_named "${preset}_s${seed}_f${frames}_$(effect_tag "$set")" "$preset" "$seed" "${flags[@]}"
 }
 
 total_jobs=$((${#seed_list[@]} * ${#preset_list[@]} * ${#effect_list[@]}))

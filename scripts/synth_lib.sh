@@ -79,17 +79,25 @@ fi
 # render PRESET SEED STATIC(0|1) -> prints the sequence folder; returns 1 on failure. Rendered sequences are cached
 # in $out/sequences/ (reused when the render finished, i.e. its .complete marker exists).
 render() {
-  local preset=$1 seed=$2 static=$3 name dir extra=()
+  local preset=$1 seed=$2 static=$3 name extra=()
   name="${preset}_s${seed}_f${frames}"
   ((static)) && { name+="_nomovers"; extra=(--no-movers); }
+  render_named "$name" "$preset" "$seed" "${extra[@]}"
+}
+
+# render_named NAME PRESET SEED [SYNTH FLAGS...] -> as render, into $out/sequences/NAME with the extra synth flags
+# (the caller's NAME must tell the flags apart: it is the cache key).
+render_named() {
+  local name=$1 preset=$2 seed=$3 dir
+  shift 3
   dir="$out/sequences/$name"
   if [[ -f "$dir/.complete" ]]; then
     log "render $name: cached"
   else
     rm -rf "$dir"
     local t0=$SECONDS
-    log "render $name ..."
-    if ! "$bin" synth --preset "$preset" --seed "$seed" --frames "$frames" --output "$dir" "${extra[@]}" \
+    log "render $name${*:+ ($*)} ..."
+    if ! "$bin" synth --preset "$preset" --seed "$seed" --frames "$frames" --output "$dir" "$@" \
         > "$out/sequences/$name.log" 2>&1; then
       log "render $name FAILED (log: $out/sequences/$name.log):"; tail -3 "$out/sequences/$name.log" >&2
       return 1
