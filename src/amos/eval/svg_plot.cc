@@ -116,7 +116,7 @@ void drawTrack(std::string& svg, const Frame& f, const std::vector<double>& stam
   svg += fmt::format(R"(<path d="{}" fill="none" {}/>)"
                      "\n",
                      path, style);
-  // Sparse tracks (e.g. keyframes only) would show as broken stubs or nothing: mark every sample.
+  // Sparse tracks (e.g. keyframes only) would show as broken fragments or nothing: mark every sample.
   if (points.size() <= 300) {
     std::string marks;
     for (const auto& p : points) {
