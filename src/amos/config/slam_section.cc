@@ -59,6 +59,8 @@ KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps) {
   s.add("Tracking.poseRounds", &o.pose.rounds, "outlier classification rounds of pose optimisation");
   s.add("Tracking.poseIterations", &o.pose.iterations_per_round, "iterations per round");
   s.add("Tracking.poseRobustRounds", &o.pose.robust_rounds, "first rounds with the Huber kernel");
+  s.add("Tracking.photometric", &o.photometric,
+        "refine each frame's pose against its reference keyframe's pixels jointly with its feature inliers");
 
   s.add("Matching.thHigh", &o.matching.th_high, "Hamming distance limit of projection matches");
   s.add("Matching.thLow", &o.matching.th_low, "Hamming distance limit of brute-force matches (at most `thHigh`)");

@@ -60,7 +60,8 @@ struct Frame {
   std::shared_ptr<const FrameFeatures> features;
   cv::Mat thumbnail;
   cv::Mat dynamic_mask;  // kept (may be empty) to count map points projecting onto dynamic pixels
-  cv::Mat depth_image;   // CV_32F metres, kept with a dynamic mask: tells points on a mover from points behind it
+  cv::Mat depth_image;   // CV_32F metres: tells points on a mover from points behind it; the keyframe's template
+  cv::Mat gray;          // CV_8U, the grey image the features were detected in (photometric refinement)
 
   core::SE3 T_cw = core::SE3::Identity();
   bool has_pose = false;

@@ -67,7 +67,8 @@ FrameOutput SlamSystem::track(const TrackInput& input) {
                                        input.dynamic_mask, &build);
   map::Frame f = map::makeFrame(next_frame_id_++, input.timestamp, sensor_, std::move(built),
                                 map::makeThumbnail(features.gray), input.dynamic_mask);
-  if (!input.dynamic_mask.empty()) f.depth_image = input.depth;
+  f.depth_image = input.depth;
+  f.gray = features.gray;
   out.build_ms = watch.elapsedMs();
   watch.restart();
   out.track = tracker_->track(std::move(f), input.initial_T_cw);

@@ -115,6 +115,7 @@ ReferenceKeyFrameView Tracker::referenceKeyFrameView() const {
 
 TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& external_T_cw) {
   core::require(frame.features && frame.sensor, "Tracker::track: frame without features");
+  if (options_.photometric && !photometric_) photometric_.emplace(frame.sensor->camera(), options_.photometric_options);
   if (frame.map_points.size() != frame.size()) frame.resetMatches();
   TrackResult result;
   if (state_ == TrackingState::kNotInitialized) {
@@ -187,6 +188,13 @@ TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& ext
     watch.restart();
     if (ok) ok = trackLocalMap(frame, inliers);
     if (times_) times_->add("track.local_map", watch.elapsedMs());
+    if (ok && photometric_) {
+      watch.restart();
+      const PhotometricRefinementStats s = photometric_->refine(frame, reference_kf_->id(), reference_kf_->T_cw());
+      if (times_) times_->add("track.photometric", watch.elapsedMs());
+      spdlog::debug("frame {}: photometric refinement {} accepted {}, {} points, sigma {:.2f}", frame.id, s.attempted,
+                    s.accepted, s.points, s.sigma);
+    }
     state_ = ok ? TrackingState::kOk : TrackingState::kLost;
     if (ok && last_frame_tracked_ && !result.relocalized) {
       velocity_ = map::orthonormalized(frame.T_cw * last_frame_.T_cw.inverse());
@@ -265,6 +273,7 @@ TrackResult Tracker::initialize(map::Frame& frame) {
     std::unique_lock lock(map_->mutex());
     kf = std::make_shared<map::KeyFrame>(map_->newKeyFrameId(), frame);
     map_->addKeyFrame(kf);
+    if (photometric_) photometric_->addKeyFrame(kf->id(), frame);
     for (std::size_t i = 0; i < f.size(); ++i) {
       if (!f.hasDepth(static_cast<int>(i))) continue;
       auto p = map_->createMapPoint(frame.unproject(static_cast<int>(i)), kf, static_cast<int>(i), frame.id);
@@ -624,6 +633,7 @@ void Tracker::createNewKeyFrame(map::Frame& frame) {
     std::unique_lock lock(map_->mutex());
     kf = std::make_shared<map::KeyFrame>(map_->newKeyFrameId(), frame);
     map_->addKeyFrame(kf);
+    if (photometric_) photometric_->addKeyFrame(kf->id(), frame);
     for (int i = 0; i < kf->size(); ++i) {
       const map::MapPointPtr p = kf->mapPoint(i);
       if (!p) continue;

@@ -1,0 +1,149 @@
+#include "amos/geometry/photometric_alignment.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include <cmath>
+
+namespace amos::geometry {
+namespace {
+
+// A textured plane z = 2 m in the reference camera, seen by a 320x240 pinhole camera: its grey value at (X, Y) is a
+// sum of sinusoids with periods of 8-16 cm (15-25 px at 2 m), so every pixel has a gradient.
+constexpr double kF = 300, kCx = 159.5, kCy = 119.5, kPlaneZ = 2.0;
+constexpr int kW = 320, kH = 240;
+
+double texture(double X, double Y) {
+  return 128 + 40 * std::sin(45 * X) + 30 * std::sin(38 * Y + 1) + 20 * std::sin(60 * (X + Y)) +
+         15 * std::sin(70 * X - 50 * Y);
+}
+
+StereoProjection camera() { return {kF, kF, kCx, kCy, 0}; }
+
+// Renders the plane from a camera at T_cr (maps reference points into this camera): grey image and depth.
+void render(const core::SE3& T_cr, cv::Mat& gray, cv::Mat& depth, double gain = 1, double bias = 0) {
+  gray.create(kH, kW, CV_8U);
+  depth.create(kH, kW, CV_32F);
+  const core::SE3 T_rc = T_cr.inverse();
+  const Eigen::Vector3d o = T_rc.translation();
+  for (int v = 0; v < kH; ++v) {
+    for (int u = 0; u < kW; ++u) {
+      const Eigen::Vector3d ray_c((u - kCx) / kF, (v - kCy) / kF, 1);
+      const Eigen::Vector3d ray_r = T_rc.linear() * ray_c;
+      const double s = (kPlaneZ - o.z()) / ray_r.z();
+      const Eigen::Vector3d p = o + s * ray_r;
+      gray.at<std::uint8_t>(v, u) = cv::saturate_cast<std::uint8_t>(gain * texture(p.x(), p.y()) + bias);
+      depth.at<float>(v, u) = static_cast<float>(s * ray_c.z());
+    }
+  }
+}
+
+struct Scene {
+  core::SE3 T_cr_true;
+  PhotometricTemplate reference;
+  PhotometricImage current;
+  std::vector<PoseObservation> no_features;
+};
+
+PhotometricOptions options() {
+  PhotometricOptions o;
+  o.cell = 6;
+  return o;
+}
+
+Scene makeScene(double gain, double bias, const cv::Rect& mover, bool mask_mover) {
+  Scene s;
+  s.T_cr_true = core::expSE3((core::Vector6d() << 0.03, -0.01, 0.02, 0.01, -0.015, 0.005).finished());
+  cv::Mat gray_r, depth_r, gray_c, depth_c;
+  render(core::SE3::Identity(), gray_r, depth_r);
+  render(s.T_cr_true, gray_c, depth_c, gain, bias);
+  cv::Mat mask = cv::Mat::zeros(kH, kW, CV_8U);
+  if (mover.area() > 0) {
+    cv::randu(gray_c(mover), 0, 255);  // something moved in front of the plane
+    if (mask_mover) mask(mover).setTo(255);
+  }
+  const PhotometricOptions o = options();
+  s.reference = makePhotometricTemplate(makePhotometricImage(gray_r, cv::Mat(), camera(), o), depth_r, o);
+  s.current = makePhotometricImage(gray_c, mask, camera(), o);
+  return s;
+}
+
+// Translation (m) and rotation (rad) of the error between two poses.
+std::pair<double, double> errorOf(const core::SE3& a, const core::SE3& b) {
+  const core::Vector6d d = core::logSE3(a * b.inverse());
+  return {d.head<3>().norm(), d.tail<3>().norm()};
+}
+
+PhotometricResult refine(const Scene& s, const core::SE3& initial_T_cw) {
+  PhotometricProblem p;
+  p.features = &s.no_features;
+  p.projection = camera();
+  p.reference = &s.reference;
+  p.T_rw = core::SE3::Identity();  // the reference camera is the world
+  p.current = &s.current;
+  return refinePosePhotometrically(p, initial_T_cw, options());
+}
+
+core::SE3 perturbed(const core::SE3& T) {
+  return core::expSE3((core::Vector6d() << 0.006, -0.004, 0.005, 0.004, 0.003, -0.002).finished()) * T;
+}
+
+TEST(PhotometricAlignment, TemplateKeepsHighGradientPixelsWithDepthOnEveryLevel) {
+  const Scene s = makeScene(1, 0, {}, false);
+  ASSERT_EQ(s.reference.levels.size(), 2u);
+  for (const auto& level : s.reference.levels) {
+    EXPECT_GT(level.size(), 500u);
+    for (const PhotometricPoint& p : level) EXPECT_NEAR(p.p_r.z(), kPlaneZ, 1e-4);
+  }
+}
+
+TEST(PhotometricAlignment, RecoversThePoseFromAPerturbedStart) {
+  const Scene s = makeScene(1, 0, {}, false);
+  const core::SE3 start = perturbed(s.T_cr_true);
+  const auto [t0, r0] = errorOf(start, s.T_cr_true);
+  const PhotometricResult r = refine(s, start);
+  ASSERT_TRUE(r.accepted);
+  const auto [t, rot] = errorOf(r.T_cw, s.T_cr_true);
+  EXPECT_LT(t, 0.0005) << "from " << t0;
+  EXPECT_LT(rot, 0.0003) << "from " << r0;
+  EXPECT_GT(r.points, 500);
+}
+
+TEST(PhotometricAlignment, AnExposureChangeIsAbsorbedByTheBrightnessFit) {
+  const Scene s = makeScene(1.25, -12, {}, false);
+  const PhotometricResult r = refine(s, perturbed(s.T_cr_true));
+  ASSERT_TRUE(r.accepted);
+  EXPECT_LT(errorOf(r.T_cw, s.T_cr_true).first, 0.0005);
+}
+
+TEST(PhotometricAlignment, MaskedPixelsTakeNoPart) {
+  const cv::Rect mover(40, 30, 150, 140);  // a third of the view
+  const Scene masked = makeScene(1, 0, mover, true);
+  const PhotometricResult r = refine(masked, perturbed(masked.T_cr_true));
+  ASSERT_TRUE(r.accepted);
+  EXPECT_LT(errorOf(r.T_cw, masked.T_cr_true).first, 0.0005);
+  const Scene unmasked = makeScene(1, 0, mover, false);
+  const PhotometricResult u = refine(unmasked, perturbed(unmasked.T_cr_true));
+  EXPECT_GT(u.points, r.points) << "the masked pixels must be left out";
+}
+
+TEST(PhotometricAlignment, TooFewPointsLeaveThePoseAsItWas) {
+  Scene s = makeScene(1, 0, {}, false);
+  for (auto& level : s.reference.levels) level.resize(50);  // under min_points (200)
+  const core::SE3 start = perturbed(s.T_cr_true);
+  const PhotometricResult r = refine(s, start);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_LT(errorOf(r.T_cw, start).first, 1e-12);
+}
+
+TEST(PhotometricAlignment, OptionsAreChecked) {
+  PhotometricOptions o;
+  o.levels = 0;
+  EXPECT_ANY_THROW(o.check());
+  o = PhotometricOptions{};
+  o.max_depth = 0.1;  // below min_depth
+  EXPECT_ANY_THROW(o.check());
+}
+
+}  // namespace
+}  // namespace amos::geometry

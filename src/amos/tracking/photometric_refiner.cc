@@ -1,0 +1,67 @@
+#include "amos/tracking/photometric_refiner.h"
+
+#include "amos/core/error.h"
+#include "amos/map/map_point.h"
+
+namespace amos::tracking {
+
+PhotometricRefiner::PhotometricRefiner(const core::PinholeCamera& camera, const geometry::PhotometricOptions& options)
+    : options_(options), rectifier_(camera) {
+  options_.check();
+  projection_ = {camera.fx(), camera.fy(), camera.cx(), camera.cy(), 0};
+}
+
+const geometry::PhotometricImage& PhotometricRefiner::imageOf(const map::Frame& frame) {
+  if (image_frame_ != frame.id) {
+    core::require(!frame.gray.empty(), "PhotometricRefiner: frame without its grey image");
+    // Pixels outside the distorted source image are excluded like dynamic ones.
+    cv::Mat outside = rectifier_.nearest(cv::Mat(frame.gray.size(), CV_8U, cv::Scalar(255)));
+    cv::Mat mask = outside == 0;
+    if (!frame.dynamic_mask.empty()) mask |= rectifier_.nearest(frame.dynamic_mask);
+    image_ = geometry::makePhotometricImage(rectifier_.linear(frame.gray), mask, projection_, options_);
+    image_frame_ = frame.id;
+  }
+  return image_;
+}
+
+PhotometricRefinementStats PhotometricRefiner::refine(map::Frame& frame, map::KeyFrameId reference,
+                                                      const core::SE3& T_rw) {
+  PhotometricRefinementStats stats;
+  const auto found = templates_.find(reference);
+  if (found == templates_.end()) return stats;
+  std::vector<geometry::PoseObservation> inliers;
+  const map::FrameFeatures& f = *frame.features;
+  const std::vector<float>& inv_sigma2 = frame.sensor->invSigma2();
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    const auto& p = frame.map_points[i];
+    if (!p || frame.outlier[i]) continue;
+    geometry::PoseObservation o;
+    o.point_w = p->position();
+    o.pixel = {f.keys[i].pt.x, f.keys[i].pt.y};
+    o.u_right = f.u_right[i];
+    o.inv_sigma2 = inv_sigma2[f.keys[i].octave];
+    inliers.push_back(o);
+  }
+  geometry::PhotometricProblem problem;
+  problem.features = &inliers;
+  problem.projection = frame.sensor->projection();
+  problem.reference = found->second.get();
+  problem.T_rw = T_rw;
+  problem.current = &imageOf(frame);
+  const geometry::PhotometricResult result = geometry::refinePosePhotometrically(problem, frame.T_cw, options_);
+  stats.attempted = true;
+  stats.accepted = result.accepted;
+  stats.points = result.points;
+  stats.sigma = result.sigma;
+  if (result.accepted) frame.setPose(result.T_cw);
+  return stats;
+}
+
+void PhotometricRefiner::addKeyFrame(map::KeyFrameId id, const map::Frame& frame) {
+  if (frame.gray.empty() || frame.depth_image.empty()) return;
+  const geometry::PhotometricImage& image = imageOf(frame);
+  templates_[id] = std::make_shared<const geometry::PhotometricTemplate>(
+      geometry::makePhotometricTemplate(image, rectifier_.nearest(frame.depth_image), options_));
+}
+
+}  // namespace amos::tracking
