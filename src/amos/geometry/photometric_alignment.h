@@ -34,7 +34,7 @@ struct PhotometricOptions {
   double max_depth = 4.0;
   double depth_edge = 0.03;   // a point whose 3x3 depth neighbourhood spans more than this share of z is dropped
   int mask_margin = 5;        // pixels added around the dynamic mask
-  int iterations = 8;         // Gauss-Newton iterations per level
+  int iterations = 6;         // Gauss-Newton iterations per level (at most; it stops once a step is tiny)
   double huber_k = 1.345;     // Huber threshold in sigmas (95 % efficiency under Gaussian noise)
   int min_points = 200;       // fewer usable template points: no refinement
   void check() const;

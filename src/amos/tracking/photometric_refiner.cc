@@ -9,14 +9,14 @@ PhotometricRefiner::PhotometricRefiner(const core::PinholeCamera& camera, const 
     : options_(options), rectifier_(camera) {
   options_.check();
   projection_ = {camera.fx(), camera.fy(), camera.cx(), camera.cy(), 0};
+  // Pixels of the undistorted image that no source pixel maps to are excluded like dynamic ones.
+  outside_ = rectifier_.nearest(cv::Mat(camera.height(), camera.width(), CV_8U, cv::Scalar(255))) == 0;
 }
 
 const geometry::PhotometricImage& PhotometricRefiner::imageOf(const map::Frame& frame) {
   if (image_frame_ != frame.id) {
     core::require(!frame.gray.empty(), "PhotometricRefiner: frame without its grey image");
-    // Pixels outside the distorted source image are excluded like dynamic ones.
-    cv::Mat outside = rectifier_.nearest(cv::Mat(frame.gray.size(), CV_8U, cv::Scalar(255)));
-    cv::Mat mask = outside == 0;
+    cv::Mat mask = outside_.size() == frame.gray.size() ? outside_.clone() : cv::Mat::zeros(frame.gray.size(), CV_8U);
     if (!frame.dynamic_mask.empty()) mask |= rectifier_.nearest(frame.dynamic_mask);
     image_ = geometry::makePhotometricImage(rectifier_.linear(frame.gray), mask, projection_, options_);
     image_frame_ = frame.id;

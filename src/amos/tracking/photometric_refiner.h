@@ -40,6 +40,7 @@ class PhotometricRefiner {
   geometry::PhotometricOptions options_;
   geometry::ImageRectifier rectifier_;
   geometry::StereoProjection projection_;
+  cv::Mat outside_;  // CV_8U, 255 where the undistorted image has no source pixel
   std::unordered_map<map::KeyFrameId, std::shared_ptr<const geometry::PhotometricTemplate>> templates_;
   std::optional<map::FrameId> image_frame_;  // the frame image_ was made from
   geometry::PhotometricImage image_;
