@@ -13,6 +13,7 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -55,6 +56,16 @@ py::array arrayOf(const cv::Mat& image) {
   auto* dst = static_cast<std::uint8_t*>(out.mutable_data());
   for (int r = 0; r < image.rows; ++r) std::memcpy(dst + r * row, image.ptr(r), row);
   return out;
+}
+
+py::dict frameDict(const amos::RgbdImages& f) {
+  py::dict d;
+  d["bgr"] = arrayOf(f.bgr);
+  d["depth"] = arrayOf(f.depth);
+  d["timestamp"] = f.timestamp;
+  d["rgb_file"] = f.rgb_file;
+  d["depth_file"] = f.depth_file;
+  return d;
 }
 
 py::dict keyFrameDict(const amos::KeyFrameEvent& e) {
@@ -185,14 +196,20 @@ PYBIND11_MODULE(amos_slam, m) {
               py::gil_scoped_release release;
               f = folder.read(i);
             }
-            py::dict d;
-            d["bgr"] = arrayOf(f.bgr);
-            d["depth"] = arrayOf(f.depth);
-            d["timestamp"] = f.timestamp;
-            d["rgb_file"] = f.rgb_file;
-            d["depth_file"] = f.depth_file;
-            return d;
+            return frameDict(f);
           },
           py::arg("i"), "Frame i: {bgr uint8 HxWx3, depth uint16 raw, timestamp, rgb_file, depth_file}")
+      .def(
+          "next",
+          [](amos::SequenceFolder& folder) -> py::object {
+            std::optional<amos::RgbdImages> f;
+            {
+              py::gil_scoped_release release;
+              f = folder.next();
+            }
+            if (!f) return py::none();
+            return frameDict(*f);
+          },
+          "The next frame in order (as read(i)), decoded ahead by the folder's own thread; None after the last")
       .def("ground_truth_file", &amos::SequenceFolder::groundTruthFile);
 }

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 
 int main(int argc, char** argv) {
@@ -19,17 +20,20 @@ int main(int argc, char** argv) {
     options.mode = argc == 5 ? argv[4] : "full";
     options.deterministic = true;
     amos::Slam slam(options);
-    const amos::SequenceFolder folder(argv[1]);
-    // One frame of look-ahead: frame k+1 is read and submitted (its features are extracted in the library's
-    // threads) before frame k's result is taken. slam.track(bgr, depth, t) alone would do too, a little slower.
-    std::size_t read = 0, tracked = 0;
+    // The folder decodes frames ahead in a thread of its own (next()), and one frame of look-ahead goes into the
+    // system: frame k+1 is submitted (its features are extracted in the library's threads) before frame k's result
+    // is taken. slam.track(bgr, depth, t) alone would do too, a little slower.
+    amos::SequenceFolder folder(argv[1]);
+    std::size_t tracked = 0;
+    bool more = true;
     const auto submitNext = [&] {
-      const amos::RgbdImages frame = folder.read(read++);
-      slam.submit(frame.bgr, frame.depth, frame.timestamp);
+      const std::optional<amos::RgbdImages> frame = folder.next();
+      if (frame) slam.submit(frame->bgr, frame->depth, frame->timestamp);
+      more = frame.has_value();
     };
-    if (folder.size() > 0) submitNext();
+    submitNext();
     while (slam.pending() > 0) {
-      if (read < folder.size()) submitNext();
+      if (more) submitNext();
       const amos::FrameResult result = slam.next();
       tracked += result.state == amos::TrackingState::kOk;
     }

@@ -25,20 +25,20 @@ def main():
     folder = amos_slam.SequenceFolder(args.sequence)
     start = time.perf_counter()
     tracked = 0
-    read = 0
+    more = True
 
     def submit_next():
-        nonlocal read
-        frame = folder.read(read)
-        read += 1
-        slam.submit(frame["bgr"], frame["depth"], frame["timestamp"])
+        nonlocal more
+        frame = folder.next()  # decoded ahead by the folder's own thread; None after the last
+        if frame is not None:
+            slam.submit(frame["bgr"], frame["depth"], frame["timestamp"])
+        more = frame is not None
 
     # One frame of look-ahead: frame k+1 is submitted (its features are extracted in the library's threads) before
     # frame k's result is taken. slam.track(bgr, depth, timestamp) alone would do too, a little slower.
-    if len(folder) > 0:
-        submit_next()
+    submit_next()
     while slam.pending() > 0:
-        if read < len(folder):
+        if more:
             submit_next()
         result = slam.next()
         tracked += result.state == amos_slam.TrackingState.OK

@@ -5,10 +5,7 @@
 // amos::Slam (examples/cpp/track_folder.cc); a camera program needs none of it.
 //
 //   amos::SequenceFolder folder("data/rgbd_dataset_freiburg2_desk");
-//   for (std::size_t i = 0; i < folder.size(); ++i) {
-//     const amos::RgbdImages f = folder.read(i);
-//     slam.track(f.bgr, f.depth, f.timestamp);
-//   }
+//   while (const std::optional<amos::RgbdImages> f = folder.next()) slam.track(f->bgr, f->depth, f->timestamp);
 //
 // Errors (a folder that is not a sequence, a malformed list, an image that cannot be read): std::runtime_error
 // naming the file (and line).
@@ -16,6 +13,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace amos {
@@ -37,6 +35,10 @@ class SequenceFolder {
   std::size_t size() const;  // associated frames
   // Frame i (0-based), read from its files.
   RgbdImages read(std::size_t i) const;
+  // The frames in order, from the first, decoded ahead by a thread of the folder's own (as `amos-slam run` reads
+  // a folder), so that reading overlaps with tracking; nullopt after the last. A frame that cannot be read throws
+  // here, in its turn. Independent of read(i).
+  std::optional<RgbdImages> next();
   // The sequence's ground truth file ("" when it has none).
   std::string groundTruthFile() const;
 

@@ -244,6 +244,19 @@ TEST(SequenceFolder, ReadsTheRunsFramesAndNamesWhatIsWrong) {
   EXPECT_GT(f.timestamp, 0);
   EXPECT_FALSE(folder.groundTruthFile().empty());
   EXPECT_THROW(folder.read(30), std::runtime_error);
+  SequenceFolder streamed(sequence("walking_xyz", 30));
+  for (std::size_t i = 0; i < 30; ++i) {
+    const std::optional<RgbdImages> g = streamed.next();
+    ASSERT_TRUE(g) << i;
+    const RgbdImages r = folder.read(i);
+    EXPECT_EQ(g->timestamp, r.timestamp);
+    EXPECT_EQ(cv::norm(g->bgr, r.bgr, cv::NORM_INF), 0.0);
+    EXPECT_EQ(cv::norm(g->depth, r.depth, cv::NORM_INF), 0.0);
+  }
+  EXPECT_FALSE(streamed.next());
+  EXPECT_FALSE(streamed.next());
+  SequenceFolder abandoned(sequence("walking_xyz", 30));  // destroyed with frames still queued
+  EXPECT_TRUE(abandoned.next());
   EXPECT_THROW(SequenceFolder("/nonexistent/sequence"), std::runtime_error);
 }
 
