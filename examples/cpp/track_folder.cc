@@ -1,9 +1,11 @@
 // track_folder SEQUENCE CONFIG TRAJECTORY_OUT [MODE]
 // Tracks a TUM/Bonn-layout folder through the public API and writes its trajectory in the TUM format
-// (deterministic mode, so it is the trajectory `amos-slam run --deterministic` writes for the same folder).
+// (deterministic mode, so it is the trajectory `amos-slam run --deterministic` writes for the same folder). Prints
+// the frames per second of the tracking loop (reading the images included).
 #include <amos/sequence_folder.h>
 #include <amos/slam.h>
 
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -31,6 +33,7 @@ int main(int argc, char** argv) {
       if (frame) slam.submit(frame->bgr, frame->depth, frame->timestamp);
       more = frame.has_value();
     };
+    const auto start = std::chrono::steady_clock::now();
     submitNext();
     while (slam.pending() > 0) {
       if (more) submitNext();
@@ -38,10 +41,12 @@ int main(int argc, char** argv) {
       tracked += result.state == amos::TrackingState::kOk;
     }
     slam.finish();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     slam.writeTrajectory(argv[3]);
     const amos::MapSummary map = slam.summary();
-    std::printf("amos-slam %s: %zu frames, %zu tracked, %zu keyframes, %zu map points -> %s\n", amos::kVersion,
-                folder.size(), tracked, map.keyframes, map.map_points, argv[3]);
+    std::printf("amos-slam %s: %zu frames, %zu tracked, %zu keyframes, %zu map points, %.1f fps -> %s\n",
+                amos::kVersion, folder.size(), tracked, map.keyframes, map.map_points,
+                static_cast<double>(folder.size()) / seconds, argv[3]);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
