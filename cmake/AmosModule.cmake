@@ -18,7 +18,7 @@ function(amos_add_module name)
   endif()
   add_library(amos_${name} STATIC ${sources})
   add_library(amos::${name} ALIAS amos_${name})
-  target_include_directories(amos_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_include_directories(amos_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src>)
   target_link_libraries(amos_${name} PUBLIC ${ARG_DEPS})
   target_compile_features(amos_${name} PUBLIC cxx_std_17)
 

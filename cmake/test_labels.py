@@ -4,8 +4,9 @@
 A test is
   real-data   when its body (or its fixture's SetUp) asks for the shared data or models (AMOS_REQUIRE_DATA /
               AMOS_REQUIRE_MODELS: it is skipped without them);
-  end-to-end  when it runs the system over a sequence (a SlamSystem, a DynamicPipeline, a local mapper, a whole
-              run, a rendered synthetic sequence) or the program itself (--all end-to-end, the app tests);
+  end-to-end  when it runs the system over a sequence (a SlamSystem, the public amos::Slam, a DynamicPipeline, a
+              local mapper, a whole run, a rendered synthetic sequence) or the program itself (--all end-to-end,
+              the app tests);
   browser     when it drives a headless browser;
   unit        otherwise.
 Writes `set(AMOS_LABELS_<Suite>.<Case> "l1;l2")` per test; the labels' timeouts are in AmosTestLabels.cmake."""
@@ -15,7 +16,7 @@ TEST = re.compile(r'\bTEST(?:_F|_P)?\(\s*(\w+)\s*,\s*(\w+)\s*\)')
 FIXTURE = re.compile(r'\b(?:class|struct)\s+(\w+)\s*(?:final\s*)?:\s*public\s+(?:::)?testing::Test')
 REAL_DATA = re.compile(r'AMOS_REQUIRE_(?:DATA|MODELS)\b')
 END_TO_END = re.compile(r'\b(?:SlamSystem|DynamicPipeline|LocalMapper|runSequence|RunController|runController|'
-                        r'SyntheticSequence|renderSequence|SequenceRun)\b')
+                        r'SyntheticSequence|renderSequence|SequenceRun|Slam)\b')
 BROWSER = re.compile(r'\b(?:chromium|headless)\b', re.IGNORECASE)
 
 

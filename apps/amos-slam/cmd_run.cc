@@ -165,8 +165,8 @@ void printDamagedInput(const report::RunInfo& info) {
 }
 
 void printSummary(const run::SequenceRunResult& r, const std::string& output) {
-  const system::SlamStats s = r.slam->stats();
-  const auto stages = r.slam->times().summary();
+  const system::SlamStats s = r.slam().stats();
+  const auto stages = r.slam().times().summary();
   auto median = [&](const char* name) {
     const auto it = stages.find(name);
     return it == stages.end() ? 0.0 : it->second.median_ms;
@@ -313,12 +313,12 @@ void runSlam(const RunArgs& args, int& exit_code) {
   if (result.info.end.status == report::RunEnd::Status::kInterrupted) result.info.end.reason = signalName(signal_number);
   // Every output is written whatever fails after the run: the map is saved right after the main files, and an
   // error of the map or of report.html comes after the others are written.
-  report::writeRunOutputs(args.output, *result.slam, result.info);
+  report::writeRunOutputs(args.output, result.slam(), result.info);
   std::string map_saved;
   std::exception_ptr map_error;
   if (!args.save_map.empty() && !result.failure) {
     try {
-      map_saved = saveMap(*result.slam, args.save_map);
+      map_saved = saveMap(result.slam(), args.save_map);
     } catch (const std::exception&) {
       map_error = std::current_exception();
     }
@@ -336,7 +336,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   result.rethrowFailure();  // main() reports it (stderr) and exits non-zero, after the outputs are written
   if (signal_number != 0) {
     spdlog::warn("run interrupted by {} after {} frames; the outputs in {} hold those frames",
-                 signalName(signal_number), result.slam->stats().frames, args.output);
+                 signalName(signal_number), result.slam().stats().frames, args.output);
   }
   exit_code = signal_number != 0 ? 128 + signal_number : 0;
 }

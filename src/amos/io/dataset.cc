@@ -227,29 +227,63 @@ cv::Mat readImage(const std::string& file, int flags, const char* what, const Re
 
 }  // namespace
 
-RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index) {
-  RgbdFrame frame;
-  frame.index = index;
-  frame.timestamp = entry.t_rgb;
-  frame.rgb_file = entry.rgb_file;
-  frame.bgr = readImage(entry.rgb_file, cv::IMREAD_COLOR, "colour image", options);
-  if (cv::countNonZero(frame.bgr.reshape(1)) == 0) {
+namespace {
+
+// A colour image to track: 8-bit BGR of the settings' size, not black throughout.
+void checkColour(const cv::Mat& bgr, const AssociatedFrame& entry, const ReaderOptions& options) {
+  if (bgr.type() != CV_8UC3) {
+    throw FrameLoadError(FrameProblem::kWrongFormat, entry.rgb_file,
+                         fmt::format("colour image '{}' has {} channel(s) of {} bits; expected 3 channels of 8 bits",
+                                     entry.rgb_file, bgr.channels(), bgr.elemSize1() * 8));
+  }
+  requireSize(bgr.size(), entry.rgb_file, "colour image", options);
+  if (cv::countNonZero(bgr.reshape(1)) == 0) {
     throw FrameLoadError(FrameProblem::kBlank, entry.rgb_file,
                          fmt::format("colour image '{}' is black throughout: nothing to track", entry.rgb_file));
   }
-  const cv::Mat raw = readImage(entry.depth_file, cv::IMREAD_UNCHANGED, "depth image", options);
+}
+
+// The depth in metres (CV_32F, a new buffer), all zero when the sensor gave (next to) none.
+void setDepth(RgbdFrame& frame, const cv::Mat& raw, const AssociatedFrame& entry, const ReaderOptions& options) {
   if (raw.channels() != 1 || (raw.depth() != CV_16U && raw.depth() != CV_32F)) {
     throw FrameLoadError(FrameProblem::kWrongFormat, entry.depth_file,
                          fmt::format("depth image '{}' is {}-bit with {} channel(s); expected a 16-bit single-channel "
                                      "PNG",
                                      entry.depth_file, raw.elemSize1() * 8, raw.channels()));
   }
+  requireSize(raw.size(), entry.depth_file, "depth image", options);
   raw.convertTo(frame.depth, CV_32F, raw.depth() == CV_16U ? 1.0 / options.depth_factor : 1.0);
   const cv::Mat valid = frame.depth > 0;  // NaN compares false: not valid
   if (cv::countNonZero(valid) < options.min_valid_depth * static_cast<double>(frame.depth.total())) {
     frame.depth.setTo(0);
     frame.depth_dropout = true;
   }
+}
+
+RgbdFrame frameHeader(const AssociatedFrame& entry, std::size_t index) {
+  RgbdFrame frame;
+  frame.index = index;
+  frame.timestamp = entry.t_rgb;
+  frame.rgb_file = entry.rgb_file;
+  return frame;
+}
+
+}  // namespace
+
+RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index) {
+  RgbdFrame frame = frameHeader(entry, index);
+  frame.bgr = readImage(entry.rgb_file, cv::IMREAD_COLOR, "colour image", options);
+  checkColour(frame.bgr, entry, options);
+  setDepth(frame, readImage(entry.depth_file, cv::IMREAD_UNCHANGED, "depth image", options), entry, options);
+  return frame;
+}
+
+RgbdFrame rgbdFrameFromImages(const AssociatedFrame& entry, cv::Mat bgr, const cv::Mat& raw_depth,
+                              const ReaderOptions& options, std::size_t index) {
+  RgbdFrame frame = frameHeader(entry, index);
+  checkColour(bgr, entry, options);
+  frame.bgr = std::move(bgr);
+  setDepth(frame, raw_depth, entry, options);
   return frame;
 }
 

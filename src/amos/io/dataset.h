@@ -94,6 +94,12 @@ class FrameLoadError : public core::Error {
 // single-channel. A depth dropout (see ReaderOptions::min_valid_depth) is
 // not an error: the frame comes back with depth_dropout set and all-zero depth.
 RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index);
+// loadRgbdFrame's checks and conversion on images already in memory (the library API's frames): `bgr` CV_8UC3,
+// `raw_depth` CV_16U (raw, scaled by 1 / depth_factor) or CV_32F (metres); `entry` names them in errors and gives
+// the time stamp (t_rgb). The depth is always a new buffer; `bgr` is kept as given (the caller copies it when its
+// pixels may change).
+RgbdFrame rgbdFrameFromImages(const AssociatedFrame& entry, cv::Mat bgr, const cv::Mat& raw_depth,
+                              const ReaderOptions& options, std::size_t index);
 
 // Reads a folder as fast as the consumer takes the frames (the default source), decoding `prefetch` frames ahead
 // in its own thread. Delivers on demand: nothing is ever dropped, and poll() is next(). A frame that cannot be

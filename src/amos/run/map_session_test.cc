@@ -42,7 +42,7 @@ TEST(MapSession, SaveThenLocalizeTheRestFromAColdStartThenExtend) {
   mapping.max_frames = 30;
   const SequenceRunResult first = runSequence(settings, mapping);
   ASSERT_FALSE(first.failure);
-  const mapio::MapFileSummary saved = first.slam->saveMap(first_map);
+  const mapio::MapFileSummary saved = first.slam().saveMap(first_map);
   ASSERT_GE(saved.keyframes, 2u);
 
   // Frames 20-59: the last third of the mapped part, then 30 frames the map never saw from there.
@@ -52,7 +52,7 @@ TEST(MapSession, SaveThenLocalizeTheRestFromAColdStartThenExtend) {
   localize.localize = true;
   const SequenceRunResult second = runSequence(settings, localize);
   ASSERT_FALSE(second.failure);
-  const system::SlamStats s = second.slam->stats();
+  const system::SlamStats s = second.slam().stats();
   EXPECT_EQ(s.frames, 40u);
   EXPECT_GE(s.tracked, 38u);  // the first frame is relocalised at once (or the second)
   EXPECT_GE(s.relocalized, 1u);
@@ -69,12 +69,12 @@ TEST(MapSession, SaveThenLocalizeTheRestFromAColdStartThenExtend) {
   extend.load_map = first_map;
   const SequenceRunResult third = runSequence(settings, extend);
   ASSERT_FALSE(third.failure);
-  EXPECT_GT(third.slam->stats().keyframes_created, 0u);
-  EXPECT_GT(third.slam->stats().keyframes, saved.keyframes);
+  EXPECT_GT(third.slam().stats().keyframes_created, 0u);
+  EXPECT_GT(third.slam().stats().keyframes, saved.keyframes);
   const std::string second_map = (dir / "second.map").string();
-  const mapio::MapFileSummary resaved = third.slam->saveMap(second_map);
+  const mapio::MapFileSummary resaved = third.slam().saveMap(second_map);
   map::Map reloaded;
-  EXPECT_EQ(mapio::loadMap(second_map, third.slam->sensor(), reloaded).keyframes, resaved.keyframes);
+  EXPECT_EQ(mapio::loadMap(second_map, third.slam().sensor(), reloaded).keyframes, resaved.keyframes);
 }
 
 TEST(MapSession, LocalizeNeedsAMapAndABadMapIsAnErrorBeforeTheFirstFrame) {

@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "amos/config/slam_options.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
 #include "amos/eval/ground_truth_masks.h"
@@ -23,8 +22,6 @@
 #include "amos/run/mask_writing.h"
 #include "amos/run/recording.h"
 #include "amos/run/trajectory_evaluation.h"
-#include "amos/segmentation/model_locator.h"
-#include "amos/segmentation/segmenter_factory.h"
 #ifdef AMOS_HAVE_OPENNI2
 #include "amos/camera/openni2_source.h"
 #endif
@@ -35,31 +32,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The segmenter (modes prior and full) is created, and its models loaded, before the first frame is read, so a
-// missing or corrupt model is a start-up error.
-std::unique_ptr<system::DynamicPipeline> makeDynamicPipeline(const config::Settings& settings,
-                                                             const SequenceRunOptions& options,
-                                                             system::SlamSystem& slam) {
-  const dynamic::DynamicOptions dynamic_options = effectiveSettings(settings, options).dynamic;
-  std::unique_ptr<segmentation::SegmentationWorker> worker;
-  if (dynamic_options.mode == dynamic::DynamicMode::kPrior || dynamic_options.mode == dynamic::DynamicMode::kFull) {
-    segmentation::ModelSources sources;
-    sources.cli_dir = options.models_dir;
-    sources.settings_dir = settings.segmentation.models_dir;
-    sources.environment = segmentation::processEnvironment();
-    auto segmenter =
-        segmentation::createSegmenter(settings.segmentation, sources, segmentation::builtinSegmenterFactory());
-    worker = std::make_unique<segmentation::SegmentationWorker>(std::move(segmenter), settings.segmentation.dilation);
-  }
-  return std::make_unique<system::DynamicPipeline>(slam, dynamic_options, std::move(worker));
-}
-
 }  // namespace
 
 config::Settings effectiveSettings(const config::Settings& settings, const SequenceRunOptions& options) {
-  config::Settings used = settings;
-  used.dynamic.mode = dynamic::parseDynamicMode(options.mode);
-  return used;
+  return api::effectiveSettings(settings, options.mode);
 }
 
 std::string sourceKindName(FrameSourceKind kind, const std::string& camera) {
@@ -152,20 +128,18 @@ void checkSettingsFitTheInput(const io::SequenceIndex& index, const config::Sett
   }
 }
 
-std::unique_ptr<system::SlamSystem> makeSlam(const config::Settings& settings, const SequenceRunOptions& options) {
-  system::SlamOptions slam_options = config::slamOptionsFromSettings(settings, options.deterministic, options.models_dir);
-  slam_options.after_keyframe = options.after_keyframe;
-  slam_options.tracking.localization_only = options.localize;
+// The SLAM system and its front end as amos::Slam makes them (api/engine.h): the same per-frame path.
+std::unique_ptr<api::Engine> makeEngine(const config::Settings& settings, const SequenceRunOptions& options) {
   core::require(!options.localize || !options.load_map.empty(),
                 "--localize needs a map to localize in (--load-map FILE)");
-  auto slam = std::make_unique<system::SlamSystem>(slam_options);
-  if (!options.load_map.empty()) {
-    core::Stopwatch watch;
-    const mapio::MapFileSummary loaded = slam->loadMap(options.load_map);
-    spdlog::info("map {}: {} keyframes, {} map points, loaded in {:.0f} ms{}", options.load_map, loaded.keyframes,
-                 loaded.map_points, watch.elapsedMs(), options.localize ? " (localization only)" : "");
-  }
-  return slam;
+  api::EngineOptions o;
+  o.mode = options.mode;
+  o.models_dir = options.models_dir;
+  o.deterministic = options.deterministic;
+  o.load_map = options.load_map;
+  o.localize = options.localize;
+  o.after_keyframe = options.after_keyframe;
+  return std::make_unique<api::Engine>(settings, o);
 }
 
 std::unique_ptr<io::FrameSource> openSource(const config::Settings& settings, const SequenceRunOptions& options,
@@ -218,7 +192,7 @@ OwnObservers makeOwnObservers(const config::Settings& settings, const SequenceRu
 RunStart runStart(const SequenceRunResult& result, const config::Settings& settings, const SequenceRunOptions& options,
                   std::size_t total_frames) {
   RunStart start;
-  start.map = result.slam->sharedMap();
+  start.map = result.slam().sharedMap();
   start.camera = settings.camera;
   start.total_frames = total_frames;
   start.sequence = options.source == FrameSourceKind::kCamera ? options.camera : options.sequence_dir;
@@ -249,9 +223,9 @@ std::string allSkippedMessage(const io::SkippedFrames& skipped, const SequenceRu
 // After the loop: the pipeline and the observers finished, how the run ended, the source's counts, the times, the
 // trajectory and what the observers measured; then the observers' onEnd.
 void finishRun(SequenceRunResult& result, OpenRun& run, LoopOutcome loop, const SequenceRunOptions& options) {
-  result.pipeline->finish();
+  result.pipeline().finish();
   std::exception_ptr failure = loop.failure;
-  if (!failure) failure = result.slam->workerFailure();  // e.g. while the mapping drained its queue
+  if (!failure) failure = result.slam().workerFailure();  // e.g. while the mapping drained its queue
   for (RunObserver* o : run.controller.observers()) {
     try {
       o->onStreamEnd();
@@ -274,20 +248,20 @@ void finishRun(SequenceRunResult& result, OpenRun& run, LoopOutcome loop, const 
   result.info.skipped_frames = stats.skipped;
   source_report.processed = loop.processed;
   source_report.latency_ms = std::move(loop.latency_ms);
-  source_report.segmentation_late = result.pipeline->segmentationLateFrames();
+  source_report.segmentation_late = result.pipeline().segmentationLateFrames();
   run.source.reset();  // a live device is closed here
   result.info.depth_dropouts = loop.depth_dropouts;
   // The pipeline's own stages (ORB extraction and tracking CPU in every mode, the front end's in the others).
-  result.info.front_end_times = &result.pipeline->times();
-  if (result.pipeline->mode() != dynamic::DynamicMode::kNone)
-    result.info.removed_fractions = result.pipeline->removedFractions();
+  result.info.front_end_times = &result.pipeline().times();
+  if (result.pipeline().mode() != dynamic::DynamicMode::kNone)
+    result.info.removed_fractions = result.pipeline().removedFractions();
   result.info.mask_outputs_s = loop.outputs_ms / 1000.0;
   result.info.wall_time_s = run.controller.runMs() / 1000.0;
   result.info.sequence = options.source == FrameSourceKind::kCamera ? options.camera : options.sequence_dir;
   result.info.mode = options.mode;
   result.info.deterministic = options.deterministic;
   result.info.config = options.config_label;
-  result.trajectory = result.slam->trajectory();
+  result.trajectory = result.slam().trajectory();
   // What the observers measure never costs the run its outputs: an error here is a warning.
   for (RunObserver* o : run.controller.observers()) {
     try {
@@ -313,18 +287,17 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   const std::string gt_file = index ? index->groundtruth_file : std::string();
   if (index && (!index->association.file.empty() || index->association.duplicate_rows > 0))
     result.info.association = index->association;
-  result.slam = makeSlam(settings, options);
-  result.pipeline = makeDynamicPipeline(settings, options, *result.slam);
+  result.engine = makeEngine(settings, options);
   OwnObservers own = makeOwnObservers(settings, options, gt_file);
   // Opened last, just before the loop: a paced or live source starts its clock at once.
   std::unique_ptr<io::FrameSource> source = openSource(settings, options, index);
   const bool paced = options.source != FrameSourceKind::kFolder;
   // A paced or live source: a pose must not wait for a late person network (DynamicPipeline::setWaitForSegmentation).
-  result.pipeline->setWaitForSegmentation(!paced || settings.dynamic.prior.live_wait);
+  result.pipeline().setWaitForSegmentation(!paced || settings.dynamic.prior.live_wait);
   result.info.source.emplace();
   result.info.source->kind = sourceKindName(options.source, options.camera);
   result.info.source->recorded_to = options.record_dir;
-  RunController controller(*source, *result.pipeline, {paced, options.max_frames, options.stop, options.on_frame});
+  RunController controller(*source, result.pipeline(), {paced, options.max_frames, options.stop, options.on_frame});
   own.addTo(controller);
   for (RunObserver* o : options.observers) controller.addObserver(*o);
   RunStart start = runStart(result, settings, options, source->size());

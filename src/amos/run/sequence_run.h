@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "amos/api/engine.h"
 #include "amos/config/settings.h"
 #include "amos/core/stop_request.h"
 #include "amos/io/trajectory.h"
@@ -87,8 +88,10 @@ struct SequenceRunOptions {
 config::Settings effectiveSettings(const config::Settings& settings, const SequenceRunOptions& options);
 
 struct SequenceRunResult {
-  std::unique_ptr<system::SlamSystem> slam;  // finished (mapping stopped)
-  std::unique_ptr<system::DynamicPipeline> pipeline;  // the front end around `slam` (declared after it: dies first)
+  // The SLAM system (finished: mapping stopped) and the front end around it, as amos::Slam makes them.
+  std::unique_ptr<api::Engine> engine;
+  system::SlamSystem& slam() const { return engine->slam(); }
+  system::DynamicPipeline& pipeline() const { return engine->pipeline(); }
   report::RunInfo info;                      // wall time, evaluation when there is ground truth, how it ended
   std::vector<io::StampedPose> trajectory;
   // The error that ended the run early (info.end.status kFailed), or null.

@@ -80,7 +80,7 @@ TEST(SequenceRunDamagedInput, BadFramesAreSkippedAndCountedByReason) {
   EXPECT_EQ(skipped.count(io::FrameProblem::kWrongSize), 1u);
   EXPECT_EQ(skipped.count(io::FrameProblem::kWrongFormat), 1u);
   EXPECT_EQ(skipped.count(io::FrameProblem::kMissing), 1u);
-  const system::SlamStats s = r.slam->stats();
+  const system::SlamStats s = r.slam().stats();
   EXPECT_EQ(s.frames, kFrames - 4u);
   EXPECT_EQ(s.tracked, kFrames - 4u);
   EXPECT_EQ(r.trajectory.size(), kFrames - 4u);
@@ -88,7 +88,7 @@ TEST(SequenceRunDamagedInput, BadFramesAreSkippedAndCountedByReason) {
   EXPECT_LT(r.info.evaluation->ate_rmse_m, 0.01);
 
   const fs::path out = dir / "run";
-  report::writeRunOutputs(out.string(), *r.slam, r.info);
+  report::writeRunOutputs(out.string(), r.slam(), r.info);
   std::ifstream in(out / "stats.json");
   const nlohmann::json stats = nlohmann::json::parse(in);
   EXPECT_EQ(stats["skipped_frames"], nlohmann::json({{"missing", 1}, {"unreadable", 1}, {"wrong_size", 1},
@@ -103,7 +103,7 @@ TEST(SequenceRunDamagedInput, StrictMakesABadFrameAnError) {
   fs::resize_file(frames[8].rgb_file, fs::file_size(frames[8].rgb_file) / 3);
   const SequenceRunResult r = runOn(dir, "none", /*strict=*/true);
   EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kFailed);
-  EXPECT_EQ(r.slam->stats().frames, 8u);
+  EXPECT_EQ(r.slam().stats().frames, 8u);
   EXPECT_EQ(r.trajectory.size(), 8u);
   try {
     r.rethrowFailure();
@@ -127,7 +127,7 @@ TEST(SequenceRunDamagedInput, DepthDropoutsAreTrackedFromColour) {
     EXPECT_EQ(r.info.depth_dropouts.tracked, 5u) << mode;
     EXPECT_EQ(r.info.depth_dropouts.lost, 0u) << mode;
     EXPECT_EQ(r.info.skipped_frames.total(), 0u) << mode;
-    const system::SlamStats s = r.slam->stats();
+    const system::SlamStats s = r.slam().stats();
     EXPECT_EQ(s.frames, static_cast<std::size_t>(kFrames)) << mode;
     EXPECT_EQ(s.tracked, static_cast<std::size_t>(kFrames)) << mode;
     ASSERT_TRUE(r.info.evaluation) << mode;
@@ -146,7 +146,7 @@ TEST(SequenceRunDamagedInput, DropoutsBeforeTheMapDelayItsStart) {
   EXPECT_EQ(r.info.depth_dropouts.frames, 3u);
   EXPECT_EQ(r.info.depth_dropouts.tracked, 0u);
   EXPECT_EQ(r.info.depth_dropouts.lost, 0u);
-  const system::SlamStats s = r.slam->stats();
+  const system::SlamStats s = r.slam().stats();
   EXPECT_EQ(s.not_initialized, 3u);
   EXPECT_EQ(s.tracked, kFrames - 3u);
   EXPECT_EQ(r.trajectory.size(), kFrames - 3u);
@@ -184,7 +184,7 @@ TEST(SequenceRunDamagedInput, ARunWithEveryFrameSkippedIsAFailure) {
             std::string::npos)
       << r.info.end.reason;
   EXPECT_THROW(r.rethrowFailure(), core::Error);
-  EXPECT_EQ(r.slam->stats().frames, 0u);
+  EXPECT_EQ(r.slam().stats().frames, 0u);
 }
 
 // An observer whose measurement fails after the run (what a failing evaluation does) costs nothing: the run

@@ -40,7 +40,7 @@ SequenceRunOptions optionsFor(const std::string& mode) {
 nlohmann::json writtenStats(const SequenceRunResult& r, const std::string& name) {
   const fs::path out = fs::path(AMOS_BINARY_DIR) / "test_outputs" / "early_end" / name;
   fs::remove_all(out);
-  report::writeRunOutputs(out.string(), *r.slam, r.info);
+  report::writeRunOutputs(out.string(), r.slam(), r.info);
   EXPECT_TRUE(fs::exists(out / "trajectory.txt"));
   EXPECT_TRUE(fs::exists(out / "keyframes.txt"));
   EXPECT_TRUE(fs::exists(out / "map.ply"));
@@ -61,7 +61,7 @@ TEST(SequenceRunEarlyEnd, StopEndsTheRunAtTheNextFrameBoundary) {
     const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
     EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kInterrupted) << mode;
     EXPECT_FALSE(r.failure) << mode;
-    EXPECT_EQ(r.slam->stats().frames, 5u) << mode;
+    EXPECT_EQ(r.slam().stats().frames, 5u) << mode;
     EXPECT_EQ(r.trajectory.size(), 5u) << mode;
     ASSERT_TRUE(r.info.evaluation) << mode;
     EXPECT_EQ(r.info.evaluation->ate_pairs, 5u) << mode;
@@ -79,7 +79,7 @@ TEST(SequenceRunEarlyEnd, StopBeforeTheFirstFrame) {
   options.stop = &stop;
   const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
   EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kInterrupted);
-  EXPECT_EQ(r.slam->stats().frames, 0u);
+  EXPECT_EQ(r.slam().stats().frames, 0u);
   EXPECT_TRUE(r.trajectory.empty());
   EXPECT_EQ(writtenStats(r, "stop_first")["end"]["status"], "interrupted");
 }
@@ -133,7 +133,7 @@ TEST(SequenceRunEarlyEnd, StopEndsAPacedRunWaitingForALateFrameAtOnce) {
   EXPECT_LT(took, std::chrono::seconds(30));
   EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kInterrupted);
   EXPECT_FALSE(r.failure);
-  EXPECT_LE(r.slam->stats().frames, 5u);
+  EXPECT_LE(r.slam().stats().frames, 5u);
   EXPECT_EQ(r.info.source->delivered, 5u);
 }
 
@@ -151,7 +151,7 @@ TEST(SequenceRunEarlyEnd, MappingFailureEndsTheRunWithOutputsKept) {
       << r.info.end.reason;
   ASSERT_TRUE(r.failure);
   EXPECT_THROW(r.rethrowFailure(), core::Error);
-  const std::size_t frames = r.slam->stats().frames;
+  const std::size_t frames = r.slam().stats().frames;
   EXPECT_GE(frames, 2u);
   EXPECT_LT(frames, kFrames);
   EXPECT_EQ(r.trajectory.size(), frames);
@@ -173,7 +173,7 @@ TEST(SequenceRunEarlyEnd, ThreadedMappingFailureIsReported) {
   const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
   EXPECT_EQ(r.info.end.status, report::RunEnd::Status::kFailed);
   EXPECT_NE(r.info.end.reason.find("injected failure"), std::string::npos) << r.info.end.reason;
-  EXPECT_EQ(r.trajectory.size(), r.slam->stats().frames);
+  EXPECT_EQ(r.trajectory.size(), r.slam().stats().frames);
 }
 
 TEST(SequenceRunEarlyEnd, ACompleteRunSaysSo) {
@@ -182,7 +182,7 @@ TEST(SequenceRunEarlyEnd, ACompleteRunSaysSo) {
   EXPECT_TRUE(r.info.end.reason.empty());
   EXPECT_FALSE(r.failure);
   EXPECT_NO_THROW(r.rethrowFailure());
-  EXPECT_EQ(r.slam->stats().frames, kFrames);
+  EXPECT_EQ(r.slam().stats().frames, kFrames);
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ fs::path outputDir(const std::string& name) {
 }
 
 nlohmann::json writeAndReadStats(const SequenceRunResult& r, const fs::path& dir) {
-  report::writeRunOutputs(dir.string(), *r.slam, r.info);
+  report::writeRunOutputs(dir.string(), r.slam(), r.info);
   std::ifstream in(dir / "stats.json");
   return nlohmann::json::parse(in);
 }
@@ -73,7 +73,7 @@ TEST(SequenceRunSources, RealtimeReplayProcessesOrDropsEveryFrame) {
   EXPECT_EQ(s.processed + s.dropped, s.delivered);
   EXPECT_GE(s.processed, 10u);
   EXPECT_EQ(s.latency_ms.size(), s.processed);
-  EXPECT_EQ(r.slam->stats().frames, s.processed);
+  EXPECT_EQ(r.slam().stats().frames, s.processed);
   EXPECT_EQ(r.trajectory.size(), s.processed);
   EXPECT_GE(r.info.wall_time_s, 1.5);  // paced: 49 frame intervals of fr2's recording
   ASSERT_TRUE(r.info.evaluation);

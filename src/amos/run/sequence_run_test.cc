@@ -43,8 +43,8 @@ SequenceRunResult runFr2(bool deterministic) {
 TEST(SequenceRun, TumFr2DeskFirst50TracksEveryFrameAccurately) {
   AMOS_REQUIRE_DATA(kFr2Data);
   const SequenceRunResult r = runFr2(true);
-  ASSERT_TRUE(r.slam);
-  const system::SlamStats s = r.slam->stats();
+  ASSERT_TRUE(r.engine);
+  const system::SlamStats s = r.slam().stats();
   EXPECT_EQ(s.frames, 50u);
   EXPECT_EQ(s.tracked, 50u);
   EXPECT_EQ(s.lost, 0u);
@@ -64,7 +64,7 @@ TEST(SequenceRun, DeterministicModeIsBitIdentical) {
   for (int run = 0; run < 2; ++run) {
     const SequenceRunResult r = runFr2(true);
     const std::string out = (dir / std::to_string(run)).string();
-    report::writeRunOutputs(out, *r.slam, r.info);
+    report::writeRunOutputs(out, r.slam(), r.info);
     bytes[run] = readFile(out + "/trajectory.txt");
     EXPECT_TRUE(std::filesystem::exists(out + "/keyframes.txt"));
     EXPECT_TRUE(std::filesystem::exists(out + "/map.ply"));
@@ -94,7 +94,7 @@ TEST(SequenceRun, SavesMasksAndScoresThemAgainstSyntheticGroundTruth) {
   options.masks_output_dir = (root / "run").string();
   options.overlay_count = 4;
   const SequenceRunResult r = runSequence(config::loadSettings(kTum3), options);
-  report::writeRunOutputs((root / "run").string(), *r.slam, r.info);
+  report::writeRunOutputs((root / "run").string(), r.slam(), r.info);
 
   std::size_t masks = 0, overlays = 0;
   for (const auto& e : fs::directory_iterator(root / "sequence" / "rgb")) {

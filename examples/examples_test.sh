@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# The examples' tests (examples/CMakeLists.txt sets the environment):
+#   examples_test.sh install   cmake --install the build into $AMOS_PREFIX (emptied first)
+#   examples_test.sh headers   compile each installed public header alone, with only the installed include path
+#                              (and OpenCV's and Eigen's)
+#   examples_test.sh track     build examples/cpp out of tree against $AMOS_PREFIX, run it and
+#                              examples/python/track_folder.py on tum_fr2_desk_first50 (configs/tum2.yaml, mode full,
+#                              deterministic), and check both trajectories equal the installed
+#                              `amos-slam run --deterministic`'s trajectory.txt byte for byte; also writes a mask
+#                              overlay with examples/python/show_mask.py
+# The data is looked for in $AMOS_DATA_DIR (else the build's AMOS_DATA_DIR); without it the test is skipped (77),
+# or fails with AMOS_REQUIRE_SHARED_DATA=1. Everything runs from a scratch folder outside both trees, with
+# AMOS_MODELS unset, so the programs find the models in the installed data folder.
+set -euo pipefail
+: "${AMOS_BUILD_DIR:?}" "${AMOS_PREFIX:?}" "${AMOS_SOURCE_DIR:?}"
+prefix=$AMOS_PREFIX
+unset AMOS_MODELS
+
+install_package() {
+  rm -rf "$prefix"
+  cmake --install "$AMOS_BUILD_DIR" --prefix "$prefix" > "$AMOS_BUILD_DIR/examples-install.log"
+  for f in bin/amos-slam include/amos/slam.h lib/cmake/AmosSlam/AmosSlamConfig.cmake \
+           lib/pkgconfig/amos-slam.pc share/amos-slam/models/orb_vocabulary.voc; do
+    [[ -f "$prefix/$f" ]] || { echo "not installed: $f" >&2; exit 1; }
+  done
+  echo "installed into $prefix: $(find "$prefix" -type f | wc -l) files"
+}
+
+compile_headers() {
+  local flags
+  flags=$(pkg-config --cflags opencv4 eigen3)
+  for h in "$prefix"/include/amos/*.h; do
+    # shellcheck disable=SC2086
+    echo "#include <amos/$(basename "$h")>" | "${AMOS_CXX:-c++}" -std=c++17 -fsyntax-only -Wall -Wextra -Werror \
+      -I"$prefix/include" $flags -x c++ - || { echo "FAILED: $h does not compile alone" >&2; exit 1; }
+    echo "compiles alone: include/amos/$(basename "$h")"
+  done
+  # The pkg-config file: a program built and linked with its flags alone.
+  work=$(mktemp -d "${TMPDIR:-/tmp}/amos-pkgconfig.XXXXXX")
+  trap 'rm -rf "$work"' EXIT
+  printf '%s\n' '#include <amos/slam.h>' '#include <cstdio>' \
+    'int main() { std::printf("%s %s\n", amos::kVersion, amos::toString(amos::TrackingState::kOk)); }' \
+    > "$work/main.cc"
+  # eval: pkg-config escapes the quotes of the data folder's string for a shell (as make passes it to one).
+  eval "\"\${AMOS_CXX:-c++}\" -std=c++17 \"\$work/main.cc\" -o \"\$work/main\" \
+    $(PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --cflags --libs amos-slam)"
+  [[ "$("$work/main")" == "$(sed -n 's/^Version: //p' "$prefix/lib/pkgconfig/amos-slam.pc") ok" ]]
+  echo "pkg-config: a program links with amos-slam.pc's flags"
+}
+
+track() {
+  local data=${AMOS_DATA_DIR:-$AMOS_DEFAULT_DATA_DIR} sequence config
+  sequence=$data/tum_fr2_desk_first50
+  if [[ ! -d "$sequence" ]]; then
+    echo "real data missing: $sequence (set AMOS_DATA_DIR; scripts/fetch_data.sh)" >&2
+    [[ "${AMOS_REQUIRE_SHARED_DATA:-0}" == 1 ]] && exit 1
+    exit 77
+  fi
+  config=$AMOS_SOURCE_DIR/configs/tum2.yaml
+  work=$(mktemp -d "${TMPDIR:-/tmp}/amos-examples.XXXXXX")
+  trap 'rm -rf "$work"' EXIT
+  cd "$work"
+  cmake -S "$AMOS_SOURCE_DIR/examples/cpp" -B build -DCMAKE_PREFIX_PATH="$prefix" > cmake.log ||
+    { cat cmake.log; exit 1; }
+  cmake --build build > build.log || { cat build.log; exit 1; }
+  "$prefix/bin/amos-slam" run --sequence "$sequence" --config "$config" --mode full --deterministic \
+    --output run > run.log 2>&1 || { tail -20 run.log; exit 1; }
+  build/track_folder "$sequence" "$config" cpp_trajectory.txt full
+  cmp run/trajectory.txt cpp_trajectory.txt
+  echo "C++ example: trajectory identical to amos-slam run's ($(grep -vc '^#' cpp_trajectory.txt) poses)"
+  if [[ "${AMOS_WITH_PYTHON:-0}" == 1 ]]; then
+    local site=$prefix/lib/python3/dist-packages
+    PYTHONPATH=$site "$AMOS_PYTHON" "$AMOS_SOURCE_DIR/examples/python/track_folder.py" "$sequence" "$config" \
+      py_trajectory.txt --mode full
+    cmp run/trajectory.txt py_trajectory.txt
+    echo "Python example: trajectory identical to amos-slam run's"
+    PYTHONPATH=$site "$AMOS_PYTHON" "$AMOS_SOURCE_DIR/examples/python/show_mask.py" "$sequence" "$config" 30 \
+      overlay.png full
+    [[ -s overlay.png ]]
+  fi
+}
+
+case "${1:-}" in
+  install) install_package ;;
+  headers) compile_headers ;;
+  track) track ;;
+  *) echo "usage: $0 install|headers|track" >&2; exit 2 ;;
+esac
