@@ -119,6 +119,15 @@ void ViewerServer::addRoutes() {
     res.set_header("Cache-Control", "no-store");
     res.set_content(std::string(image->begin(), image->end()), "image/jpeg");
   });
+  s.Get(R"(/api/dense/(\w+)\.bin)", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto layer = state_.denseLayer(req.matches[1]);
+    if (!layer) {
+      res.status = 404;
+      return;
+    }
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(*layer, "application/octet-stream");
+  });
   s.Get("/api/events", [this](const httplib::Request& req, httplib::Response& res) {
     std::uint64_t since = state_.seq();
     try {
