@@ -3,8 +3,8 @@
 // same origin (written into the run folder, served under /files/) opens the view page in an iframe and uses it as
 // a user does: it waits until the page has drawn and loaded its dense layers, then looks at the pixels of the 3D
 // view (the trajectory's green, the removed points' magenta), clicks the layer toggles, zooms with the wheel and
-// presses F. It reports what it saw as JSON in its DOM, which --dump-dom hands back. Also report.html with an
-// occupancy grid, opened from disk.
+// presses F, then T. It reports what it saw as JSON in its DOM, which --dump-dom hands back. Also the live page
+// with a dense cloud from the publisher, and report.html with an occupancy grid, opened from disk.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -19,6 +19,8 @@
 #include "amos/viewer/http_server.h"
 #include "amos/viewer/live_state.h"
 #include "amos/viewer/run_folder.h"
+#include "amos/viewer/snapshot_publisher.h"
+#include "amos/report/run_report.h"
 #include "amos/viewer/test_run_folder.h"
 #include "amos/viewer/whole_file.h"
 
@@ -133,6 +135,9 @@ async function main() {
   await settle(); out.zoomed_out = look();
   frame().contentWindow.dispatchEvent(new KeyboardEvent('keydown', {key: 'f', bubbles: true}));
   await settle(); out.refitted = look();
+  frame().contentWindow.dispatchEvent(new KeyboardEvent('keydown', {key: 't', bubbles: true}));
+  await settle(); out.trajectory_fit = look();
+  out.topview_paths = doc().querySelectorAll('#topview path').length;
   out.side = doc().getElementById('side').textContent;
   out.errors_after = doc().body.dataset.errors || '';
   document.getElementById('result').textContent = JSON.stringify(out);
@@ -177,12 +182,40 @@ TEST(ViewPageBrowser, FitsTheRunShowsDenseLayersAndTogglesThem) {
   // Zooming out shrinks the trajectory; F fits it again.
   EXPECT_LT(r["zoomed_out"]["traj_w"].get<double>(), 0.8 * fitted["traj_w"].get<double>()) << r.dump();
   EXPECT_NEAR(r["refitted"]["traj_w"].get<double>(), fitted["traj_w"].get<double>(), 0.03) << r.dump();
+  // T fits the trajectory alone: it then fills the canvas in one direction.
+  const nlohmann::json& t = r["trajectory_fit"];
+  EXPECT_GT(std::max(t["traj_w"].get<double>(), t["traj_h"].get<double>()), 0.7) << t.dump();
+  EXPECT_EQ(r["topview_paths"], 2) << r.dump();  // the side panel's top view: estimate and ground truth
   // The side panel: the finished run's stage times (stats.json) and the ground truth.
   const std::string side = r["side"];
   EXPECT_TRUE(contains(side, "median / 95th percentile over the run")) << side;
   EXPECT_TRUE(contains(side, "12.5 / 20.0")) << side;
   EXPECT_TRUE(contains(side, "60 poses")) << side;  // ground truth
   EXPECT_TRUE(contains(side, "dense mesh vertices")) << side;
+  for (const std::string& m : consoleMessages(page.log)) ADD_FAILURE() << "console: " << m;
+}
+
+// The live page with a dense cloud handed to the publisher (as `run --dense` does): the page fetches and draws it.
+TEST(ViewPageBrowser, TheLivePageDrawsTheDenseCloud) {
+  if (chromium().empty()) GTEST_SKIP() << "chromium is not installed (scripts/install_deps.sh installs it)";
+  const fs::path scratch = testing::scratchDirForThisTest("viewer_browser_");
+  LiveState state;
+  SnapshotPublisher publisher(state);
+  run::RunStart start;
+  start.total_frames = 10;
+  start.mode = "full";
+  publisher.onStart(start);
+  const ColouredGeometry cloud = test::gridCloud(-1, 1, 1, 3, 0.5f, 2500, 200, 150, 90);
+  publisher.publishDenseCloud(cloud.xyz, cloud.rgb);
+  publisher.onEnd({}, report::RunInfo{});
+  ServerOptions options;
+  options.port = 0;
+  ViewerServer server(state, options);
+  const Page page = loadInBrowser(server.url() + "?nofollow", scratch, "live");
+  EXPECT_TRUE(contains(page.dom, "data-dense=\"live\"")) << page.dom.substr(0, 3000) << "\nlog:\n" << page.log;
+  EXPECT_TRUE(contains(page.dom, "data-drawn=\"1\"")) << page.dom.substr(0, 3000);
+  EXPECT_TRUE(contains(page.dom, "dense cloud points")) << page.dom.substr(0, 3000);
+  EXPECT_FALSE(contains(page.dom, "data-errors")) << page.dom.substr(0, 3000);
   for (const std::string& m : consoleMessages(page.log)) ADD_FAILURE() << "console: " << m;
 }
 

@@ -155,9 +155,12 @@
     for (const id of ['show-mesh', 'show-cloud', 'show-removed']) {
       $(id).addEventListener('change', () => { showDenseToggles(); redraw(); });
     }
-    $('fit').addEventListener('click', () => { fitView(); });
+    $('fit').addEventListener('click', () => { fitView(false); });
+    $('fit-trajectory').addEventListener('click', () => { fitView(true); });
     window.addEventListener('keydown', (e) => {
-      if ((e.key === 'f' || e.key === 'F') && !e.ctrlKey && !e.metaKey && !e.altKey) fitView();
+      if (e.ctrlKey || e.metaKey || e.altKey) return;
+      if (e.key === 'f' || e.key === 'F') fitView(false);
+      if (e.key === 't' || e.key === 'T') fitView(true);
     });
     requestAnimationFrame(frameLoop);
   }
@@ -212,16 +215,20 @@
     }
   }
 
-  // The value below which a share q of `values` lies (values is sorted in place).
-  function quantile(values, q) {
-    values.sort((a, b) => a - b);
-    return values[Math.min(values.length - 1, Math.max(0, Math.round(q * (values.length - 1))))];
+  // The values below which shares q0 and q1 of `values` lie.
+  function quantiles(values, q0, q1) {
+    const sorted = Float64Array.from(values).sort();
+    const at = (q) => sorted[Math.min(sorted.length - 1, Math.max(0, Math.round(q * (sorted.length - 1))))];
+    return [at(q0), at(q1)];
   }
 
-  // The box the view fits (SLAM world frame): the 2nd-98th percentile box of the points (map points and dense
-  // layers, at most ~60000 of them sampled evenly), so that a few far outliers do not shrink the scene to a dot,
-  // grown to hold the whole trajectory and the keyframes.
-  function fitBox() {
+  // The points the view must show, in the scene's frame. The whole scene: the points (map points and dense
+  // layers, at most 20000 of each sampled evenly) inside their 2nd-98th percentile box, so that a few far outliers
+  // do not shrink the scene to a dot, with the whole trajectory and the keyframes. Or (trajectoryOnly) the
+  // trajectory and the ground truth alone, for a camera that moved little in a large room. The points themselves,
+  // not their box: the corners of a box seen obliquely reach far beyond what is in it.
+  function fitPoints(trajectoryOnly) {
+    world.updateMatrixWorld(true);
     const xs = [], ys = [], zs = [];
     const sample = (data, count, budget) => {
       const step = Math.max(1, Math.ceil(count / budget));
@@ -230,55 +237,69 @@
         if (Number.isFinite(x) && Number.isFinite(y) && Number.isFinite(z)) { xs.push(x); ys.push(y); zs.push(z); }
       }
     };
-    sample(cloud.data, cloud.count, 20000);
-    for (const [name, layer] of dense) if (layer.xyz && name !== 'removed') sample(layer.xyz, layer.xyz.length / 3, 20000);
-    const box = new THREE.Box3();
-    if (xs.length >= 20) {
-      box.min.set(quantile(xs, 0.02), quantile(ys, 0.02), quantile(zs, 0.02));
-      box.max.set(quantile(xs, 0.98), quantile(ys, 0.98), quantile(zs, 0.98));
-    } else {
-      for (let i = 0; i < xs.length; ++i) box.expandByPoint(new THREE.Vector3(xs[i], ys[i], zs[i]));
+    if (!trajectoryOnly) {
+      sample(cloud.data, cloud.count, 20000);
+      for (const [name, layer] of dense) if (layer.xyz && name !== 'removed') sample(layer.xyz, layer.xyz.length / 3, 20000);
     }
+    const inside = new THREE.Box3(new THREE.Vector3(-Infinity, -Infinity, -Infinity), new THREE.Vector3(Infinity, Infinity, Infinity));
+    if (xs.length >= 20) {
+      const [x0, x1] = quantiles(xs, 0.02, 0.98), [y0, y1] = quantiles(ys, 0.02, 0.98), [z0, z1] = quantiles(zs, 0.02, 0.98);
+      inside.min.set(x0, y0, z0);
+      inside.max.set(x1, y1, z1);
+    }
+    const out = [];
     const p = new THREE.Vector3();
+    const step = Math.max(1, Math.ceil(xs.length / 4000));  // enough to place the camera, cheap to project
+    for (let i = 0; i < xs.length; i += step)
+      if (inside.containsPoint(p.set(xs[i], ys[i], zs[i]))) out.push(world.localToWorld(p.clone()));
     const take = (x, y, z) => {
-      if (Number.isFinite(x) && Number.isFinite(y) && Number.isFinite(z)) box.expandByPoint(p.set(x, y, z));
+      if (Number.isFinite(x) && Number.isFinite(y) && Number.isFinite(z)) out.push(world.localToWorld(new THREE.Vector3(x, y, z)));
     };
-    for (const s of trajectory) take(s[1], s[2], s[3]);
-    for (const k of keyframes.values()) take(k[0], k[1], k[2]);
-    return box;
+    const path = trajectoryOnly ? trajectory.concat(groundTruth) : trajectory;
+    const pathStep = Math.max(1, Math.ceil(path.length / 2000));
+    for (let i = 0; i < path.length; i += pathStep) take(path[i][1], path[i][2], path[i][3]);
+    if (!trajectoryOnly) for (const k of keyframes.values()) take(k[0], k[1], k[2]);
+    return out;
   }
 
-  // Puts the whole box in the picture, as large as it fits: the camera looks at the box's centre from behind
-  // and above the first camera, at the least distance at which every corner of the box is inside the field of
-  // view (with a margin).
-  function fitView() {
+  // Puts the points in the picture, as large as they fit: the camera looks from behind and above the first camera
+  // (a fixed direction), at the least distance at which every point is inside the field of view with a margin;
+  // the target is then moved sideways so that the points' extremes lie symmetric in the picture, and the distance
+  // found again (three shifts suffice).
+  function fitView(trajectoryOnly) {
     if (!renderer) return;
-    const box = fitBox();
-    if (box.isEmpty()) return;
-    world.updateMatrixWorld(true);
-    const corners = [];
-    for (const x of [box.min.x, box.max.x]) for (const y of [box.min.y, box.max.y]) for (const z of [box.min.z, box.max.z])
-      corners.push(world.localToWorld(new THREE.Vector3(x, y, z)));
-    const centre = new THREE.Vector3();
-    for (const c of corners) centre.add(c);
-    centre.multiplyScalar(1 / corners.length);
+    const points = fitPoints(trajectoryOnly === true);
+    if (!points.length) return;
+    const box = new THREE.Box3().setFromPoints(points);
+    const centre = box.getCenter(new THREE.Vector3());
+    const size = Math.max(0.1, box.getSize(new THREE.Vector3()).length());
     const back = new THREE.Vector3(0.3, 0.55, 0.78).normalize();  // from the target towards the camera
     const right = new THREE.Vector3(0, 1, 0).cross(back).normalize();
     const up = back.clone().cross(right);
     const canvas = renderer.domElement;
     const aspect = Math.max(0.1, canvas.clientWidth / Math.max(1, canvas.clientHeight));
-    const tanV = Math.tan(THREE.MathUtils ? THREE.MathUtils.degToRad(camera.fov / 2) : camera.fov * Math.PI / 360);
-    const tanH = tanV * aspect;
-    const margin = 1.1;
-    let distance = 0, size = 0;
-    for (const c of corners) {
-      const d = c.clone().sub(centre);
-      size = Math.max(size, d.length());
-      const x = Math.abs(d.dot(right)), y = Math.abs(d.dot(up)), z = d.dot(back);
-      distance = Math.max(distance, z + margin * x / tanH, z + margin * y / tanV);
+    const tanV = Math.tan(camera.fov * Math.PI / 360), tanH = tanV * aspect;
+    const margin = 1.08;
+    let distance = 0;
+    for (let round = 0; round < 4; ++round) {
+      distance = 0;
+      for (const p of points) {
+        const d = p.clone().sub(centre);
+        const x = Math.abs(d.dot(right)), y = Math.abs(d.dot(up)), z = d.dot(back);
+        distance = Math.max(distance, z + margin * x / tanH, z + margin * y / tanV);
+      }
+      distance = Math.max(distance, 0.05);
+      if (round === 3) break;
+      // Where the extremes fall (tangents of their angles off the axis) and the shift that centres them.
+      let ax0 = Infinity, ax1 = -Infinity, ay0 = Infinity, ay1 = -Infinity;
+      for (const p of points) {
+        const d = p.clone().sub(centre);
+        const depth = Math.max(1e-6, distance - d.dot(back));
+        const ax = d.dot(right) / depth, ay = d.dot(up) / depth;
+        ax0 = Math.min(ax0, ax); ax1 = Math.max(ax1, ax); ay0 = Math.min(ay0, ay); ay1 = Math.max(ay1, ay);
+      }
+      centre.addScaledVector(right, distance * (ax0 + ax1) / 2).addScaledVector(up, distance * (ay0 + ay1) / 2);
     }
-    distance = Math.max(distance, 0.2);
-    size = Math.max(size, 0.1);
     controls.target.copy(centre);
     camera.position.copy(centre).addScaledVector(back, distance);
     camera.near = Math.max(1e-3, distance / 1000);
@@ -322,6 +343,38 @@
     const g = new THREE.BufferGeometry();
     g.setAttribute('position', new THREE.Float32BufferAttribute(out, 3));
     return g;
+  }
+
+  // ---------------------------------------------------------------- the top view of the trajectory
+
+  // The estimate (green) and the ground truth (grey) seen from above (SLAM x to the right, z, the first camera's
+  // viewing direction, upwards), at one scale for both axes, with a scale bar: readable however large the room.
+  let topviewTime = 0, topviewTimer = null;
+  function showTopView() {
+    const now = Date.now();
+    if (now - topviewTime < 1000) {  // at most once a second while a run goes
+      if (!topviewTimer) topviewTimer = setTimeout(() => { topviewTimer = null; showTopView(); }, 1000);
+      return;
+    }
+    topviewTime = now;
+    const W = 394, H = 240, M = 12;
+    const all = trajectory.concat(groundTruth).filter((s) => Number.isFinite(s[1]) && Number.isFinite(s[3]));
+    if (all.length < 2) { $('topview').innerHTML = ''; return; }
+    let x0 = Infinity, x1 = -Infinity, z0 = Infinity, z1 = -Infinity;
+    for (const s of all) { x0 = Math.min(x0, s[1]); x1 = Math.max(x1, s[1]); z0 = Math.min(z0, s[3]); z1 = Math.max(z1, s[3]); }
+    const k = Math.min((W - 2 * M) / Math.max(x1 - x0, 1e-3), (H - 2 * M - 14) / Math.max(z1 - z0, 1e-3));
+    const X = (x) => W / 2 + (x - (x0 + x1) / 2) * k, Y = (z) => (H - 14) / 2 - (z - (z0 + z1) / 2) * k;
+    const path = (samples) => samples.filter((s) => Number.isFinite(s[1]) && Number.isFinite(s[3]))
+        .map((s, i) => (i ? 'L' : 'M') + X(s[1]).toFixed(1) + ' ' + Y(s[3]).toFixed(1)).join('');
+    const bar = [0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50].filter((m) => m * k <= W / 3).pop() || 0.01;
+    let svg = '<svg xmlns="http://www.w3.org/2000/svg" width="100%" viewBox="0 0 ' + W + ' ' + H + '">';
+    if (groundTruth.length) svg += '<path d="' + path(groundTruth) + '" fill="none" stroke="#909090" stroke-width="2.5"/>';
+    svg += '<path d="' + path(trajectory) + '" fill="none" stroke="#40d060" stroke-width="1.5"/>';
+    if (trajectory.length) svg += '<circle cx="' + X(trajectory[0][1]) + '" cy="' + Y(trajectory[0][3]) + '" r="3" fill="#ffd040"/>';
+    svg += '<line x1="' + M + '" x2="' + (M + bar * k) + '" y1="' + (H - 8) + '" y2="' + (H - 8) + '" stroke="#d8dde6" stroke-width="2"/>' +
+           '<text x="' + (M + bar * k + 6) + '" y="' + (H - 4) + '">' + (bar < 1 ? bar * 100 + ' cm' : bar + ' m') +
+           ' &middot; x right, z forward; yellow: start</text></svg>';
+    $('topview').innerHTML = svg;
   }
 
   // ---------------------------------------------------------------- dense layers
@@ -388,7 +441,7 @@
       layer.version = version;
       world.add(layer.object);
       showDenseToggles();
-      if (!userMoved) fitView();
+      if (!userMoved) fitView(false);
       dirty = true;
       drawIfChanged();
       const ready = [...dense.entries()].filter(([, l]) => l.object).map(([n]) => n).sort();
@@ -430,10 +483,11 @@
       if (lastFrame) setGeometry(camLines, frustaGeometry([lastFrame.T_wc]));
       dirty = true;
       if (!fitted && (cloud.count > 50 || (!info.live && trajectory.length > 1))) {
-        fitView();
+        fitView(false);
         fitted = true;
       }
     }
+    if (u.trajectory || u.ground_truth || whole) showTopView();
     if (u.dense) updateDense(u.dense);
     if (u.frame_image) refreshImage();
     if (u.summary && Object.keys(u.summary).length) showSummary(u.summary);
