@@ -27,7 +27,8 @@
   let groundTruth = [];
   let lastFrame = null;
   let fitted = false;
-  let userMoved = false;  // the user turned, zoomed or panned: a dense layer arriving later does not refit
+  let userMoved = false;  // the user turned, zoomed or panned: nothing refits the view by itself any more
+  let lastFit = 0;        // when the view was last fitted by itself (ms)
 
   // A growing point cloud with removal by id: positions live in one buffer, a removed point's slot is filled by
   // the last point.
@@ -485,6 +486,11 @@
       if (!fitted && (cloud.count > 50 || (!info.live && trajectory.length > 1))) {
         fitView(false);
         fitted = true;
+        lastFit = Date.now();
+      } else if (fitted && info.live && !userMoved && Date.now() - lastFit > 3000) {
+        // A live run's scene grows: the view follows it every 3 s until the user takes the camera.
+        fitView(false);
+        lastFit = Date.now();
       }
     }
     if (u.trajectory || u.ground_truth || whole) showTopView();
