@@ -1,6 +1,7 @@
-// amos-slam view OUTPUT_DIR: the viewer's page for a finished run (its trajectory, keyframes, map, stats and the
-// mask overlays saved with --save-masks), served on loopback until Ctrl-C. Only the files of that folder are served
-// (viewer/run_folder.h). All work is in amos::viewer.
+// amos-slam view OUTPUT_DIR: the viewer's page for a finished run (its trajectory, keyframes, map, stats, the ground
+// truth and mask overlays its report.html keeps, the mask overlays saved with --save-masks, and the dense mesh,
+// cloud and removed points of `run --dense`), served on loopback until Ctrl-C. Only the files of that folder are
+// served (viewer/run_folder.h). All work is in amos::viewer.
 #include <fmt/format.h>
 
 #include <memory>

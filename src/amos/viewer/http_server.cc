@@ -5,6 +5,7 @@
 #include <pthread.h>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <csignal>
 
 #include "amos/core/error.h"
@@ -58,6 +59,11 @@ ViewerServer::ViewerServer(LiveState& state, ServerOptions options)
     pthread_sigmask(SIG_BLOCK, &signals, nullptr);
     server_->listen_after_bind();
   });
+  // httplib 0.11's stop() does nothing before the listening loop has started, and the loop then never ends: a
+  // server stopped at once (a run that fails before its first frame, a test) would hang its destructor. The library
+  // gives no signal for the start, so wait here (briefly: it is the next thing that thread does) until it runs.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!server_->is_running() && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
 }
 
 ViewerServer::~ViewerServer() { stop(); }
@@ -118,6 +124,15 @@ void ViewerServer::addRoutes() {
     }
     res.set_header("Cache-Control", "no-store");
     res.set_content(std::string(image->begin(), image->end()), "image/jpeg");
+  });
+  s.Get(R"(/api/dense/(\w+)\.bin)", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto layer = state_.denseLayer(req.matches[1]);
+    if (!layer) {
+      res.status = 404;
+      return;
+    }
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(*layer, "application/octet-stream");
   });
   s.Get("/api/events", [this](const httplib::Request& req, httplib::Response& res) {
     std::uint64_t since = state_.seq();

@@ -7,6 +7,7 @@
 //   GET /api/events?since=SEQ  Server-Sent Events: one "update" per LiveState update after SEQ (delta_json.h);
 //                              "reload" when the browser fell too far behind; a comment every second otherwise
 //   GET /api/frame.jpg         the current frame with its dynamic mask and keypoints (404 before the first)
+//   GET /api/dense/NAME.bin    a dense layer (dense_layer.h: live, mesh, cloud, removed; 404 when there is none)
 //   GET /files/PATH            a file of the finished run (`view` only; run_folder.h: anything outside -> 403)
 // Requests run in the server's own threads (kRequestThreads), which never touch the SLAM run: a slow or vanished
 // browser costs only its own connection (a write times out after a few seconds). An event stream holds its thread

@@ -66,6 +66,23 @@ TEST(ViewerServer, ServesThePageThreeJsAndTheState) {
   EXPECT_EQ(s->server->url().rfind("http://127.0.0.1:", 0), 0u);
 }
 
+TEST(ViewerServer, ServesDenseLayersAsBinary) {
+  const auto s = serve();
+  auto c = s->client();
+  EXPECT_EQ(c.Get("/api/dense/live.bin")->status, 404);
+  ColouredGeometry cloud;
+  cloud.xyz = {0, 0, 1, 1, 0, 1};
+  cloud.rgb = {255, 0, 0, 0, 255, 0};
+  s->state.setDenseLayer("live", cloud);
+  const auto r = c.Get("/api/dense/live.bin");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(r->body.size(), 8u + 2 * 15);
+  EXPECT_EQ(r->get_header_value("Content-Type"), "application/octet-stream");
+  const auto outside = c.Get("/api/dense/../live.bin");
+  EXPECT_TRUE(!outside || outside->status != 200);
+}
+
 TEST(ViewerServer, FrameImageDecodes) {
   const auto s = serve();
   auto c = s->client();

@@ -1,6 +1,7 @@
 #include "amos/viewer/live_state.h"
 
 #include "amos/viewer/delta_json.h"
+#include "amos/viewer/dense_layer.h"
 
 namespace amos::viewer {
 
@@ -24,10 +25,34 @@ void LiveState::apply(const LiveUpdate& u) {
     if (u.frame) frame_ = *u.frame;
     if (u.summary) summary_ = *u.summary;
     ++seq_;
-    events_.emplace_back(seq_, updateJson(u, seq_).dump());
-    while (events_.size() > max_events_) events_.pop_front();
+    pushEvent(updateJson(u, seq_));
   }
   changed_.notify_all();
+}
+
+void LiveState::pushEvent(const nlohmann::json& event) {
+  events_.emplace_back(seq_, event.dump());
+  while (events_.size() > max_events_) events_.pop_front();
+}
+
+void LiveState::setDenseLayer(const std::string& name, const ColouredGeometry& geometry) {
+  auto data = std::make_shared<const std::string>(encodeDenseLayer(geometry));
+  {
+    std::lock_guard lock(mutex_);
+    nlohmann::json meta = {{"version", ++dense_version_},
+                           {"vertices", geometry.vertexCount()},
+                           {"triangles", geometry.triangleCount()}};
+    dense_[name] = {std::move(data), meta};
+    ++seq_;
+    pushEvent({{"seq", seq_}, {"dense", {{name, std::move(meta)}}}});
+  }
+  changed_.notify_all();
+}
+
+std::shared_ptr<const std::string> LiveState::denseLayer(const std::string& name) const {
+  std::lock_guard lock(mutex_);
+  const auto it = dense_.find(name);
+  return it == dense_.end() ? nullptr : it->second.data;
 }
 
 void LiveState::setFrameImage(std::vector<unsigned char> jpeg) {
@@ -53,6 +78,8 @@ nlohmann::json LiveState::stateJson() const {
   for (const auto& [id, p] : points_) points.push_back(pointJson(p));
   for (const auto& [id, p] : culled_) culled.push_back(pointJson(p));
   for (const auto& [id, k] : keyframes_) keyframes.push_back(keyFrameJson(k));
+  nlohmann::json dense = nlohmann::json::object();
+  for (const auto& [name, layer] : dense_) dense[name] = layer.meta;
   return {{"seq", seq_},
           {"info", info_},
           {"frame", frame_},
@@ -63,7 +90,8 @@ nlohmann::json LiveState::stateJson() const {
           {"trajectory", trajectoryJson(trajectory_)},
           {"ground_truth", trajectoryJson(ground_truth_)},
           {"frame_image", frame_image_ != nullptr},
-          {"files", files_}};
+          {"files", files_},
+          {"dense", std::move(dense)}};
 }
 
 std::uint64_t LiveState::seq() const {

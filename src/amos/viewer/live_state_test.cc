@@ -63,5 +63,26 @@ TEST(LiveState, WaitingStreamWakesForAnUpdateAndEndsWhenClosed) {
   EXPECT_TRUE(closed.closed);
 }
 
+TEST(LiveState, ADenseLayerIsAnEventAndReplacesItsOlderVersion) {
+  LiveState state;
+  ColouredGeometry cloud;
+  cloud.xyz = {0, 0, 1, 1, 0, 1};
+  cloud.rgb = {255, 0, 0, 0, 255, 0};
+  state.setDenseLayer("live", cloud);
+  cloud.xyz.resize(3);
+  cloud.rgb.resize(3);
+  state.setDenseLayer("live", cloud);
+  const EventBatch batch = state.eventsAfter(0, std::chrono::milliseconds(0));
+  ASSERT_EQ(batch.events.size(), 2u);
+  const nlohmann::json last = nlohmann::json::parse(batch.events[1].second);
+  EXPECT_EQ(last["dense"]["live"]["vertices"], 1);
+  const nlohmann::json s = state.stateJson();
+  EXPECT_EQ(s["dense"]["live"]["version"], last["dense"]["live"]["version"]);
+  EXPECT_GT(s["dense"]["live"]["version"].get<int>(), nlohmann::json::parse(batch.events[0].second)["dense"]["live"]["version"].get<int>());
+  ASSERT_NE(state.denseLayer("live"), nullptr);
+  EXPECT_EQ(state.denseLayer("live")->size(), 8u + 15);
+  EXPECT_EQ(state.denseLayer("mesh"), nullptr);
+}
+
 }  // namespace
 }  // namespace amos::viewer

@@ -1,10 +1,15 @@
 #include "amos/viewer/report_html.h"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 
 #include "amos/core/error.h"
 #include "amos/io/atomic_file.h"
 #include "amos/viewer/base64.h"
+#include "amos/viewer/delta_json.h"
+#include "amos/viewer/ground_truth_overlay.h"
+#include "amos/viewer/occupancy_grid.h"
 #include "amos/viewer/web_assets.h"
 
 namespace amos::viewer {
@@ -26,7 +31,8 @@ nlohmann::json positions(const std::vector<double>& stamps, const std::vector<Ei
 // track_ms, frame_ms, keypoints, removed, removed_fraction}, trajectory [[t,x,y,z]] (aligned to the ground truth
 // when there is one), ground_truth [[t,x,y,z]] (the associated poses), ate{t, error_m}, rpe{t, trans_m, rot_deg},
 // steps{t, est_m, gt_m, error_m} (frame-to-frame steps and their RPE, eval/jitter.h), evaluation (eval::toJson),
-// overlays [{index, t, jpeg (base64)}], stats (stats.json).
+// overlays [{index, t, jpeg (base64)}], stats (stats.json), view{ground_truth [[t,x,y,z]] in the map's frame,
+// culled [[id,x,y,z]]: the map points removed as dynamic}.
 nlohmann::json reportData(const ReportRecorder& recorder, const ReportInputs& inputs) {
   nlohmann::json d;
   d["stats"] = inputs.stats;
@@ -84,7 +90,35 @@ nlohmann::json reportData(const ReportRecorder& recorder, const ReportInputs& in
   for (const ReportOverlay& o : recorder.overlays())
     overlays.push_back({{"index", o.index}, {"t", o.timestamp}, {"jpeg", base64Encode(o.jpeg)}});
   d["overlays"] = std::move(overlays);
+  // What `amos-slam view` shows of the run beside its other files (run_folder.h): the ground truth in the map's
+  // frame, as the live page drew it at the end, and the map points removed as dynamic.
+  nlohmann::json view = nlohmann::json::object();
+  if (const auto& e = recorder.evaluation(); e && !recorder.groundTruth().empty())
+    view["ground_truth"] = trajectoryJson(groundTruthInMapFrame(recorder.groundTruth(), e->alignment));
+  if (!recorder.culledPoints().empty()) {
+    nlohmann::json culled = nlohmann::json::array();
+    for (const PointSample& p : recorder.culledPoints()) culled.push_back(pointJson(p));
+    view["culled"] = std::move(culled);
+  }
+  d["view"] = std::move(view);
   return d;
+}
+
+void addDenseProducts(const std::filesystem::path& dir, nlohmann::json& data) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const char* name : {"mesh.ply", "cloud.ply", "removed_points.ply", "occupancy.pgm", "occupancy.yaml"}) {
+    std::error_code error;
+    const auto bytes = std::filesystem::file_size(dir / name, error);
+    if (!error) files.push_back({{"name", name}, {"bytes", bytes}});
+  }
+  data["dense_files"] = std::move(files);
+  if (!std::filesystem::exists(dir / "occupancy.yaml")) return;
+  try {
+    data["occupancy"] = occupancyReportJson(readOccupancyGrid(dir / "occupancy.yaml"));
+  } catch (const core::Error& e) {
+    spdlog::warn("report.html: no occupancy grid: {}", e.what());
+    data["occupancy"] = {{"error", e.what()}};
+  }
 }
 
 std::string reportHtml(const nlohmann::json& data) {
@@ -99,7 +133,9 @@ std::string reportHtml(const nlohmann::json& data) {
 }
 
 void writeReportHtml(const std::filesystem::path& dir, const ReportRecorder& recorder, const ReportInputs& inputs) {
-  io::writeFileAtomically((dir / "report.html").string(), reportHtml(reportData(recorder, inputs)));
+  nlohmann::json data = reportData(recorder, inputs);
+  addDenseProducts(dir, data);
+  io::writeFileAtomically((dir / "report.html").string(), reportHtml(data));
 }
 
 }  // namespace amos::viewer

@@ -6,7 +6,9 @@
 
 #include "amos/eval/evaluate.h"
 #include "amos/report/run_report.h"
+#include "amos/testing/scratch_dir.h"
 #include "amos/viewer/base64.h"
+#include "amos/viewer/test_run_folder.h"
 
 namespace amos::viewer {
 namespace {
@@ -78,6 +80,56 @@ TEST(ReportHtml, HoldsTheRunAsParsableJsonAndNeedsNoNetwork) {
   // The embedded overlay is a JPEG of the frame's size.
   const std::string b64 = d["overlays"][0]["jpeg"];
   EXPECT_GT(b64.size(), 100u);
+}
+
+// What `amos-slam view` needs of report.html: the ground truth in the map's frame (the estimate's), where the
+// evaluation's alignment takes the estimate onto it.
+TEST(ReportHtml, KeepsTheGroundTruthInTheMapFrameForTheView) {
+  ReportRecorder recorder(0);
+  run::RunStart start;
+  std::vector<io::StampedPose> truth = line(20, 0.05);
+  for (io::StampedPose& p : truth) p.T_wc.translation() += Eigen::Vector3d(3, -1, 2);  // another origin
+  start.ground_truth = truth;
+  recorder.onStart(start);
+  report::RunInfo info;
+  info.evaluation = eval::evaluate(truth, line(20, 0.05));
+  recorder.onEnd(line(20, 0.05), info);
+  const nlohmann::json d = reportData(recorder, {});
+  ASSERT_EQ(d["view"]["ground_truth"].size(), 20u);
+  // In the map's frame the ground truth lies on the estimate: pose 10 at (0.5, 0.01 sin 10, 0.2).
+  EXPECT_NEAR(d["view"]["ground_truth"][10][1].get<double>(), 0.5, 2e-3);
+  EXPECT_NEAR(d["view"]["ground_truth"][10][3].get<double>(), 0.2, 2e-3);
+  ReportRecorder without_truth(0);
+  without_truth.onEnd(line(20, 0.05), report::RunInfo{});
+  EXPECT_TRUE(reportData(without_truth, {})["view"].empty());
+}
+
+TEST(ReportHtml, ShowsTheOccupancyGridOnlyWhenTheRunLeftOne) {
+  const std::filesystem::path dir = testing::scratchDirForThisTest("viewer_report_");
+  nlohmann::json without = {{"stats", nlohmann::json::object()}};
+  addDenseProducts(dir, without);
+  EXPECT_FALSE(without.contains("occupancy"));
+  EXPECT_TRUE(without["dense_files"].empty());
+
+  test::writeOccupancy(dir, 30, 20, 0.05);
+  test::writeBinaryPly(dir / "mesh.ply", test::floorAndWall(0, 1, 0, 1, 0), true);
+  nlohmann::json with = {{"stats", nlohmann::json::object()}};
+  addDenseProducts(dir, with);
+  ASSERT_TRUE(with["occupancy"].is_object());
+  EXPECT_EQ(with["occupancy"]["width"], 30);
+  EXPECT_DOUBLE_EQ(with["occupancy"]["resolution"].get<double>(), 0.05);
+  EXPECT_EQ(with["dense_files"].size(), 3u);  // mesh.ply, occupancy.pgm, occupancy.yaml
+  // The image decodes to the grid.
+  const std::string b64 = with["occupancy"]["png"];
+  EXPECT_FALSE(b64.empty());
+  const std::string html = reportHtml(with);
+  EXPECT_NE(html.find("id=\"occupancy-section\""), std::string::npos);
+
+  // A grid that cannot be read: said in the report, not fatal.
+  test::writeText(dir / "occupancy.yaml", "image: gone.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
+  nlohmann::json broken = {{"stats", nlohmann::json::object()}};
+  addDenseProducts(dir, broken);
+  EXPECT_NE(broken["occupancy"]["error"].get<std::string>().find("gone.pgm"), std::string::npos);
 }
 
 TEST(Base64, EncodesAsRfc4648) {

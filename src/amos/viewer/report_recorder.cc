@@ -10,6 +10,8 @@ ReportRecorder::ReportRecorder(std::size_t overlay_count, int overlay_width)
     : overlay_count_(overlay_count), overlay_width_(overlay_width) {}
 
 void ReportRecorder::onStart(const run::RunStart& start) {
+  ground_truth_ = start.ground_truth;
+  culled_.start(start.map);
   if (start.total_frames > 0) {
     overlay_frames_ = report::evenlySpacedFrames(start.total_frames, overlay_count_);
   }
@@ -42,6 +44,7 @@ void ReportRecorder::onFrame(const run::FrameSnapshot& f) {
 void ReportRecorder::onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) {
   trajectory_ = trajectory;
   evaluation_ = info.evaluation;
+  culled_points_ = culled_.finish();
 }
 
 }  // namespace amos::viewer

@@ -1,7 +1,8 @@
 #pragma once
 // Collects, while a run goes, what report.html shows per frame: stage times, keypoints removed by the dynamic
 // mask, tracking state, and a strip of small mask overlays of evenly spaced frames (JPEG, encoded when the frame
-// passes: 8 frames of the run, ~1 ms each). A run::RunObserver; everything else comes at the end (onEnd).
+// passes: 8 frames of the run, ~1 ms each), and in a thread of its own the map points removed as dynamic
+// (culled_recorder.h). A run::RunObserver; everything else comes at the end (onEnd).
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -10,6 +11,7 @@
 
 #include "amos/eval/evaluate.h"
 #include "amos/run/run_observer.h"
+#include "amos/viewer/culled_recorder.h"
 
 namespace amos::viewer {
 
@@ -38,6 +40,10 @@ class ReportRecorder : public run::RunObserver {
   const std::vector<ReportOverlay>& overlays() const { return overlays_; }
   const std::vector<io::StampedPose>& trajectory() const { return trajectory_; }
   const std::optional<eval::EvaluationResult>& evaluation() const { return evaluation_; }
+  // The map points removed as dynamic over the run (culled_recorder.h), known after onEnd.
+  const std::vector<PointSample>& culledPoints() const { return culled_points_; }
+  // The sequence's ground truth (RunStart::ground_truth, camera poses in its own frame); empty when none.
+  const std::vector<io::StampedPose>& groundTruth() const { return ground_truth_; }
 
  private:
   std::size_t overlay_count_;
@@ -48,8 +54,10 @@ class ReportRecorder : public run::RunObserver {
   std::size_t next_overlay_ = 0;
   std::vector<ReportFrame> frames_;
   std::vector<ReportOverlay> overlays_;
-  std::vector<io::StampedPose> trajectory_;
+  std::vector<io::StampedPose> trajectory_, ground_truth_;
   std::optional<eval::EvaluationResult> evaluation_;
+  std::vector<PointSample> culled_points_;
+  CulledPointRecorder culled_;
 };
 
 }  // namespace amos::viewer

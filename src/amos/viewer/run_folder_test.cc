@@ -6,6 +6,7 @@
 
 #include "amos/core/error.h"
 #include "amos/testing/scratch_dir.h"
+#include "amos/viewer/test_run_folder.h"
 
 namespace amos::viewer {
 namespace {
@@ -58,6 +59,65 @@ TEST(LoadRunFolder, LoadsTrajectoryKeyframesMapStatsAndOverlays) {
   EXPECT_EQ(s["summary"]["frames"], 2);
   EXPECT_EQ(s["info"]["live"], false);
   EXPECT_EQ(s["files"], nlohmann::json::array({"overlays/1.000000.png"}));
+}
+
+TEST(LoadRunFolder, ShowsTheDenseProductsAndTheGroundTruthOfReportHtml) {
+  const fs::path run = testing::scratchDirForThisTest("viewer_run_folder_") / "run";
+  test::writeRunFolder(run, true);
+  LiveState state;
+  loadRunFolder(run, state);
+  const nlohmann::json s = state.stateJson();
+  EXPECT_EQ(s["points"].size(), 404u);
+  EXPECT_EQ(s["trajectory"].size(), 60u);
+  ASSERT_EQ(s["ground_truth"].size(), 60u);
+  EXPECT_NEAR(s["ground_truth"][0][1].get<double>(), 1.05, 1e-6);
+  EXPECT_EQ(s["info"]["has_ground_truth"], true);
+  EXPECT_EQ(s["summary"]["stages"]["frame.track"]["median_ms"], 12.5);
+  ASSERT_TRUE(s["dense"].contains("mesh")) << s["dense"].dump();
+  EXPECT_EQ(s["dense"]["mesh"]["vertices"], 8);
+  EXPECT_EQ(s["dense"]["mesh"]["triangles"], 4);
+  EXPECT_EQ(s["dense"]["cloud"]["vertices"], 900);
+  EXPECT_EQ(s["dense"]["removed"]["vertices"], 400);
+  EXPECT_EQ(s["dense"]["removed"]["triangles"], 0);
+  ASSERT_NE(state.denseLayer("mesh"), nullptr);
+  EXPECT_EQ(state.denseLayer("mesh")->size(), 8u + 8 * 15 + 4 * 12);
+}
+
+TEST(LoadRunFolder, WithoutDenseProductsOrReportThoseLayersAreEmpty) {
+  const fs::path run = testing::scratchDirForThisTest("viewer_run_folder_") / "run";
+  test::writeRunFolder(run, false);
+  fs::remove(run / "report.html");
+  LiveState state;
+  loadRunFolder(run, state);
+  const nlohmann::json s = state.stateJson();
+  EXPECT_TRUE(s["dense"].empty());
+  EXPECT_TRUE(s["ground_truth"].empty());
+  EXPECT_EQ(s["info"]["has_ground_truth"], false);
+  EXPECT_EQ(s["trajectory"].size(), 60u);
+}
+
+TEST(LoadRunFolder, ADenseProductThatCannotBeReadIsLeftOut) {
+  const fs::path run = testing::scratchDirForThisTest("viewer_run_folder_") / "run";
+  test::writeRunFolder(run, true);
+  write(run / "mesh.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty float x\n"
+                          "property float y\nproperty float z\nend_header\n");
+  LiveState state;
+  loadRunFolder(run, state);
+  const nlohmann::json s = state.stateJson();
+  EXPECT_FALSE(s["dense"].contains("mesh"));
+  EXPECT_TRUE(s["dense"].contains("cloud"));
+}
+
+TEST(LoadRunFolder, TheMaskOverlaysOfReportHtmlAreShownWithoutOverlayFiles) {
+  const fs::path run = testing::scratchDirForThisTest("viewer_run_folder_") / "run";
+  test::writeRunFolder(run, false);
+  write(run / "report.html", reportHtml({{"overlays", {{{"index", 7}, {"t", 1.5}, {"jpeg", "QUJD"}}}}}));
+  LiveState state;
+  loadRunFolder(run, state);
+  const nlohmann::json files = state.stateJson()["files"];
+  ASSERT_EQ(files.size(), 1u) << files.dump();
+  EXPECT_EQ(files[0]["src"], "data:image/jpeg;base64,QUJD");
+  EXPECT_EQ(files[0]["title"], "frame 7");
 }
 
 TEST(LoadRunFolder, AFolderWithoutARunIsAnError) {

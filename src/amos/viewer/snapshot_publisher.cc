@@ -7,9 +7,11 @@
 
 #include <csignal>
 
+#include "amos/core/error.h"
 #include "amos/core/thread_priority.h"
 #include "amos/report/run_report.h"
 #include "amos/viewer/delta_json.h"
+#include "amos/viewer/dense_layer.h"
 #include "amos/viewer/frame_image.h"
 #include "amos/viewer/ground_truth_overlay.h"
 
@@ -58,6 +60,10 @@ void SnapshotPublisher::onStart(const run::RunStart& start) {
   LiveUpdate u;
   u.info = infoJson(start);
   state_.apply(u);
+  {
+    std::lock_guard lock(mutex_);
+    running_ = true;
+  }
   thread_ = std::thread([this] { run(); });
 }
 
@@ -86,23 +92,53 @@ void SnapshotPublisher::run() {
   core::lowerThisThreadPriority(core::kBackgroundNice);
   std::unique_lock lock(mutex_);
   while (true) {
-    wake_.wait(lock, [&] { return stop_ || latest_.has_value(); });
-    if (!latest_) break;  // stopped with nothing left
-    run::FrameSnapshot frame = std::move(*latest_);
+    wake_.wait(lock, [&] { return stop_ || latest_.has_value() || pending_dense_.has_value(); });
+    if (stop_ && !latest_) break;  // stopped with no frame left (onEnd takes a waiting dense cloud)
+    std::optional<run::FrameSnapshot> frame = std::move(latest_);
     latest_.reset();
     std::vector<TrajectoryPoint> poses = std::move(new_poses_);
     new_poses_.clear();
+    const Clock::time_point now = Clock::now();
+    std::optional<ColouredGeometry> dense;
+    if (pending_dense_ && now - last_dense_time_ >= options_.dense_period) {
+      dense = std::move(pending_dense_);
+      pending_dense_.reset();
+      last_dense_time_ = now;
+    }
     const bool stopping = stop_;
     lock.unlock();
-    const Clock::time_point now = Clock::now();
-    const bool with_map = now - last_map_time_ >= options_.map_period;
-    if (with_map) last_map_time_ = now;
-    publishFrame(frame, std::move(poses), with_map);
+    if (frame) {
+      const bool with_map = now - last_map_time_ >= options_.map_period;
+      if (with_map) last_map_time_ = now;
+      publishFrame(*frame, std::move(poses), with_map);
+    }
+    if (dense) publishDense(std::move(*dense));
     lock.lock();
     if (stopping) break;
     // The rate bound: the next publication waits for the period (or the end), whatever arrives meanwhile.
     wake_.wait_until(lock, now + options_.frame_period, [&] { return stop_; });
   }
+}
+
+void SnapshotPublisher::publishDenseCloud(std::vector<float> xyz, std::vector<std::uint8_t> rgb) {
+  core::require(xyz.size() % 3 == 0 && rgb.size() == xyz.size(),
+                "viewer: publishDenseCloud needs 3 coordinates and 3 colour bytes per point");
+  ColouredGeometry cloud;
+  cloud.xyz = std::move(xyz);
+  cloud.rgb = std::move(rgb);
+  {
+    std::lock_guard lock(mutex_);
+    if (running_) {
+      pending_dense_ = std::move(cloud);
+      wake_.notify_one();
+      return;
+    }
+  }
+  publishDense(std::move(cloud));
+}
+
+void SnapshotPublisher::publishDense(ColouredGeometry cloud) {
+  state_.setDenseLayer("live", thinPoints(std::move(cloud), options_.dense_max_points));
 }
 
 MapDelta SnapshotPublisher::mapDelta() {
@@ -154,6 +190,15 @@ void SnapshotPublisher::stopThread() {
   }
   wake_.notify_one();
   if (thread_.joinable()) thread_.join();
+  std::optional<ColouredGeometry> dense;
+  {
+    std::lock_guard lock(mutex_);
+    running_ = false;
+    dense = std::move(pending_dense_);
+    pending_dense_.reset();
+  }
+  // The newest cloud the thread had not published yet (its period had not passed).
+  if (dense) publishDense(std::move(*dense));
 }
 
 void SnapshotPublisher::onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) {

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <thread>
+
+#include "amos/core/error.h"
 
 #include "amos/report/run_report.h"
 
@@ -41,6 +44,36 @@ TEST(SnapshotPublisher, PublishesTheFramesAndTheEnd) {
   EXPECT_EQ(s["trajectory"].size(), 5u) << s.dump();
   EXPECT_EQ(s["summary"]["end"], "complete") << s.dump();
   EXPECT_EQ(s["summary"]["frames"], 5) << s.dump();
+}
+
+// The live dense cloud: handed over from another thread while frames go, it reaches the live state thinned to
+// the limit; before the run starts and after it ends it is published at once; wrong sizes are refused.
+TEST(SnapshotPublisher, PublishesTheLiveDenseCloudThinned) {
+  LiveState state;
+  PublisherOptions options;
+  options.frame_period = std::chrono::milliseconds(0);
+  options.dense_period = std::chrono::milliseconds(0);
+  options.dense_max_points = 100;
+  SnapshotPublisher publisher(state, options);
+  publisher.publishDenseCloud({0, 0, 1}, {1, 2, 3});  // before onStart: at once
+  EXPECT_EQ(state.stateJson()["dense"]["live"]["vertices"], 1);
+  run::RunStart start;
+  start.map = std::make_shared<map::Map>();
+  publisher.onStart(start);
+  std::thread fusion([&] {
+    std::vector<float> xyz(3 * 1000, 0.5f);
+    std::vector<std::uint8_t> rgb(3 * 1000, 128);
+    publisher.publishDenseCloud(std::move(xyz), std::move(rgb));
+  });
+  fusion.join();
+  run::FrameSnapshot f;
+  f.processed = 1;
+  publisher.onFrame(f);
+  publisher.onEnd({}, report::RunInfo{});
+  EXPECT_EQ(state.stateJson()["dense"]["live"]["vertices"], 100);
+  publisher.publishDenseCloud(std::vector<float>(3 * 7, 1.0f), std::vector<std::uint8_t>(3 * 7, 9));  // after onEnd
+  EXPECT_EQ(state.stateJson()["dense"]["live"]["vertices"], 7);
+  EXPECT_THROW(publisher.publishDenseCloud({0, 0, 1}, {1, 2}), core::Error);
 }
 
 }  // namespace
