@@ -9,4 +9,5 @@ apt_install install_deps \
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev \
   libgtest-dev libgmock-dev libbenchmark-dev ccache \
   libopenni2-dev \
-  libcpp-httplib-dev libjs-three chromium
+  libcpp-httplib-dev libjs-three chromium \
+  libopen3d-dev
