@@ -17,8 +17,8 @@
 // and counted. The fusion thread (nice +5, OpenMP regions serial: tsdf_volume.h) prepares each frame
 // (frame_preparation.h), compresses it into the store and, every Dense.liveEvery-th, fuses it into the live
 // volume; at most every Dense.livePeriod seconds it hands a downsampled coloured cloud of the live volume to the
-// callback (in the fusion thread). finish() drains the queue and joins the thread; fuseFinal() then runs in the
-// caller's thread.
+// callback (in the fusion thread). finish() drains the queue and joins the thread; fuseFinal() then runs in a
+// thread of its own (serial OpenMP as well) while the caller waits.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -93,6 +93,7 @@ class DenseMapper {
   void fusionLoop();
   void process(const DenseFrame& frame);
   void publishLiveCloud();
+  DenseMap fuseFinalHere(const std::vector<io::StampedPose>& trajectory) const;
 
   DenseOptions options_;
   FramePreparer preparer_;
