@@ -214,6 +214,10 @@ DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajecto
   watch.restart();
   map.cloud = volume.extractCloud();
   const double cloud_ms = watch.elapsedMs();
+  // The TSDF's colour averages can step past 1 by rounding; PLY stores bytes.
+  for (auto* colours : {&map.mesh->vertex_colors_, &map.cloud->colors_}) {
+    for (auto& c : *colours) c = c.cwiseMax(0.0).cwiseMin(1.0);
+  }
   watch.restart();
   map.floor = findFloor(map.cloud->points_, centres, down_axes);
   if (map.floor) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include <open3d/geometry/TriangleMesh.h>
 #include <open3d/io/TriangleMeshIO.h>
@@ -58,6 +59,42 @@ TEST(DenseObserver, WritesEveryFileOfTheDenseMap) {
   EXPECT_GT(mesh.triangles_.size(), 1000u);
   EXPECT_TRUE(mesh.HasVertexColors());
   EXPECT_NO_THROW(readOccupancyGrid((dir / "occupancy.yaml").string()));
+  fs::remove_all(dir);
+}
+
+TEST(DenseObserver, WritesAnEmptyRemovedCloudWhenNothingWasDynamic) {
+  const fs::path dir = fs::temp_directory_path() / ("amos_dense_observer_none_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  DenseOptions o;
+  o.voxel_size = 0.05;
+  o.truncation = 0.15;
+  o.scale = 1.0;
+  DenseObserver observer(o, dir.string());
+  run::RunStart start;
+  start.camera = testing::roomCamera();
+  observer.onStart(start);
+  std::vector<io::StampedPose> trajectory;
+  for (int i = 0; i < 4; ++i) {
+    const core::SE3 T_wc = testing::cameraPose({0, 0, 1.3}, 0.5 * i, -0.4);
+    const testing::RoomFrame f = testing::renderRoom(start.camera, T_wc, {});
+    run::FrameSnapshot snapshot;
+    snapshot.timestamp = i;
+    snapshot.state = tracking::TrackingState::kOk;
+    snapshot.T_cw = T_wc.inverse();
+    snapshot.frame.depth = f.depth;
+    snapshot.frame.bgr = f.bgr;  // no dynamic mask: mode none
+    observer.onFrame(snapshot);
+    trajectory.push_back({snapshot.timestamp, T_wc});
+  }
+  observer.onStreamEnd();
+  report::RunInfo info;
+  observer.addToInfo(trajectory, info);
+  // A valid PLY without vertices (Open3D neither writes nor reads one, so its header is checked).
+  std::ifstream removed(dir / "removed_points.ply");
+  const std::string text((std::istreambuf_iterator<char>(removed)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("ply\nformat binary_little_endian 1.0\nelement vertex 0\n", 0), 0u) << text;
+  EXPECT_EQ(info.sections["dense"]["removed_points"].get<int>(), 0);
   fs::remove_all(dir);
 }
 

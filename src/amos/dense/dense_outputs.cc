@@ -10,6 +10,7 @@
 #include <open3d/io/TriangleMeshIO.h>
 
 #include "amos/core/error.h"
+#include "amos/io/atomic_file.h"
 
 namespace amos::dense {
 
@@ -27,7 +28,15 @@ void writeAtomically(const fs::path& path, Write write) {
   core::require(!ec, fmt::format("cannot write {}: {}", path.string(), ec.message()));
 }
 
+// Open3D refuses to write a cloud without points: an empty one (mode none removes nothing) is written here.
+void writeEmptyCloud(const fs::path& path) {
+  io::writeFileAtomically(path.string(),
+                          "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty double x\n"
+                          "property double y\nproperty double z\nend_header\n");
+}
+
 void writeCloud(const fs::path& path, const open3d::geometry::PointCloud& cloud) {
+  if (cloud.points_.empty()) return writeEmptyCloud(path);
   writeAtomically(path, [&](const std::string& p) {
     return open3d::io::WritePointCloud(p, cloud, open3d::io::WritePointCloudOption(false, false));
   });
