@@ -60,12 +60,21 @@ cv::Mat depthEdges(const cv::Mat& depth, double edge_jump, int edge_margin_px) {
 FramePreparer::FramePreparer(const core::CameraIntrinsics& camera, const DenseOptions& options)
     : camera_(camera), scaled_(scaledIntrinsics(camera, options.scale)), options_(options) {
   if (camera.hasDistortion()) {
-    const core::PinholeCamera pinhole(camera);
+    // The distortion acts on normalised coordinates: the scaled image has the same coefficients.
+    core::CameraIntrinsics distorted = scaled_;
+    distorted.k1 = camera.k1;
+    distorted.k2 = camera.k2;
+    distorted.p1 = camera.p1;
+    distorted.p2 = camera.p2;
+    distorted.k3 = camera.k3;
+    const core::PinholeCamera pinhole(distorted);
     cv::initUndistortRectifyMap(pinhole.K(), pinhole.distortion(), cv::Mat(), pinhole.K(),
-                                cv::Size(camera.width, camera.height), CV_32FC1, map_x_, map_y_);
+                                cv::Size(scaled_.width, scaled_.height), CV_32FC1, map_x_, map_y_);
   }
 }
 
+// Everything at Dense.scale, the images scaled first: the work (undistortion, morphology, compression) shrinks with
+// the pixel count (at 0.5 a Bonn frame takes ~4 ms instead of ~11 ms), and the margins are scaled with them.
 PreparedFrame FramePreparer::prepare(const FrameImages& frame) const {
   const cv::Size size(camera_.width, camera_.height);
   core::require(frame.depth.type() == CV_32F && frame.depth.size() == size,
@@ -74,21 +83,31 @@ PreparedFrame FramePreparer::prepare(const FrameImages& frame) const {
                 fmt::format("dense fusion: colour must be CV_8UC3 {}x{}", size.width, size.height));
   core::require(frame.dynamic_mask.empty() || (frame.dynamic_mask.type() == CV_8U && frame.dynamic_mask.size() == size),
                 "dense fusion: the dynamic mask must be CV_8U of the image's size");
-  const cv::Mat depth = undistorted(frame.depth, map_x_, map_y_, cv::INTER_NEAREST);
-  const cv::Mat bgr = undistorted(frame.bgr, map_x_, map_y_, cv::INTER_LINEAR);
+  const cv::Size out(scaled_.width, scaled_.height);
+  const auto scaledMargin = [&](int pixels) {
+    return pixels == 0 ? 0 : std::max(1, static_cast<int>(std::lround(pixels * options_.scale)));
+  };
+  const cv::Mat depth = undistorted(resized(frame.depth, out, cv::INTER_NEAREST), map_x_, map_y_, cv::INTER_NEAREST);
+  const cv::Mat bgr = undistorted(resized(frame.bgr, out, cv::INTER_AREA), map_x_, map_y_, cv::INTER_LINEAR);
   const cv::Mat in_range = (depth >= options_.min_depth) & (depth <= options_.max_depth);
-  cv::Mat dynamic = cv::Mat::zeros(size, CV_8U);
+  cv::Mat dynamic = cv::Mat::zeros(out, CV_8U);
   if (!frame.dynamic_mask.empty()) {
-    dynamic = undistorted(frame.dynamic_mask, map_x_, map_y_, cv::INTER_NEAREST) > 0;
-    if (options_.mask_margin_px > 0) cv::dilate(dynamic, dynamic, disk(options_.mask_margin_px));
+    // Any dynamic pixel under a scaled pixel makes it dynamic (max, not nearest: a thin mover is not lost).
+    cv::Mat mask = frame.dynamic_mask;
+    if (mask.size() != out) {
+      cv::dilate(frame.dynamic_mask, mask, cv::Mat::ones(3, 3, CV_8U));
+      mask = resized(mask, out, cv::INTER_NEAREST);
+    }
+    dynamic = undistorted(mask, map_x_, map_y_, cv::INTER_NEAREST) > 0;
+    const int margin = scaledMargin(options_.mask_margin_px);
+    if (margin > 0) cv::dilate(dynamic, dynamic, disk(margin));
   }
-  const cv::Mat keep = in_range & ~dynamic & ~depthEdges(depth, options_.edge_jump, options_.edge_margin_px);
-  cv::Mat kept = cv::Mat::zeros(size, CV_32F), removed = cv::Mat::zeros(size, CV_32F);
+  const cv::Mat keep =
+      in_range & ~dynamic & ~depthEdges(depth, options_.edge_jump, scaledMargin(options_.edge_margin_px));
+  cv::Mat kept = cv::Mat::zeros(out, CV_32F), removed = cv::Mat::zeros(out, CV_32F);
   depth.copyTo(kept, keep);
   depth.copyTo(removed, in_range & dynamic);
-  const cv::Size out(scaled_.width, scaled_.height);
-  return {resized(kept, out, cv::INTER_NEAREST), resized(removed, out, cv::INTER_NEAREST),
-          resized(bgr, out, cv::INTER_AREA)};
+  return {kept, removed, bgr};
 }
 
 }  // namespace amos::dense

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/SVD>
 #include <cmath>
 #include <filesystem>
 
@@ -12,6 +13,7 @@
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/eval/associate.h"
 #include "amos/eval/evaluate.h"
 #include "amos/io/trajectory.h"
 #include "amos/synth/static_surface.h"
@@ -38,6 +40,28 @@ std::vector<double> nearestDistances(const std::vector<Eigen::Vector3d>& queries
 }
 
 }  // namespace
+
+core::SE3 alignByPoses(const std::vector<io::StampedPose>& gt, const std::vector<io::StampedPose>& est) {
+  const auto g = eval::sortedUniqueByTimestamp(gt), e = eval::sortedUniqueByTimestamp(est);
+  const auto pairs = eval::associate(eval::timestampsOf(g), eval::timestampsOf(e));
+  core::require(!pairs.empty(), "eval-mesh: no pose of the trajectory has a ground-truth pose at its time stamp");
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (const auto& [i, j] : pairs) sum += g[i].T_wc.linear() * e[j].T_wc.linear().transpose();
+  // The rotation nearest (Frobenius) to the mean of the per-pose rotations (chordal mean).
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d R = svd.matrixU() * svd.matrixV().transpose();
+  if (R.determinant() < 0) {
+    Eigen::Matrix3d flip = Eigen::Matrix3d::Identity();
+    flip(2, 2) = -1;
+    R = svd.matrixU() * flip * svd.matrixV().transpose();
+  }
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  for (const auto& [i, j] : pairs) t += g[i].T_wc.translation() - R * e[j].T_wc.translation();
+  core::SE3 T = core::SE3::Identity();
+  T.linear() = R;
+  T.translation() = t / static_cast<double>(pairs.size());
+  return T;
+}
 
 MeshScore scoreMesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3d>& truth,
                     double tolerance) {
@@ -77,12 +101,12 @@ MeshScore evaluateMesh(const MeshEvalRequest& request) {
                                           : request.trajectory;
   const auto gt = io::readTumTrajectory((fs::path(request.sequence) / "groundtruth.txt").string());
   const auto est = io::readTumTrajectory(trajectory_file);
-  const eval::EvaluationResult aligned = eval::evaluate(gt, est);
+  const core::SE3 T_gt_est = alignByPoses(gt, est);
   std::vector<Eigen::Vector3d> vertices;
   vertices.reserve(mesh.vertices_.size());
-  for (const auto& v : mesh.vertices_) vertices.push_back(aligned.alignment.apply(Eigen::Vector3d(v)));
+  for (const auto& v : mesh.vertices_) vertices.push_back(T_gt_est * Eigen::Vector3d(v));
   MeshScore score = scoreMesh(vertices, truth, request.tolerance);
-  score.ate_rmse_m = aligned.ate_rmse_m;
+  score.ate_rmse_m = eval::evaluate(gt, est).ate_rmse_m;
   return score;
 }
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 namespace amos::dense {
 namespace {
 
@@ -32,6 +34,21 @@ TEST(MeshEval, AnEmptyMeshCoversNothing) {
   const MeshScore s = scoreMesh({}, plane(0, 0.05), 0.04);
   EXPECT_EQ(s.completeness, 0.0);
   EXPECT_EQ(s.ghosts, 0u);
+}
+
+TEST(MeshEval, AlignsAStillCameraByItsPoses) {
+  // A camera that does not move: positions alone cannot give the rotation, poses can.
+  core::SE3 T_gt_est = core::SE3::Identity();
+  T_gt_est.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.2, 1, 0.1).normalized()).toRotationMatrix();
+  T_gt_est.translation() = Eigen::Vector3d(1, -2, 0.5);
+  std::vector<io::StampedPose> gt, est;
+  for (int i = 0; i < 10; ++i) {
+    core::SE3 T_wc = core::SE3::Identity();
+    T_wc.linear() = Eigen::AngleAxisd(0.001 * i, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    est.push_back({double(i), T_wc});
+    gt.push_back({double(i), T_gt_est * T_wc});
+  }
+  EXPECT_TRUE(alignByPoses(gt, est).isApprox(T_gt_est, 1e-9));
 }
 
 }  // namespace
