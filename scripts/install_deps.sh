@@ -10,4 +10,5 @@ apt_install install_deps \
   libgtest-dev libgmock-dev libbenchmark-dev ccache \
   libopenni2-dev \
   libcpp-httplib-dev libjs-three chromium \
-  pybind11-dev python3-dev python3-numpy python3-opencv
+  pybind11-dev python3-dev python3-numpy python3-opencv \
+  libopen3d-dev

@@ -34,6 +34,9 @@
 
 #include "amos/config/settings.h"
 #include "amos/config/settings_writer.h"
+#ifdef AMOS_HAVE_OPEN3D
+#include "amos/dense/dense_observer.h"
+#endif
 #include "amos/eval/jitter.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
@@ -50,6 +53,7 @@ namespace {
 struct RunArgs {
   std::string sequence, config, output, mode = "full", models, camera, record;
   bool deterministic = false, save_masks = false, realtime = false, overwrite = false, strict = false;
+  bool dense = false;  // --dense
   std::size_t max_frames = 0, overlays = 8, progress_every = 100;
   std::size_t first_frame = 0;
   std::string load_map, save_map;  // --load-map / --save-map
@@ -62,7 +66,8 @@ std::string runOptionsJson(const RunArgs& a) {
   const nlohmann::json j = {{"sequence", a.sequence}, {"camera", a.camera},       {"realtime", a.realtime},
                             {"mode", a.mode},         {"models", a.models},       {"deterministic", a.deterministic},
                             {"strict", a.strict},     {"max_frames", a.max_frames}, {"save_masks", a.save_masks},
-                            {"record", a.record},     {"viewer", a.viewer.enabled}};
+                            {"record", a.record},     {"viewer", a.viewer.enabled},
+                            {"dense", a.dense}};
   return j.dump();
 }
 
@@ -237,6 +242,11 @@ std::vector<std::string> outputNames(const RunArgs& args) {
                                     "keyframes.txt",       "map.ply",        "stats.json",
                                     "settings_used.yaml"};
   if (args.save_masks) names.insert(names.end(), {"masks", "overlays"});
+#ifdef AMOS_HAVE_OPEN3D
+  if (args.dense) {
+    for (const std::string& name : dense::DenseObserver::outputNames()) names.push_back(name);
+  }
+#endif
   for (const std::string& name : RunWatchers::outputNames()) names.push_back(name);
   return names;
 }
@@ -277,9 +287,18 @@ void runSlam(const RunArgs& args, int& exit_code) {
   const report::OutputFolderLock lock =
       report::prepareOutputFolder({args.output, args.overwrite, outputNames(args), args.sequence});
   RunWatchers watchers(args.viewer);
+#ifdef AMOS_HAVE_OPEN3D
+  std::unique_ptr<dense::DenseObserver> dense_map;
+  if (args.dense) dense_map = std::make_unique<dense::DenseObserver>(settings.dense, args.output);
+#else
+  core::require(!args.dense, "run --dense: this build has no dense map (install libopen3d-dev and rebuild)");
+#endif
   const bool tty = isatty(fileno(stderr)) != 0;
   run::SequenceRunOptions options = sequenceRunOptions(args);
   options.observers = watchers.observers();
+#ifdef AMOS_HAVE_OPEN3D
+  if (dense_map) options.observers.push_back(dense_map.get());
+#endif
   bool line_open = false;  // a progress line without its newline on the terminal
   // Progress goes to stderr: a live line on a terminal, else (a log file, a pipe) one line every --progress-every
   // frames and the last one.
@@ -401,6 +420,9 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                 "evenly spaced frames (overlays/)");
   cmd->add_option("--overlays", args->overlays, "Overlay images written with --save-masks (default 8)")
       ->check(nonNegativeWhole());
+  cmd->add_flag("--dense", args->dense,
+                "Also fuse the static world into a dense map (the dynamic pixels left out) and write mesh.ply, "
+                "cloud.ply, removed_points.ply and occupancy.pgm/.yaml (Dense.* settings, docs/dense.md)");
   cmd->add_flag("--viewer", args->viewer.enabled,
                 "Serve a live view of the run (map, keyframes, trajectory, the frame with its dynamic mask, times) "
                 "on http://127.0.0.1:PORT/ while it goes; the address is printed on start");

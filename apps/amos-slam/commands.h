@@ -15,6 +15,7 @@ void addConfigCommand(CLI::App& app, int& exit_code);
 void addDiagnoseMoversCommand(CLI::App& app, int& exit_code);
 void addVocabCommand(CLI::App& app, int& exit_code);
 void addViewCommand(CLI::App& app, int& exit_code);
+void addEvalMeshCommand(CLI::App& app, int& exit_code);
 
 // The program's command line, each argument shell-quoted where it needs it (set by main() before parsing; what
 // settings_used.yaml records).

@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   amos::app::addDiagnoseMoversCommand(app, exit_code);
   amos::app::addVocabCommand(app, exit_code);
   amos::app::addViewCommand(app, exit_code);
+  amos::app::addEvalMeshCommand(app, exit_code);
   app.parse_complete_callback([&] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info); });
   amos::app::setCommandLine(argc, argv);
   try {

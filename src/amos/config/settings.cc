@@ -5,6 +5,7 @@
 
 #include <cctype>
 
+#include "amos/config/dense_section.h"
 #include "amos/config/dynamic_section.h"
 #include "amos/config/slam_section.h"
 #include "amos/config/yaml_reader.h"
@@ -139,6 +140,7 @@ std::vector<KeySection> settingsKeys(Settings& s) {
   sections.push_back(placeKeys(s));
   sections.push_back(dynamicKeys(s.dynamic));
   sections.push_back(segmentationKeys(s.segmentation));
+  sections.push_back(denseKeys(s.dense));
   return sections;
 }
 
@@ -172,6 +174,7 @@ void Settings::check() const {
                       fmt::format("must be >= 1, got {}", covisibility.min_weight));
   dynamic.check();
   segmentation.check();
+  dense.check();
 }
 
 io::ReaderOptions Settings::readerOptions() const {

@@ -7,6 +7,7 @@
 
 #include "amos/config/key_list.h"
 #include "amos/core/camera.h"
+#include "amos/dense/dense_options.h"
 #include "amos/dynamic/dynamic_options.h"
 #include "amos/segmentation/segmenter_options.h"
 #include "amos/feature/orb_extractor.h"
@@ -46,6 +47,7 @@ struct Settings {
 
   dynamic::DynamicOptions dynamic;         // Dynamic.* (the paper's two-stage front end)
   segmentation::SegmenterOptions segmentation;  // Segmentation.* (prior dynamic objects)
+  dense::DenseOptions dense;               // Dense.* (the dense static map of run --dense)
 
   // Reader options that follow from these settings (image size, depth factor).
   io::ReaderOptions readerOptions() const;

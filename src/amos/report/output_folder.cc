@@ -28,7 +28,8 @@ namespace fs = std::filesystem;
 const std::vector<std::string>& runOutputNames() {
   static const std::vector<std::string> names = {
       "trajectory.txt", "keyframes.txt", "map.ply",  "stats.json", "settings_used.yaml", "trajectory_live.txt",
-      "frames.tsv",     "masks",         "overlays", "report.html"};
+      "frames.tsv",     "masks",         "overlays", "report.html", "mesh.ply", "cloud.ply", "removed_points.ply",
+      "occupancy.pgm",  "occupancy.yaml"};
   return names;
 }
 

@@ -83,6 +83,7 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
                                       {"p95", core::percentile(info.removed_fractions, 0.95)},
                                       {"per_frame", info.removed_fractions}};
   }
+  for (const auto& [name, section] : info.sections.items()) j[name] = section;
   j["wall_time_s"] = info.wall_time_s;
   j["fps"] = info.wall_time_s > 0 ? static_cast<double>(s.frames) / info.wall_time_s : 0.0;
   if (info.mask_outputs_s > 0) j["mask_outputs_s"] = info.mask_outputs_s;

@@ -80,6 +80,8 @@ struct RunInfo {
   io::SkippedFrames skipped_frames;    // frames the source could not read, by reason
   DepthDropouts depth_dropouts;
   RunEnd end;
+  // More sections of stats.json, by name, from the run's observers (e.g. "dense": dense/dense_observer.h).
+  nlohmann::json sections = nlohmann::json::object();
 };
 
 nlohmann::json toJson(const SourceReport& source);

@@ -16,6 +16,7 @@
 #include "amos/synth/image_assets.h"
 #include "amos/synth/random.h"
 #include "amos/synth/room.h"
+#include "amos/synth/static_surface.h"
 #include "amos/synth/tum_writer.h"
 
 namespace amos::synth {
@@ -307,6 +308,7 @@ SequenceSummary renderSequence(const SequenceOptions& options, const std::string
     if ((k + 1) % 100 == 0) spdlog::debug("synth: {} / {} frames", k + 1, generator.frameCount());
   }
   writer.finish();
+  writeSurfacePly((std::filesystem::path(output_dir) / kStaticSurfaceFile).string(), staticSurfaceSamples(generator));
   summary.frames = generator.frameCount();
   summary.render_ms_per_frame = render_ms / std::max(1, summary.frames);
   summary.write_ms_per_frame = write_ms / std::max(1, summary.frames);

@@ -1,0 +1,76 @@
+// amos-slam eval-mesh: scores a dense map (a run's mesh.ply, `run --dense`) against the true static surface of the
+// synthetic sequence it was made from (static_surface.ply, written by `amos-slam synth`): accuracy, completeness
+// and ghosts (dense/mesh_eval.h). Prints one line and writes the figures as JSON (--output, default
+// mesh_eval.json beside the mesh). Without the dense module (AMOS_WITH_OPEN3D off) it is an error.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "amos/core/error.h"
+#include "amos/io/atomic_file.h"
+#ifdef AMOS_HAVE_OPEN3D
+#include "amos/dense/mesh_eval.h"
+#endif
+#include "commands.h"
+
+namespace amos::app {
+
+namespace {
+
+struct EvalMeshArgs {
+  std::string mesh, sequence, trajectory, output;
+  double tolerance = 0.04, max_depth = 4.0;
+};
+
+void evalMesh(const EvalMeshArgs& a) {
+#ifdef AMOS_HAVE_OPEN3D
+  dense::MeshEvalRequest request;
+  request.mesh = a.mesh;
+  request.sequence = a.sequence;
+  request.trajectory = a.trajectory;
+  request.tolerance = a.tolerance;
+  request.max_depth = a.max_depth;
+  const dense::MeshScore s = dense::evaluateMesh(request);
+  std::cout << fmt::format(
+      "accuracy median {:.4f} m  p90 {:.4f} m;  completeness {:.3f};  ghosts {} of {} vertices ({:.2f} %);  "
+      "tolerance {:.3f} m, {} truth points, ATE of the alignment {:.4f} m\n",
+      s.accuracy_median_m, s.accuracy_p90_m, s.completeness, s.ghosts, s.vertices, 100.0 * s.ghost_share,
+      s.tolerance_m, s.truth_points, s.ate_rmse_m);
+  const std::string output =
+      a.output.empty() ? (std::filesystem::path(a.mesh).parent_path() / "mesh_eval.json").string() : a.output;
+  io::writeFileAtomically(output, dense::toJson(s).dump(2) + "\n");
+#else
+  (void)a;
+  throw core::Error("eval-mesh: this build has no dense module (install libopen3d-dev and rebuild)");
+#endif
+}
+
+}  // namespace
+
+void addEvalMeshCommand(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<EvalMeshArgs>();
+  auto* cmd = app.add_subcommand(
+      "eval-mesh", "Score a dense map (run --dense) against a synthetic sequence's true static surface");
+  cmd->add_option("--mesh", args->mesh, "The run's mesh.ply")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--sequence", args->sequence, "The synthetic sequence folder (static_surface.ply, groundtruth.txt)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--trajectory", args->trajectory, "The run's trajectory (default: trajectory.txt beside the mesh)");
+  cmd->add_option("--tolerance", args->tolerance,
+                  "Distance (m) within which a vertex is on the true surface and a true point is covered (default "
+                  "0.04 = 2 voxels)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-depth", args->max_depth,
+                  "True points seen only from farther than this (m) are left out (default 4 = Dense.maxDepth)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--output", args->output, "JSON file of the figures (default: mesh_eval.json beside the mesh)");
+  cmd->callback([args, &exit_code] {
+    evalMesh(*args);
+    exit_code = 0;
+  });
+}
+
+}  // namespace amos::app

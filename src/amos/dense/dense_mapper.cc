@@ -1,0 +1,260 @@
+#include "amos/dense/dense_mapper.h"
+
+#include <spdlog/spdlog.h>
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include <open3d/geometry/PointCloud.h>
+#include <open3d/geometry/TriangleMesh.h>
+
+#include "amos/core/error.h"
+#include "amos/core/stage_timer.h"
+#include "amos/core/thread_priority.h"
+#include "amos/dense/tsdf_volume.h"
+
+namespace amos::dense {
+
+namespace {
+
+using core::threadCpuMs;  // what fusion costs the machine, whatever else runs beside it
+
+const DenseOptions& checked(const DenseOptions& options) {
+  options.check();
+  return options;
+}
+
+nlohmann::json summary(const std::vector<double>& ms) {
+  if (ms.empty()) return {{"count", 0}};
+  double sum = 0;
+  for (double v : ms) sum += v;
+  return {{"count", ms.size()},
+          {"median_ms", core::percentile(ms, 0.5)},
+          {"p95_ms", core::percentile(ms, 0.95)},
+          {"mean_ms", sum / static_cast<double>(ms.size())}};
+}
+
+// The readings of `removed` (every `step`-th pixel) as world points with their colours.
+void addRemovedPoints(const PreparedFrame& frame, const core::CameraIntrinsics& camera, const core::SE3& T_wc,
+                      int step, open3d::geometry::PointCloud& out) {
+  for (int v = 0; v < frame.removed.rows; v += step) {
+    for (int u = 0; u < frame.removed.cols; u += step) {
+      const float z = frame.removed.at<float>(v, u);
+      if (z <= 0) continue;
+      const Eigen::Vector3d p_c((u - camera.cx) * z / camera.fx, (v - camera.cy) * z / camera.fy, z);
+      out.points_.push_back(T_wc * p_c);
+      const cv::Vec3b bgr = frame.bgr.at<cv::Vec3b>(v, u);
+      out.colors_.emplace_back(bgr[2] / 255.0, bgr[1] / 255.0, bgr[0] / 255.0);
+    }
+  }
+}
+
+std::map<double, core::SE3> posesByStamp(const std::vector<io::StampedPose>& trajectory) {
+  std::map<double, core::SE3> out;
+  for (const auto& pose : trajectory) out.emplace(pose.timestamp, pose.T_wc);
+  return out;
+}
+
+// The pose of the trajectory at `stamp` (the same frame's: equal stamps up to rounding), or nullptr.
+const core::SE3* poseAt(const std::map<double, core::SE3>& poses, double stamp) {
+  auto it = poses.lower_bound(stamp - 1e-6);
+  if (it == poses.end() || std::abs(it->first - stamp) > 1e-6) return nullptr;
+  return &it->second;
+}
+
+nlohmann::json floorJson(const FloorPlane& floor) {
+  return {{"normal", {floor.normal.x(), floor.normal.y(), floor.normal.z()}},
+          {"offset", floor.offset},
+          {"support_points", floor.support},
+          {"camera_height_m", floor.camera_height}};
+}
+
+}  // namespace
+
+struct DenseMapper::LiveStats {
+  std::vector<double> thread_cpu_ms;     // per frame taken from the queue: preparation, compression, live fusion
+  std::vector<double> live_integrate_ms; // per live-fused frame
+  std::vector<double> live_cloud_ms;     // per live cloud handed to the callback
+  std::size_t live_fused = 0;
+  std::size_t kept_bytes = 0;
+  std::chrono::steady_clock::time_point last_cloud{};
+};
+
+DenseMapper::DenseMapper(const DenseOptions& options, const core::CameraIntrinsics& camera,
+                         LiveCloudCallback on_live_cloud)
+    : options_(checked(options)),
+      preparer_(camera, options),
+      on_live_cloud_(std::move(on_live_cloud)),
+      live_(options.live_every > 0 ? std::make_unique<TsdfVolume>(options) : nullptr),
+      live_stats_(std::make_unique<LiveStats>()),
+      queue_(static_cast<std::size_t>(options.queue_frames)),
+      thread_([this] { fusionLoop(); }) {}
+
+DenseMapper::~DenseMapper() {
+  queue_.close();
+  if (thread_.joinable()) thread_.join();
+}
+
+bool DenseMapper::push(DenseFrame frame) {
+  const std::size_t index = pushed_++;
+  if (index % static_cast<std::size_t>(options_.frame_step) != 0) return true;
+  // The run's thread is the one producer: with room now, push() cannot block.
+  if (queue_.size() >= static_cast<std::size_t>(options_.queue_frames) || !queue_.push(std::move(frame))) {
+    ++dropped_;
+    return false;
+  }
+  return true;
+}
+
+void DenseMapper::fusionLoop() {
+  serialOpenMpInThisThread();
+  core::lowerThisThreadPriority(core::kBackgroundNice);
+  while (std::optional<DenseFrame> frame = queue_.pop()) {
+    if (failure_) continue;  // drain after an error; finish() reports it
+    try {
+      process(*frame);
+    } catch (...) {
+      failure_ = std::current_exception();
+    }
+  }
+}
+
+void DenseMapper::process(const DenseFrame& frame) {
+  const double start = threadCpuMs();
+  const PreparedFrame prepared = preparer_.prepare(frame.images);
+  kept_.push_back(compressFrame(prepared, frame.timestamp, frame.T_cw));
+  live_stats_->kept_bytes += kept_.back().bytes();
+  if (live_ && (kept_.size() - 1) % static_cast<std::size_t>(options_.live_every) == 0) {
+    const double before = threadCpuMs();
+    live_->integrate(prepared.depth, prepared.bgr, preparer_.intrinsics(), frame.T_cw);
+    live_stats_->live_integrate_ms.push_back(threadCpuMs() - before);
+    ++live_stats_->live_fused;
+    publishLiveCloud();
+  }
+  live_stats_->thread_cpu_ms.push_back(threadCpuMs() - start);
+}
+
+void DenseMapper::publishLiveCloud() {
+  if (!on_live_cloud_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (live_stats_->live_fused > 1 && now - live_stats_->last_cloud < std::chrono::duration<double>(options_.live_period_s))
+    return;
+  live_stats_->last_cloud = now;
+  const double start = threadCpuMs();
+  const auto cloud = live_->extractCloud()->VoxelDownSample(options_.live_cloud_voxel);
+  LiveCloud out;
+  out.frames_fused = live_stats_->live_fused;
+  out.points.reserve(cloud->points_.size());
+  out.colours.reserve(cloud->points_.size());
+  for (std::size_t i = 0; i < cloud->points_.size(); ++i) {
+    out.points.push_back(cloud->points_[i].cast<float>());
+    const Eigen::Vector3d c = cloud->HasColors() ? cloud->colors_[i] : Eigen::Vector3d(0.5, 0.5, 0.5);
+    out.colours.push_back({static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.x(), 0.0, 1.0))),
+                           static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.y(), 0.0, 1.0))),
+                           static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.z(), 0.0, 1.0)))});
+  }
+  on_live_cloud_(out);
+  live_stats_->live_cloud_ms.push_back(threadCpuMs() - start);
+}
+
+void DenseMapper::finish() {
+  queue_.close();
+  if (thread_.joinable()) thread_.join();
+  if (failure_) std::rethrow_exception(failure_);
+}
+
+DenseMap DenseMapper::fuseFinal(const std::vector<io::StampedPose>& trajectory) const {
+  core::require(!thread_.joinable(), "DenseMapper::fuseFinal before finish()");
+  // In a thread of its own with serial OpenMP (tsdf_volume.h): Open3D's spinning OpenMP threads made the final
+  // fusion slower on two cores than one thread is (Bonn-like synthetic run on a loaded machine: 42 ms median,
+  // 82 ms mean per frame against 13 ms), and the caller's thread keeps its own OpenMP settings.
+  DenseMap map;
+  std::exception_ptr failure;
+  std::thread worker([&] {
+    try {
+      serialOpenMpInThisThread();
+      map = fuseFinalHere(trajectory);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  });
+  worker.join();
+  if (failure) std::rethrow_exception(failure);
+  return map;
+}
+
+DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajectory) const {
+  core::Stopwatch total;
+  const std::map<double, core::SE3> poses = posesByStamp(trajectory);
+  const core::CameraIntrinsics& camera = preparer_.intrinsics();
+  TsdfVolume volume(options_);
+  DenseMap map;
+  map.removed = std::make_shared<open3d::geometry::PointCloud>();
+  std::vector<double> integrate_ms;
+  std::vector<Eigen::Vector3d> centres, down_axes, forward_axes;
+  for (const StoredFrame& stored : kept_) {
+    const core::SE3* T_wc = poseAt(poses, stored.timestamp);
+    if (T_wc == nullptr) continue;  // not in the final trajectory
+    const PreparedFrame frame = decompressFrame(stored);
+    core::Stopwatch watch;
+    volume.integrate(frame.depth, frame.bgr, camera, T_wc->inverse());
+    integrate_ms.push_back(watch.elapsedMs());
+    addRemovedPoints(frame, camera, *T_wc, 2, *map.removed);
+    if (map.removed->points_.size() > 2'000'000) map.removed = map.removed->VoxelDownSample(options_.voxel_size);
+    centres.push_back(T_wc->translation());
+    down_axes.push_back(T_wc->linear().col(1));
+    forward_axes.push_back(T_wc->linear().col(2));
+  }
+  map.removed = map.removed->VoxelDownSample(options_.voxel_size);
+  core::Stopwatch watch;
+  map.mesh = volume.extractMesh();
+  const double mesh_ms = watch.elapsedMs();
+  watch.restart();
+  map.cloud = volume.extractCloud();
+  const double cloud_ms = watch.elapsedMs();
+  // The TSDF's colour averages can step past 1 by rounding; PLY stores bytes.
+  for (auto* colours : {&map.mesh->vertex_colors_, &map.cloud->colors_}) {
+    for (auto& c : *colours) c = c.cwiseMax(0.0).cwiseMin(1.0);
+  }
+  watch.restart();
+  map.floor = findFloor(map.cloud->points_, centres, down_axes);
+  if (map.floor) {
+    Eigen::Vector3d forward = Eigen::Vector3d::Zero();
+    for (const auto& f : forward_axes) forward += f;
+    map.grid = buildOccupancyGrid(map.cloud->points_, *map.floor, centres.front(), forward, options_);
+  }
+  const double floor_ms = watch.elapsedMs();
+  const LiveStats& live = *live_stats_;
+  nlohmann::json& s = map.stats;
+  s["frames_tracked"] = pushed_;
+  s["frames_kept"] = kept_.size();
+  s["frames_dropped"] = dropped_;
+  s["frames_fused"] = integrate_ms.size();
+  s["kept_frames_mb"] = static_cast<double>(live.kept_bytes) / 1e6;
+  s["live"] = {{"frames_fused", live.live_fused},
+               {"thread_cpu_per_frame", summary(live.thread_cpu_ms)},
+               {"integrate", summary(live.live_integrate_ms)},
+               {"cloud", summary(live.live_cloud_ms)},
+               {"volume_mb", live_ ? static_cast<double>(live_->bytes()) / 1e6 : 0.0}};
+  s["fusion_per_frame"] = summary(integrate_ms);  // wall ms, one thread
+  s["blocks"] = volume.blocks();
+  s["voxels"] = volume.voxels();
+  s["volume_mb"] = static_cast<double>(volume.bytes()) / 1e6;
+  s["mesh"] = {{"vertices", map.mesh->vertices_.size()}, {"triangles", map.mesh->triangles_.size()},
+               {"extraction_ms", mesh_ms}};
+  s["cloud"] = {{"points", map.cloud->points_.size()}, {"extraction_ms", cloud_ms}};
+  s["removed_points"] = map.removed->points_.size();
+  s["floor"] = map.floor ? floorJson(*map.floor) : nlohmann::json(nullptr);
+  if (map.grid) {
+    s["occupancy"] = {{"width", map.grid->cells.cols}, {"height", map.grid->cells.rows},
+                      {"resolution_m", map.grid->resolution}, {"free", map.grid->count(kFreeCell)},
+                      {"occupied", map.grid->count(kOccupiedCell)}, {"unknown", map.grid->count(kUnknownCell)}};
+  }
+  s["floor_and_grid_ms"] = floor_ms;
+  s["final_s"] = total.elapsedMs() / 1000.0;
+  return map;
+}
+
+}  // namespace amos::dense

@@ -1,0 +1,102 @@
+// The observer as a run drives it (onStart, onFrame per frame, onStreamEnd, addToInfo): it writes every file of
+// the dense map and the "dense" section of stats.json.
+#include "amos/dense/dense_observer.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <open3d/geometry/TriangleMesh.h>
+#include <open3d/io/TriangleMeshIO.h>
+
+#include "amos/dense/dense_outputs.h"
+#include "amos/dense/occupancy_grid.h"
+#include "amos/dense/test_room.h"
+
+namespace amos::dense {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(DenseObserver, WritesEveryFileOfTheDenseMap) {
+  const fs::path dir = fs::temp_directory_path() / ("amos_dense_observer_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  DenseOptions o;
+  o.voxel_size = 0.05;
+  o.truncation = 0.15;
+  o.scale = 1.0;
+  o.mask_margin_px = 2;
+  DenseObserver observer(o, dir.string());
+  run::RunStart start;
+  start.camera = testing::roomCamera();
+  observer.onStart(start);
+  std::vector<io::StampedPose> trajectory;
+  const std::vector<testing::Box> boxes = {{{1.0, -0.3, 0}, {1.4, 0.3, 0.8}, true}};
+  for (int i = 0; i < 16; ++i) {
+    const core::SE3 T_wc = testing::cameraPose({0, 0, 1.3}, 2 * M_PI * i / 16, -0.4);
+    const testing::RoomFrame f = testing::renderRoom(start.camera, T_wc, boxes);
+    run::FrameSnapshot snapshot;
+    snapshot.timestamp = 10 + i * 0.1;
+    snapshot.state = i == 5 ? tracking::TrackingState::kLost : tracking::TrackingState::kOk;
+    snapshot.T_cw = T_wc.inverse();
+    snapshot.frame.depth = f.depth;
+    snapshot.frame.bgr = f.bgr;
+    snapshot.dynamic_mask = f.mask;
+    observer.onFrame(snapshot);
+    if (i != 5) trajectory.push_back({snapshot.timestamp, T_wc});
+  }
+  observer.onStreamEnd();
+  report::RunInfo info;
+  observer.addToInfo(trajectory, info);
+  for (const std::string& name : DenseObserver::outputNames()) EXPECT_TRUE(fs::exists(dir / name)) << name;
+  ASSERT_TRUE(info.sections.contains("dense"));
+  EXPECT_EQ(info.sections["dense"]["frames_fused"].get<int>(), 15);  // the lost frame is not fused
+  EXPECT_GT(info.sections["dense"]["removed_points"].get<int>(), 0);
+  open3d::geometry::TriangleMesh mesh;
+  ASSERT_TRUE(open3d::io::ReadTriangleMesh((dir / "mesh.ply").string(), mesh));
+  EXPECT_GT(mesh.triangles_.size(), 1000u);
+  EXPECT_TRUE(mesh.HasVertexColors());
+  EXPECT_NO_THROW(readOccupancyGrid((dir / "occupancy.yaml").string()));
+  fs::remove_all(dir);
+}
+
+TEST(DenseObserver, WritesAnEmptyRemovedCloudWhenNothingWasDynamic) {
+  const fs::path dir = fs::temp_directory_path() / ("amos_dense_observer_none_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  DenseOptions o;
+  o.voxel_size = 0.05;
+  o.truncation = 0.15;
+  o.scale = 1.0;
+  DenseObserver observer(o, dir.string());
+  run::RunStart start;
+  start.camera = testing::roomCamera();
+  observer.onStart(start);
+  std::vector<io::StampedPose> trajectory;
+  for (int i = 0; i < 4; ++i) {
+    const core::SE3 T_wc = testing::cameraPose({0, 0, 1.3}, 0.5 * i, -0.4);
+    const testing::RoomFrame f = testing::renderRoom(start.camera, T_wc, {});
+    run::FrameSnapshot snapshot;
+    snapshot.timestamp = i;
+    snapshot.state = tracking::TrackingState::kOk;
+    snapshot.T_cw = T_wc.inverse();
+    snapshot.frame.depth = f.depth;
+    snapshot.frame.bgr = f.bgr;  // no dynamic mask: mode none
+    observer.onFrame(snapshot);
+    trajectory.push_back({snapshot.timestamp, T_wc});
+  }
+  observer.onStreamEnd();
+  report::RunInfo info;
+  observer.addToInfo(trajectory, info);
+  // A valid PLY without vertices (Open3D neither writes nor reads one, so its header is checked).
+  std::ifstream removed(dir / "removed_points.ply");
+  const std::string text((std::istreambuf_iterator<char>(removed)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("ply\nformat binary_little_endian 1.0\nelement vertex 0\n", 0), 0u) << text;
+  EXPECT_EQ(info.sections["dense"]["removed_points"].get<int>(), 0);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace amos::dense

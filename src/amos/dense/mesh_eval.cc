@@ -1,0 +1,125 @@
+#include "amos/dense/mesh_eval.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/SVD>
+#include <cmath>
+#include <filesystem>
+
+#include <open3d/geometry/KDTreeFlann.h>
+#include <open3d/geometry/PointCloud.h>
+#include <open3d/geometry/TriangleMesh.h>
+#include <open3d/io/TriangleMeshIO.h>
+
+#include "amos/core/error.h"
+#include "amos/core/stage_timer.h"
+#include "amos/eval/associate.h"
+#include "amos/eval/evaluate.h"
+#include "amos/io/trajectory.h"
+#include "amos/synth/static_surface.h"
+
+namespace amos::dense {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Distance from each of `queries` to its nearest point of `points`.
+std::vector<double> nearestDistances(const std::vector<Eigen::Vector3d>& queries,
+                                     const std::vector<Eigen::Vector3d>& points) {
+  std::vector<double> out(queries.size(), std::numeric_limits<double>::infinity());
+  if (points.empty()) return out;
+  open3d::geometry::PointCloud cloud(points);
+  const open3d::geometry::KDTreeFlann tree(cloud);
+  std::vector<int> index;
+  std::vector<double> squared;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    if (tree.SearchKNN(queries[i], 1, index, squared) > 0) out[i] = std::sqrt(squared[0]);
+  }
+  return out;
+}
+
+}  // namespace
+
+core::SE3 alignByPoses(const std::vector<io::StampedPose>& gt, const std::vector<io::StampedPose>& est) {
+  const auto g = eval::sortedUniqueByTimestamp(gt), e = eval::sortedUniqueByTimestamp(est);
+  const auto pairs = eval::associate(eval::timestampsOf(g), eval::timestampsOf(e));
+  core::require(!pairs.empty(), "eval-mesh: no pose of the trajectory has a ground-truth pose at its time stamp");
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (const auto& [i, j] : pairs) sum += g[i].T_wc.linear() * e[j].T_wc.linear().transpose();
+  // The rotation nearest (Frobenius) to the mean of the per-pose rotations (chordal mean).
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d R = svd.matrixU() * svd.matrixV().transpose();
+  if (R.determinant() < 0) {
+    Eigen::Matrix3d flip = Eigen::Matrix3d::Identity();
+    flip(2, 2) = -1;
+    R = svd.matrixU() * flip * svd.matrixV().transpose();
+  }
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  for (const auto& [i, j] : pairs) t += g[i].T_wc.translation() - R * e[j].T_wc.translation();
+  core::SE3 T = core::SE3::Identity();
+  T.linear() = R;
+  T.translation() = t / static_cast<double>(pairs.size());
+  return T;
+}
+
+MeshScore scoreMesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3d>& truth,
+                    double tolerance) {
+  MeshScore score;
+  score.vertices = vertices.size();
+  score.truth_points = truth.size();
+  score.tolerance_m = tolerance;
+  const std::vector<double> to_truth = nearestDistances(vertices, truth);
+  for (double d : to_truth) score.ghosts += d > tolerance ? 1 : 0;
+  if (!to_truth.empty()) {
+    score.accuracy_median_m = core::percentile(to_truth, 0.5);
+    score.accuracy_p90_m = core::percentile(to_truth, 0.9);
+    score.ghost_share = static_cast<double>(score.ghosts) / static_cast<double>(to_truth.size());
+  }
+  const std::vector<double> to_mesh = nearestDistances(truth, vertices);
+  std::size_t covered = 0;
+  for (double d : to_mesh) covered += d <= tolerance ? 1 : 0;
+  if (!truth.empty()) score.completeness = static_cast<double>(covered) / static_cast<double>(truth.size());
+  return score;
+}
+
+MeshScore evaluateMesh(const MeshEvalRequest& request) {
+  const fs::path surface = fs::path(request.sequence) / synth::kStaticSurfaceFile;
+  core::require(fs::exists(surface),
+                fmt::format("{} is missing: render the sequence again with `amos-slam synth` (it writes the true "
+                            "static surface since issue 43)",
+                            surface.string()));
+  std::vector<Eigen::Vector3d> truth;
+  for (const synth::SurfaceSample& s : synth::readSurfacePly(surface.string())) {
+    if (s.depth <= request.max_depth) truth.push_back(s.position.cast<double>());
+  }
+  open3d::geometry::TriangleMesh mesh;
+  core::require(fs::exists(request.mesh) && open3d::io::ReadTriangleMesh(request.mesh, mesh),
+                fmt::format("{}: cannot be read as a mesh", request.mesh));
+  const std::string trajectory_file = request.trajectory.empty()
+                                          ? (fs::path(request.mesh).parent_path() / "trajectory.txt").string()
+                                          : request.trajectory;
+  const auto gt = io::readTumTrajectory((fs::path(request.sequence) / "groundtruth.txt").string());
+  const auto est = io::readTumTrajectory(trajectory_file);
+  const core::SE3 T_gt_est = alignByPoses(gt, est);
+  std::vector<Eigen::Vector3d> vertices;
+  vertices.reserve(mesh.vertices_.size());
+  for (const auto& v : mesh.vertices_) vertices.push_back(T_gt_est * Eigen::Vector3d(v));
+  MeshScore score = scoreMesh(vertices, truth, request.tolerance);
+  score.ate_rmse_m = eval::evaluate(gt, est).ate_rmse_m;
+  return score;
+}
+
+nlohmann::json toJson(const MeshScore& s) {
+  return {{"vertices", s.vertices},
+          {"truth_points", s.truth_points},
+          {"tolerance_m", s.tolerance_m},
+          {"accuracy_median_m", s.accuracy_median_m},
+          {"accuracy_p90_m", s.accuracy_p90_m},
+          {"completeness", s.completeness},
+          {"ghosts", s.ghosts},
+          {"ghost_share", s.ghost_share},
+          {"ate_rmse_m", s.ate_rmse_m}};
+}
+
+}  // namespace amos::dense
