@@ -237,6 +237,24 @@ std::string saveMap(const system::SlamSystem& slam, const std::string& path) {
 }
 
 // What this run writes into --output (its manifest, report/output_folder.h).
+#ifdef AMOS_HAVE_OPEN3D
+// The dense map's live cloud, flattened for the viewer's publisher (nothing without --viewer).
+dense::LiveCloudCallback liveCloudToViewer(RunWatchers::DenseCloudSink sink) {
+  if (!sink) return {};
+  return [sink = std::move(sink)](const dense::LiveCloud& cloud) {
+    std::vector<float> xyz;
+    std::vector<std::uint8_t> rgb;
+    xyz.reserve(3 * cloud.points.size());
+    rgb.reserve(3 * cloud.points.size());
+    for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+      xyz.insert(xyz.end(), {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z()});
+      rgb.insert(rgb.end(), cloud.colours[i].begin(), cloud.colours[i].end());
+    }
+    sink(std::move(xyz), std::move(rgb));
+  };
+}
+#endif
+
 std::vector<std::string> outputNames(const RunArgs& args) {
   std::vector<std::string> names = {"trajectory_live.txt", "frames.tsv",     "trajectory.txt",
                                     "keyframes.txt",       "map.ply",        "stats.json",
@@ -289,7 +307,8 @@ void runSlam(const RunArgs& args, int& exit_code) {
   RunWatchers watchers(args.viewer);
 #ifdef AMOS_HAVE_OPEN3D
   std::unique_ptr<dense::DenseObserver> dense_map;
-  if (args.dense) dense_map = std::make_unique<dense::DenseObserver>(settings.dense, args.output);
+  if (args.dense) dense_map = std::make_unique<dense::DenseObserver>(settings.dense, args.output,
+                                                                      liveCloudToViewer(watchers.denseCloudSink()));
 #else
   core::require(!args.dense, "run --dense: this build has no dense map (install libopen3d-dev and rebuild)");
 #endif
@@ -359,6 +378,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   }
   exit_code = signal_number != 0 ? 128 + signal_number : 0;
 }
+
 
 }  // namespace
 

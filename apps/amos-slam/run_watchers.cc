@@ -51,6 +51,14 @@ std::vector<run::RunObserver*> RunWatchers::observers() {
 
 std::vector<std::string> RunWatchers::outputNames() { return {"report.html"}; }
 
+RunWatchers::DenseCloudSink RunWatchers::denseCloudSink() {
+  if (!parts_->publisher) return {};
+  viewer::SnapshotPublisher* publisher = &*parts_->publisher;
+  return [publisher](std::vector<float> xyz, std::vector<std::uint8_t> rgb) {
+    publisher->publishDenseCloud(std::move(xyz), std::move(rgb));
+  };
+}
+
 void RunWatchers::writeReport(const std::string& output, const std::string& config_file,
                               const std::string& options_json) {
   core::Stopwatch watch;
@@ -78,6 +86,7 @@ RunWatchers::RunWatchers(const ViewerArgs& viewer) {
 RunWatchers::~RunWatchers() = default;
 std::vector<run::RunObserver*> RunWatchers::observers() { return {}; }
 std::vector<std::string> RunWatchers::outputNames() { return {}; }
+RunWatchers::DenseCloudSink RunWatchers::denseCloudSink() { return {}; }
 void RunWatchers::writeReport(const std::string&, const std::string&, const std::string&) {}
 void RunWatchers::holdIfAsked() {}
 #endif

@@ -2,6 +2,8 @@
 // What watches `amos-slam run`: the live viewer (--viewer: server, LiveState, snapshot publisher) and the
 // report.html recorder, wired to the run as run::RunObservers. Without the viewer module (AMOS_BUILD_VIEWER off)
 // --viewer is an error and no report.html is written.
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +25,10 @@ class RunWatchers {
   explicit RunWatchers(const ViewerArgs& viewer);
   ~RunWatchers();
   std::vector<run::RunObserver*> observers();
+  // Where a dense map's live cloud goes (xyz and rgb, 3 values per point): the viewer's publisher, which thins and
+  // throttles it; empty without --viewer.
+  using DenseCloudSink = std::function<void(std::vector<float> xyz, std::vector<std::uint8_t> rgb)>;
+  DenseCloudSink denseCloudSink();
   // What writeReport writes into the output folder (report.html; nothing without the viewer module).
   static std::vector<std::string> outputNames();
   // Writes <output>/report.html from what was recorded and the run's stats.json (after writeRunOutputs).
