@@ -307,8 +307,14 @@ void runSlam(const RunArgs& args, int& exit_code) {
   RunWatchers watchers(args.viewer);
 #ifdef AMOS_HAVE_OPEN3D
   std::unique_ptr<dense::DenseObserver> dense_map;
-  if (args.dense) dense_map = std::make_unique<dense::DenseObserver>(settings.dense, args.output,
-                                                                      liveCloudToViewer(watchers.denseCloudSink()));
+  if (args.dense) {
+    // The live volume exists for the live view only; without --viewer the frames are kept and fused once, at the
+    // end, with the final trajectory (the same final map), and tracking shares the cores with less.
+    dense::DenseOptions dense_options = settings.dense;
+    if (!args.viewer.enabled) dense_options.live_every = 0;
+    dense_map = std::make_unique<dense::DenseObserver>(dense_options, args.output,
+                                                       liveCloudToViewer(watchers.denseCloudSink()));
+  }
 #else
   core::require(!args.dense, "run --dense: this build has no dense map (install libopen3d-dev and rebuild)");
 #endif
