@@ -136,16 +136,9 @@ void DenseMapper::process(const DenseFrame& frame) {
   live_stats_->thread_cpu_ms.push_back(threadCpuMs() - start);
 }
 
-void DenseMapper::publishLiveCloud() {
-  if (!on_live_cloud_) return;
-  const auto now = std::chrono::steady_clock::now();
-  if (live_stats_->live_fused > 1 && now - live_stats_->last_cloud < std::chrono::duration<double>(options_.live_period_s))
-    return;
-  live_stats_->last_cloud = now;
-  const double start = threadCpuMs();
-  const auto cloud = live_->extractCloud()->VoxelDownSample(options_.live_cloud_voxel);
+LiveCloud liveCloudOf(const open3d::geometry::PointCloud& surface, double voxel) {
+  const auto cloud = surface.VoxelDownSample(voxel);
   LiveCloud out;
-  out.frames_fused = live_stats_->live_fused;
   out.points.reserve(cloud->points_.size());
   out.colours.reserve(cloud->points_.size());
   for (std::size_t i = 0; i < cloud->points_.size(); ++i) {
@@ -155,6 +148,18 @@ void DenseMapper::publishLiveCloud() {
                            static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.y(), 0.0, 1.0))),
                            static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.z(), 0.0, 1.0)))});
   }
+  return out;
+}
+
+void DenseMapper::publishLiveCloud() {
+  if (!on_live_cloud_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (live_stats_->live_fused > 1 && now - live_stats_->last_cloud < std::chrono::duration<double>(options_.live_period_s))
+    return;
+  live_stats_->last_cloud = now;
+  const double start = threadCpuMs();
+  LiveCloud out = liveCloudOf(*live_->extractCloud(), options_.live_cloud_voxel);
+  out.frames_fused = live_stats_->live_fused;
   on_live_cloud_(out);
   live_stats_->live_cloud_ms.push_back(threadCpuMs() - start);
 }

@@ -64,6 +64,8 @@ struct LiveCloud {
   std::size_t frames_fused = 0;
 };
 using LiveCloudCallback = std::function<void(const LiveCloud&)>;
+// A surface cloud downsampled to `voxel` (m), colours as bytes: what the viewer is handed.
+LiveCloud liveCloudOf(const open3d::geometry::PointCloud& surface, double voxel);
 
 struct DenseMap {
   std::shared_ptr<open3d::geometry::TriangleMesh> mesh;  // coloured, world frame of the final trajectory

@@ -36,6 +36,13 @@ void DenseObserver::addToInfo(const std::vector<io::StampedPose>& trajectory, re
   mapper_->finish();  // no-op when onStreamEnd did it; a run that failed before never called onStreamEnd
   const DenseMap map = mapper_->fuseFinal(trajectory);
   writeDenseOutputs(output_dir_, map);
+  // The viewer gets the final map's cloud (final trajectory), so what it shows after the run agrees with
+  // trajectory.txt and mesh.ply, not with the live volume's tracking poses.
+  if (on_live_cloud_ && map.cloud) {
+    LiveCloud final_cloud = liveCloudOf(*map.cloud, options_.live_cloud_voxel);
+    final_cloud.frames_fused = map.stats["frames_fused"].get<std::size_t>();
+    on_live_cloud_(final_cloud);
+  }
   info.sections["dense"] = map.stats;
   spdlog::info("dense map: {} frames fused, {} mesh vertices, {} removed points, floor {}; in {:.1f} s",
                map.stats["frames_fused"].get<std::size_t>(), map.mesh->vertices_.size(),

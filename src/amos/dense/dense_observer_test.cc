@@ -28,7 +28,8 @@ TEST(DenseObserver, WritesEveryFileOfTheDenseMap) {
   o.truncation = 0.15;
   o.scale = 1.0;
   o.mask_margin_px = 2;
-  DenseObserver observer(o, dir.string());
+  std::size_t last_cloud_frames = 0;
+  DenseObserver observer(o, dir.string(), [&](const LiveCloud& cloud) { last_cloud_frames = cloud.frames_fused; });
   run::RunStart start;
   start.camera = testing::roomCamera();
   observer.onStart(start);
@@ -53,6 +54,7 @@ TEST(DenseObserver, WritesEveryFileOfTheDenseMap) {
   for (const std::string& name : DenseObserver::outputNames()) EXPECT_TRUE(fs::exists(dir / name)) << name;
   ASSERT_TRUE(info.sections.contains("dense"));
   EXPECT_EQ(info.sections["dense"]["frames_fused"].get<int>(), 15);  // the lost frame is not fused
+  EXPECT_EQ(last_cloud_frames, 15u) << "the last cloud handed to the viewer is the final map's";
   EXPECT_GT(info.sections["dense"]["removed_points"].get<int>(), 0);
   open3d::geometry::TriangleMesh mesh;
   ASSERT_TRUE(open3d::io::ReadTriangleMesh((dir / "mesh.ply").string(), mesh));
