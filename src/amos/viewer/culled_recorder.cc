@@ -1,10 +1,9 @@
 #include "amos/viewer/culled_recorder.h"
 
-#include <pthread.h>
 
-#include <csignal>
 
 #include "amos/core/thread_priority.h"
+#include "amos/core/thread_signals.h"
 
 namespace amos::viewer {
 
@@ -22,11 +21,7 @@ void CulledPointRecorder::start(std::shared_ptr<const map::Map> map) {
 
 void CulledPointRecorder::run() {
   // The run's signals are for the main thread; this is background work.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  core::blockTerminationSignalsInThisThread();
   core::lowerThisThreadPriority(core::kBackgroundNice);
   std::unique_lock lock(mutex_);
   while (!stop_) {

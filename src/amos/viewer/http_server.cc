@@ -2,13 +2,12 @@
 
 #include <fmt/format.h>
 #include <httplib.h>
-#include <pthread.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <csignal>
 
 #include "amos/core/error.h"
+#include "amos/core/thread_signals.h"
 #include "amos/viewer/run_folder.h"
 #include "amos/viewer/web_assets.h"
 #include "amos/viewer/whole_file.h"
@@ -52,11 +51,7 @@ ViewerServer::ViewerServer(LiveState& state, ServerOptions options)
                                        options_.bind, options_.port, options_.port, options_.bind));
   thread_ = std::thread([this] {
     // The request threads httplib starts from here inherit this mask: SIGINT / SIGTERM stay with the main thread.
-    sigset_t signals;
-    sigemptyset(&signals);
-    sigaddset(&signals, SIGINT);
-    sigaddset(&signals, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+    core::blockTerminationSignalsInThisThread();
     server_->listen_after_bind();
   });
   // httplib 0.11's stop() does nothing before the listening loop has started, and the loop then never ends: a

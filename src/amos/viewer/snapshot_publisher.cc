@@ -2,13 +2,12 @@
 
 #include <shared_mutex>
 
-#include <pthread.h>
 #include <spdlog/spdlog.h>
 
-#include <csignal>
 
 #include "amos/core/error.h"
 #include "amos/core/thread_priority.h"
+#include "amos/core/thread_signals.h"
 #include "amos/report/run_report.h"
 #include "amos/viewer/delta_json.h"
 #include "amos/viewer/dense_layer.h"
@@ -84,11 +83,7 @@ std::size_t SnapshotPublisher::droppedSnapshots() const {
 
 void SnapshotPublisher::run() {
   // The run's signals (SIGINT, SIGTERM) are for the main thread; background work runs after the frame's own.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  core::blockTerminationSignalsInThisThread();
   core::lowerThisThreadPriority(core::kBackgroundNice);
   std::unique_lock lock(mutex_);
   while (true) {
