@@ -95,22 +95,13 @@ using Matrix6 = Eigen::Matrix<double, 6, 6>;
 // The feature terms: 0.5 * sum r^T W r over the inliers, its Gauss-Newton Hessian and gradient.
 double featureTerms(const PhotometricProblem& p, const core::SE3& T, Matrix6* H, core::Vector6d* g) {
   double cost = 0;
-  Eigen::Vector3d r, pc;
-  const StereoProjection& k = p.projection;
+  Eigen::Vector3d r;
+  Eigen::Matrix<double, 3, 6> J;
   for (const PoseObservation& obs : *p.features) {
-    if (!poseObservationResidual(obs, T, k, r, pc)) continue;
+    if (!poseObservationJacobian(obs, T, p.projection, r, J)) continue;
     const int rows = obs.u_right >= 0 ? 3 : 2;
     cost += 0.5 * obs.inv_sigma2 * r.head(rows).squaredNorm();
     if (!H) continue;
-    const double iz = 1.0 / pc.z(), iz2 = iz * iz;
-    Eigen::Matrix3d Jp;
-    Jp << k.fx * iz, 0, -k.fx * pc.x() * iz2,  //
-        0, k.fy * iz, -k.fy * pc.y() * iz2,     //
-        k.fx * iz, 0, -k.fx * pc.x() * iz2 + k.bf * iz2;
-    Eigen::Matrix<double, 3, 6> Jd;
-    Jd.leftCols<3>().setIdentity();
-    Jd.rightCols<3>() = -core::skew(pc);
-    const Eigen::Matrix<double, 3, 6> J = -(Jp * Jd);
     *H += obs.inv_sigma2 * J.topRows(rows).transpose() * J.topRows(rows);
     *g += obs.inv_sigma2 * J.topRows(rows).transpose() * r.head(rows);
   }

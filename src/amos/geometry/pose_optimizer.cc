@@ -31,6 +31,26 @@ bool poseObservationResidual(const PoseObservation& obs, const core::SE3& T_cw, 
   return true;
 }
 
+bool poseObservationJacobian(const PoseObservation& obs, const core::SE3& T_cw, const StereoProjection& proj,
+                             Eigen::Vector3d& residual, Eigen::Matrix<double, 3, 6>& J) {
+  Eigen::Vector3d pc;
+  if (!poseObservationResidual(obs, T_cw, proj, residual, pc)) return false;
+  const double inv_z = 1.0 / pc.z();
+  const double inv_z2 = inv_z * inv_z;
+  // d(projection)/d(point_c)
+  Eigen::Matrix<double, 3, 3> Jp;
+  Jp << proj.fx * inv_z, 0, -proj.fx * pc.x() * inv_z2,  //
+      0, proj.fy * inv_z, -proj.fy * pc.y() * inv_z2,     //
+      proj.fx * inv_z, 0, -proj.fx * pc.x() * inv_z2 + proj.bf * inv_z2;
+  // d(point_c)/d(delta) for T <- exp(delta) T: [I, -[p_c]x]
+  Eigen::Matrix<double, 3, 6> Jd;
+  Jd.leftCols<3>().setIdentity();
+  Jd.rightCols<3>() = -core::skew(pc);
+  // residual = observed - predicted, so J_r = -Jp * Jd
+  J = -(Jp * Jd);
+  return true;
+}
+
 namespace {
 
 // Weighted chi2 of one observation (residual^T * inv_sigma2 * residual).
@@ -79,6 +99,7 @@ PoseOptimizerResult optimizePose(const std::vector<PoseObservation>& obs, const 
 
   std::vector<bool> active(obs.size());
   Eigen::Vector3d r, pc;
+  Eigen::Matrix<double, 3, 6> J;
   for (int round = 0; round < o.rounds; ++round) {
     const bool robust = round < o.robust_rounds;
     for (std::size_t i = 0; i < obs.size(); ++i) active[i] = !result.outlier[i];
@@ -90,24 +111,11 @@ PoseOptimizerResult optimizePose(const std::vector<PoseObservation>& obs, const 
       int used = 0;
       for (std::size_t i = 0; i < obs.size(); ++i) {
         if (!active[i]) continue;
-        if (!poseObservationResidual(obs[i], result.T_cw, proj, r, pc)) continue;
+        if (!poseObservationJacobian(obs[i], result.T_cw, proj, r, J)) continue;
         const bool stereo = obs[i].u_right >= 0;
         const double delta2 = stereo ? o.chi2_stereo : o.chi2_mono;
         const double w = obs[i].inv_sigma2 * (robust ? huberWeight(chi2Of(obs[i], r), delta2) : 1.0);
-        const double inv_z = 1.0 / pc.z();
-        const double inv_z2 = inv_z * inv_z;
-        // d(projection)/d(point_c)
-        Eigen::Matrix<double, 3, 3> Jp;
-        Jp << proj.fx * inv_z, 0, -proj.fx * pc.x() * inv_z2,  //
-            0, proj.fy * inv_z, -proj.fy * pc.y() * inv_z2,     //
-            proj.fx * inv_z, 0, -proj.fx * pc.x() * inv_z2 + proj.bf * inv_z2;
-        // d(point_c)/d(delta) for T <- exp(delta) T: [I, -[p_c]x]
-        Eigen::Matrix<double, 3, 6> Jd;
-        Jd.leftCols<3>().setIdentity();
-        Jd.rightCols<3>() = -core::skew(pc);
-        // residual = observed - predicted, so J_r = -Jp * Jd
         const int rows = stereo ? 3 : 2;
-        const Eigen::Matrix<double, 3, 6> J = -(Jp * Jd);
         H.noalias() += w * J.topRows(rows).transpose() * J.topRows(rows);
         g.noalias() += w * J.topRows(rows).transpose() * r.head(rows);
         ++used;

@@ -50,4 +50,9 @@ PoseOptimizerResult optimizePose(const std::vector<PoseObservation>& observation
 bool poseObservationResidual(const PoseObservation& obs, const core::SE3& T_cw, const StereoProjection& projection,
                              Eigen::Vector3d& residual, Eigen::Vector3d& point_c);
 
+// The same residual and its Jacobian for the left perturbation T <- exp(delta) T (rows 0-1, or 0-2 with u_right);
+// false when the point is behind the camera.
+bool poseObservationJacobian(const PoseObservation& obs, const core::SE3& T_cw, const StereoProjection& projection,
+                             Eigen::Vector3d& residual, Eigen::Matrix<double, 3, 6>& J);
+
 }  // namespace amos::geometry

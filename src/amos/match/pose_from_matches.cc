@@ -2,20 +2,22 @@
 
 namespace amos::match {
 
+geometry::PoseObservation poseObservationOf(const map::Frame& frame, std::size_t i) {
+  const map::FrameFeatures& f = *frame.features;
+  geometry::PoseObservation o;
+  o.point_w = frame.map_points[i]->position();
+  o.pixel = {f.keys[i].pt.x, f.keys[i].pt.y};
+  o.u_right = f.u_right[i];
+  o.inv_sigma2 = frame.sensor->invSigma2()[f.keys[i].octave];
+  return o;
+}
+
 int optimizeFramePose(map::Frame& frame, const geometry::PoseOptimizerOptions& options) {
   std::vector<geometry::PoseObservation> obs;
   std::vector<int> index;
-  const map::FrameFeatures& f = *frame.features;
-  const std::vector<float>& inv_sigma2 = frame.sensor->invSigma2();
   for (std::size_t i = 0; i < frame.size(); ++i) {
-    const auto& p = frame.map_points[i];
-    if (!p) continue;
-    geometry::PoseObservation o;
-    o.point_w = p->position();
-    o.pixel = {f.keys[i].pt.x, f.keys[i].pt.y};
-    o.u_right = f.u_right[i];
-    o.inv_sigma2 = inv_sigma2[f.keys[i].octave];
-    obs.push_back(o);
+    if (!frame.map_points[i]) continue;
+    obs.push_back(poseObservationOf(frame, i));
     index.push_back(static_cast<int>(i));
   }
   frame.outlier.assign(frame.size(), false);

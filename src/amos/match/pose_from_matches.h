@@ -11,6 +11,10 @@
 
 namespace amos::match {
 
+// The pose optimiser's observation of keypoint i and its matched map point (which must be set): undistorted pixel,
+// virtual right coordinate, the information of the keypoint's pyramid level.
+geometry::PoseObservation poseObservationOf(const map::Frame& frame, std::size_t i);
+
 // Runs pose optimisation on the frame's current matches from frame.T_cw, writes pose and outlier flags back.
 // Returns the number of inliers.
 int optimizeFramePose(map::Frame& frame, const geometry::PoseOptimizerOptions& options);

@@ -2,6 +2,7 @@
 
 #include "amos/core/error.h"
 #include "amos/map/map_point.h"
+#include "amos/match/pose_from_matches.h"
 
 namespace amos::tracking {
 
@@ -30,17 +31,8 @@ PhotometricRefinementStats PhotometricRefiner::refine(map::Frame& frame, map::Ke
   const auto found = templates_.find(reference);
   if (found == templates_.end()) return stats;
   std::vector<geometry::PoseObservation> inliers;
-  const map::FrameFeatures& f = *frame.features;
-  const std::vector<float>& inv_sigma2 = frame.sensor->invSigma2();
   for (std::size_t i = 0; i < frame.size(); ++i) {
-    const auto& p = frame.map_points[i];
-    if (!p || frame.outlier[i]) continue;
-    geometry::PoseObservation o;
-    o.point_w = p->position();
-    o.pixel = {f.keys[i].pt.x, f.keys[i].pt.y};
-    o.u_right = f.u_right[i];
-    o.inv_sigma2 = inv_sigma2[f.keys[i].octave];
-    inliers.push_back(o);
+    if (frame.map_points[i] && !frame.outlier[i]) inliers.push_back(match::poseObservationOf(frame, i));
   }
   geometry::PhotometricProblem problem;
   problem.features = &inliers;
