@@ -134,7 +134,7 @@ std::vector<KeySection> settingsKeys(Settings& s) {
   sections.push_back(cameraKeys(s));
   sections.push_back(orbKeys(s.orb));
   sections.push_back(datasetKeys(s));
-  sections.push_back(trackingKeys(s.tracking, s.fps));
+  sections.push_back(trackingKeys(s.tracking, s.fps, s.orb.num_features));
   sections.push_back(mappingKeys(s.mapping, s.covisibility));
   sections.push_back(loopKeys(s.loop, s.mapping));
   sections.push_back(placeKeys(s));

@@ -102,6 +102,22 @@ TEST(Settings, SlamSectionsReachTheirOptionStructs) {
                 .tracking.max_frames_between_keyframes, 12);
 }
 
+// ORB-SLAM2's close-point counts (100 / 70) are for 1000 features; they follow ORBextractor.nFeatures unless set.
+TEST(Settings, CloseCountsFollowTheFeatureCountUnlessSet) {
+  const Settings twice = parseSettings(std::string(kMinimal) + "ORBextractor.nFeatures: 2000\n", "t.yaml");
+  EXPECT_EQ(twice.tracking.close_tracked_max, 200);
+  EXPECT_EQ(twice.tracking.close_untracked_min, 140);
+  const Settings orb = parseSettings(std::string(kMinimal) + "ORBextractor.nFeatures: 1000\n", "t.yaml");
+  EXPECT_EQ(orb.tracking.close_tracked_max, 100);
+  EXPECT_EQ(orb.tracking.close_untracked_min, 70);
+  const Settings set = parseSettings(std::string(kMinimal) +
+                                         "ORBextractor.nFeatures: 2000\nTracking.closeTrackedMax: 120\n"
+                                         "Tracking.closeUntrackedMin: 90\n",
+                                     "t.yaml");
+  EXPECT_EQ(set.tracking.close_tracked_max, 120);
+  EXPECT_EQ(set.tracking.close_untracked_min, 90);
+}
+
 TEST(Settings, InvalidSlamValueNamesFileLineAndKey) {
   const std::string e = errorOf(std::string(kMinimal) + "Tracking.localMinInliers: 2\n");
   EXPECT_NE(e.find("test.yaml:6"), std::string::npos) << e;

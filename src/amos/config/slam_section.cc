@@ -5,10 +5,14 @@
 
 namespace amos::config {
 
-KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps) {
+KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps, const int& num_features) {
   KeySection s{"Tracking"};
-  s.prepare = [&o, &fps] {
+  s.prepare = [&o, &fps, &num_features] {
     if (fps > 0) o.max_frames_between_keyframes = std::max(1, static_cast<int>(std::lround(fps)));
+    if (num_features > 0) {
+      o.close_tracked_max = tracking::closeTrackedMaxFor(num_features);
+      o.close_untracked_min = tracking::closeUntrackedMinFor(num_features);
+    }
   };
   s.add("Tracking.initMinDepthPoints", &o.init_min_depth_points, "keypoints with depth needed to start the map");
   s.add("Tracking.motionSearchRadius", &o.motion_search_radius, "window of the motion-model search (px at level 0)");
@@ -42,8 +46,10 @@ KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps) {
         "reference keyframe ...; 0 = off");
   s.add("Tracking.keyFrameViewBaseline", &o.keyframe_view_baseline,
         "... or moved this share of the median keypoint depth; 0 = off");
-  s.add("Tracking.closeTrackedMax", &o.close_tracked_max, "... or when fewer close points than this are tracked");
-  s.add("Tracking.closeUntrackedMin", &o.close_untracked_min, "... and at least this many close points are not");
+  s.add("Tracking.closeTrackedMax", &o.close_tracked_max, "... or when fewer close points than this are tracked")
+      .defaultIs("ORBextractor.nFeatures / 10");
+  s.add("Tracking.closeUntrackedMin", &o.close_untracked_min, "... and at least this many close points are not")
+      .defaultIs("ORBextractor.nFeatures * 7 / 100");
   s.add("Tracking.newPointsMin", &o.new_points_min, "depth points a new keyframe creates at least, closest first");
   s.add("Tracking.voPointsMin", &o.vo_points_min, "temporary points made from the last frame's depth");
   s.add("Tracking.recoveryFrames", &o.recovery_frames,

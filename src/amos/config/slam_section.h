@@ -10,8 +10,9 @@
 namespace amos::config {
 
 // Tracking.*, Matching.*, Relocalization.*. `fps` (Camera.fps, read before) is the default of Tracking.maxFrames,
-// as in ORB-SLAM2.
-KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps);
+// as in ORB-SLAM2; `num_features` (ORBextractor.nFeatures, read before) sets the defaults of
+// Tracking.closeTrackedMax and closeUntrackedMin.
+KeySection trackingKeys(tracking::TrackerOptions& o, const double& fps, const int& num_features);
 // Mapping.*, LocalBA.*
 KeySection mappingKeys(mapping::LocalMappingOptions& o, map::CovisibilityOptions& covisibility);
 // Loop.*; the fusion of loop points uses the Mapping.fuse* options read before.

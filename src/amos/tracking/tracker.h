@@ -34,6 +34,13 @@ namespace amos::tracking {
 // How an externally supplied initial pose is used (Tracking.externalPose: replace | compete).
 enum class ExternalPosePolicy { kReplace, kCompete };
 
+// ORB-SLAM2's RGB-D "close points" keyframe test (100 tracked, 70 untracked) is set for its 1000 features per
+// frame: counts of a frame's points, so they scale with the features extracted. Held at 100 / 70 with 2000
+// features the test rarely fires: on the Bonn crowd a frame tracking 130-160 of its close points while 300-400
+// more are not in the map made no keyframe for 55 frames, and the pose slid 3 cm sideways (docs/experiments/close-points-scale.md).
+inline int closeTrackedMaxFor(int num_features) { return num_features / 10; }
+inline int closeUntrackedMinFor(int num_features) { return num_features * 7 / 100; }
+
 struct TrackerOptions {
   int init_min_depth_points = 500;   // Tracking.initMinDepthPoints: keypoints with depth to initialise the map
   double motion_search_radius = 15;  // Tracking.motionSearchRadius: px at level 0 (ORB-SLAM2 RGB-D: 15)
@@ -89,8 +96,10 @@ struct TrackerOptions {
   // keyframe (keyFrameRefRatio); 5 % of the median depth gives a point there ~3 deg of parallax. 0 = off.
   double keyframe_view_rotation_deg = 5.0;
   double keyframe_view_baseline = 0.05;
-  int close_tracked_max = 100;       // Tracking.closeTrackedMax: fewer tracked close points ...
-  int close_untracked_min = 70;      // Tracking.closeUntrackedMin: ... and this many untracked ones -> new keyframe
+  // Tracking.closeTrackedMax: fewer tracked close points ... / closeUntrackedMin: ... and this many untracked ones
+  // -> new keyframe. Defaults scale with ORBextractor.nFeatures (closeTrackedMaxFor / closeUntrackedMinFor).
+  int close_tracked_max = 100;
+  int close_untracked_min = 70;
   int new_points_min = 100;          // Tracking.newPointsMin: depth points created per keyframe (at least, closest first)
   int vo_points_min = 100;           // Tracking.voPointsMin: temporary points from the last frame's depth
   // Tracking.recoveryFrames: for this many frames after tracking was lost, the local map around the last tracked
