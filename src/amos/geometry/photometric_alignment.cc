@@ -317,7 +317,8 @@ PhotometricResult refinePosePhotometrically(const PhotometricProblem& p, const c
     }
     if (l == 0) {
       refined_finest = true;
-      photometricTerms(s, T * T_wr, nullptr, nullptr, &result.points);
+      core::Vector6d unused = core::Vector6d::Zero();
+      photometricTerms(s, T * T_wr, &result.information, &unused, &result.points);
       result.sigma = s.sigma;
     }
   }

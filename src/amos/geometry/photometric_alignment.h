@@ -85,6 +85,10 @@ struct PhotometricResult {
   bool accepted = false;
   int points = 0;          // template points used at level 0
   double sigma = 0;        // photometric scale at level 0 (grey levels)
+  // The photometric residuals' Gauss-Newton information at the result (level 0, Huber weights, the robust scale),
+  // about the left perturbation of T_cw (and of T_cr): what the pixels alone say about the pose relative to the
+  // reference, apart from the keypoints.
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 PhotometricResult refinePosePhotometrically(const PhotometricProblem& problem, const core::SE3& initial_T_cw,

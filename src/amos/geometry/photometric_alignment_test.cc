@@ -1,6 +1,8 @@
 #include "amos/geometry/photometric_alignment.h"
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
 #include <opencv2/core.hpp>
 
 #include <cmath>
@@ -125,6 +127,24 @@ TEST(PhotometricAlignment, MaskedPixelsTakeNoPart) {
   const Scene unmasked = makeScene(1, 0, mover, false);
   const PhotometricResult u = refine(unmasked, perturbed(unmasked.T_cr_true));
   EXPECT_GT(u.points, r.points) << "the masked pixels must be left out";
+}
+
+// The pixels' information (what bundle adjustment keeps of the alignment) is a proper information matrix and
+// counts the pixels used: half the template points leave about half of it.
+TEST(PhotometricAlignment, TheInformationIsPositiveDefiniteAndCountsThePixels) {
+  const Scene full = makeScene(1, 0, {}, false);
+  Scene half = makeScene(1, 0, {}, false);
+  for (auto& level : half.reference.levels) level.resize(level.size() / 2);
+  const PhotometricResult f = refine(full, perturbed(full.T_cr_true));
+  const PhotometricResult h = refine(half, perturbed(half.T_cr_true));
+  ASSERT_TRUE(f.accepted && h.accepted);
+  for (const PhotometricResult* r : {&f, &h}) {
+    EXPECT_LT((r->information - r->information.transpose()).norm(), 1e-9 * r->information.norm());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(r->information);
+    EXPECT_GT(eig.eigenvalues().minCoeff(), 0);
+  }
+  EXPECT_GT(h.information.trace(), 0.3 * f.information.trace());
+  EXPECT_LT(h.information.trace(), 0.7 * f.information.trace());
 }
 
 TEST(PhotometricAlignment, TooFewPointsLeaveThePoseAsItWas) {

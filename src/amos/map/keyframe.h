@@ -8,6 +8,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <utility>
 #include <vector>
@@ -18,6 +19,15 @@
 #include "amos/map/map_point.h"
 
 namespace amos::map {
+
+// A relative pose to another keyframe measured apart from the keypoints (the dense photometric alignment of this
+// keyframe's frame against its reference keyframe, tracking/photometric_refiner.h); bundle adjustment keeps it
+// (mapping/bundle_adjustment.h BaRelativePose). information: about the left perturbation of T_kr.
+struct PoseLink {
+  KeyFrameId reference = kNoKeyFrame;
+  core::SE3 T_kr = core::SE3::Identity();
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+};
 
 class KeyFrame {
  public:
@@ -71,6 +81,9 @@ class KeyFrame {
   bool isBad() const { return bad_; }
   void setBadFlag() { bad_ = true; }
 
+  const std::optional<PoseLink>& photometricLink() const { return photometric_link_; }
+  void setPhotometricLink(PoseLink link) { photometric_link_ = std::move(link); }
+
  private:
   void reorder();
 
@@ -88,6 +101,7 @@ class KeyFrame {
   std::set<KeyFrameId> children_;
   bool first_connection_done_ = false;
   bool bad_ = false;
+  std::optional<PoseLink> photometric_link_;
 };
 
 using KeyFramePtr = std::shared_ptr<KeyFrame>;

@@ -25,6 +25,8 @@ void BundleAdjustmentOptions::check() const {
 
 namespace {
 
+constexpr double kChi2SixDof95 = 12.592;
+
 // Pose parameter block: [tx ty tz qx qy qz qw] of T_cw.
 using PoseBlock = std::array<double, 7>;
 
@@ -125,6 +127,49 @@ class ReprojectionCost final : public ceres::CostFunction {
   double sqrt_info_;
 };
 
+// Whitened relative-pose residual L^T log(T_a T_b^-1 T_ab^-1), information = L L^T. Its Jacobians (in the left
+// tangent of each pose) are taken by central differences: a few dozen such terms per solve cost nothing.
+class RelativePoseCost final : public ceres::CostFunction {
+ public:
+  explicit RelativePoseCost(const BaRelativePose& rel) : T_ba_meas_(rel.T_ab.inverse()) {
+    const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(rel.information);
+    sqrt_info_ = llt.info() == Eigen::Success ? Eigen::Matrix<double, 6, 6>(llt.matrixU())
+                                              : Eigen::Matrix<double, 6, 6>::Zero();
+    set_num_residuals(6);
+    mutable_parameter_block_sizes()->push_back(7);
+    mutable_parameter_block_sizes()->push_back(7);
+  }
+
+  bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override {
+    const core::SE3 Ta = fromBlock(params[0]), Tb = fromBlock(params[1]);
+    Eigen::Map<core::Vector6d> out(residuals);
+    out = residual(Ta, Tb);
+    if (!jacobians) return true;
+    constexpr double kStep = 1e-6;
+    for (int block = 0; block < 2; ++block) {
+      if (!jacobians[block]) continue;
+      Eigen::Map<Eigen::Matrix<double, 6, 7, Eigen::RowMajor>> J(jacobians[block]);
+      J.setZero();
+      for (int c = 0; c < 6; ++c) {
+        core::Vector6d d = core::Vector6d::Zero();
+        d[c] = kStep;
+        const core::SE3 plus = core::expSE3(d), minus = core::expSE3(-d);
+        const core::Vector6d rp = block == 0 ? residual(plus * Ta, Tb) : residual(Ta, plus * Tb);
+        const core::Vector6d rm = block == 0 ? residual(minus * Ta, Tb) : residual(Ta, minus * Tb);
+        J.col(c) = (rp - rm) / (2 * kStep);
+      }
+    }
+    return true;
+  }
+
+ private:
+  core::Vector6d residual(const core::SE3& Ta, const core::SE3& Tb) const {
+    return sqrt_info_ * core::logSE3(Ta * Tb.inverse() * T_ba_meas_);
+  }
+  core::SE3 T_ba_meas_;
+  Eigen::Matrix<double, 6, 6> sqrt_info_;
+};
+
 class AbortCallback final : public ceres::IterationCallback {
  public:
   explicit AbortCallback(const std::atomic<bool>* abort) : abort_(abort) {}
@@ -187,6 +232,13 @@ BaResult solveBundleAdjustment(const BaProblem& problem, const BundleAdjustmentO
         ceres_problem.SetManifold(poses[o.keyframe].data(), &manifold);
         if (problem.keyframes[o.keyframe].fixed) ceres_problem.SetParameterBlockConstant(poses[o.keyframe].data());
       }
+    }
+    for (const BaRelativePose& rel : problem.relative_poses) {
+      // Only between keyframes the observations put in the problem, and not between two fixed ones.
+      if (!pose_added[rel.a] || !pose_added[rel.b]) continue;
+      if (problem.keyframes[rel.a].fixed && problem.keyframes[rel.b].fixed) continue;
+      ceres::LossFunction* loss = robust ? new ceres::HuberLoss(std::sqrt(kChi2SixDof95)) : nullptr;
+      ceres_problem.AddResidualBlock(new RelativePoseCost(rel), loss, poses[rel.a].data(), poses[rel.b].data());
     }
     if (ceres_problem.NumResidualBlocks() == 0) return;
     ceres::Solver::Options solver_options;

@@ -45,11 +45,21 @@ struct BaObservation {
   double inv_sigma2 = 1;
 };
 
+// A measured relative pose between two keyframes, independent of the keypoint observations: the dense photometric
+// alignment of keyframe `a` against keyframe `b` when `a` was tracked (map::PoseLink). Residual
+// sqrt(information) * log(T_aw T_bw^-1 T_ab^-1), Huber at the 6-dof 95 % chi-square bound in the robust stage.
+struct BaRelativePose {
+  int a = 0, b = 0;  // indices into BaProblem::keyframes
+  core::SE3 T_ab = core::SE3::Identity();
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Identity();
+};
+
 struct BaProblem {
   geometry::StereoProjection projection;
   std::vector<BaKeyFrame> keyframes;
   std::vector<BaPoint> points;
   std::vector<BaObservation> observations;
+  std::vector<BaRelativePose> relative_poses;
 };
 
 struct BaResult {

@@ -120,6 +120,48 @@ TEST(BundleAdjustment, MonocularOnlyObservationsConvergeWithTwoFixedKeyframes) {
   }
 }
 
+// Relative-pose error of keyframes a and b against the truth (metres).
+double relativeError(const std::vector<core::SE3>& T_cw, const Scene& scene, int a, int b) {
+  const core::SE3 est = T_cw[a] * T_cw[b].inverse(), truth = scene.T_cw[a] * scene.T_cw[b].inverse();
+  return core::translationNorm(est * truth.inverse());
+}
+
+TEST(BundleAdjustment, AConfidentRelativePoseIsKept) {
+  const Scene scene = makeScene(60, 13);
+  BaProblem problem = makeProblem(scene, 1.0, 0.0, 0.5, 14, nullptr);
+  perturb(problem, 15);
+  const BaResult without = solveBundleAdjustment(problem, BundleAdjustmentOptions{});
+  BaRelativePose rel;
+  rel.a = 3;
+  rel.b = 2;
+  rel.T_ab = scene.T_cw[3] * scene.T_cw[2].inverse();
+  rel.information = 1e10 * Eigen::Matrix<double, 6, 6>::Identity();
+  problem.relative_poses.push_back(rel);
+  const BaResult with = solveBundleAdjustment(problem, BundleAdjustmentOptions{});
+  EXPECT_GT(relativeError(without.T_cw, scene, 3, 2), 1e-4);  // the noisy keypoints alone leave this much
+  EXPECT_LT(relativeError(with.T_cw, scene, 3, 2), 1e-5);
+}
+
+TEST(BundleAdjustment, AnUncertainRelativePoseLeavesTheObservationsInCharge) {
+  const Scene scene = makeScene(100, 16);
+  BaProblem problem = makeProblem(scene, 0.0, 0.0, 1.0, 17, nullptr);
+  perturb(problem, 18);
+  BaRelativePose rel;
+  rel.a = 4;
+  rel.b = 1;
+  core::Vector6d off;
+  off << 0.05, 0, 0, 0, 0.02, 0;  // 5 cm and a degree off the truth
+  rel.T_ab = core::expSE3(off) * scene.T_cw[4] * scene.T_cw[1].inverse();
+  rel.information = 1e-4 * Eigen::Matrix<double, 6, 6>::Identity();
+  problem.relative_poses.push_back(rel);
+  BundleAdjustmentOptions options;
+  options.iterations_refine = 30;
+  const BaResult r = solveBundleAdjustment(problem, options);
+  for (std::size_t k = 0; k < scene.T_cw.size(); ++k) {
+    EXPECT_LT(core::translationNorm(r.T_cw[k] * scene.T_cw[k].inverse()), 1e-4) << "keyframe " << k;
+  }
+}
+
 TEST(BundleAdjustment, AbortFlagStopsEarly) {
   const Scene scene = makeScene(100, 7);
   BaProblem problem = makeProblem(scene, 0.5, 0.0, 1.0, 8, nullptr);

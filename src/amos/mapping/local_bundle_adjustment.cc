@@ -54,6 +54,13 @@ BaStats runBundleAdjustment(map::Map& map, Select select, const BundleAdjustment
       }
     }
     stats.fixed_keyframes = static_cast<int>(kfs.size()) - stats.adjusted_keyframes;
+    for (std::size_t k = 0; k < kfs.size(); ++k) {
+      const std::optional<map::PoseLink>& link = kfs[k]->photometricLink();
+      if (!link) continue;
+      const auto other = kf_index.find(link->reference);
+      if (other == kf_index.end()) continue;
+      problem.relative_poses.push_back({static_cast<int>(k), other->second, link->T_kr, link->information});
+    }
     const auto& inv_sigma2 = local.front()->sensor().invSigma2();
     for (std::size_t i = 0; i < pts.size(); ++i) {
       for (const auto& [id, idx] : pts[i]->observations()) {

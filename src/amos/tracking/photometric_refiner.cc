@@ -45,7 +45,10 @@ PhotometricRefinementStats PhotometricRefiner::refine(map::Frame& frame, map::Ke
   stats.accepted = result.accepted;
   stats.points = result.points;
   stats.sigma = result.sigma;
-  if (result.accepted) frame.setPose(result.T_cw);
+  if (result.accepted) {
+    frame.setPose(result.T_cw);
+    stats.information = result.information;
+  }
   return stats;
 }
 

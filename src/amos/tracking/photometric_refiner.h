@@ -22,6 +22,7 @@ struct PhotometricRefinementStats {
   bool attempted = false, accepted = false;
   int points = 0;
   double sigma = 0;
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();  // the pixels' alone (accepted)
 };
 
 class PhotometricRefiner {
