@@ -28,14 +28,18 @@ void PhotometricOptions::check() const {
 ImageRectifier::ImageRectifier(const core::PinholeCamera& camera) {
   identity_ = !camera.intrinsics().hasDistortion();
   if (identity_) return;
+  cv::Mat map_x, map_y;
   cv::initUndistortRectifyMap(camera.K(), camera.distortion(), cv::noArray(), camera.K(),
-                              cv::Size(camera.width(), camera.height()), CV_32FC1, map_x_, map_y_);
+                              cv::Size(camera.width(), camera.height()), CV_32FC1, map_x, map_y);
+  cv::convertMaps(map_x, map_y, linear_xy_, linear_a_, CV_16SC2, false);
+  cv::Mat unused;
+  cv::convertMaps(map_x, map_y, nearest_xy_, unused, CV_16SC2, true);
 }
 
 cv::Mat ImageRectifier::linear(const cv::Mat& image) const {
   if (identity_) return image;
   cv::Mat out;
-  cv::remap(image, out, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  cv::remap(image, out, linear_xy_, linear_a_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
   return out;
 }
 
@@ -43,7 +47,7 @@ cv::Mat ImageRectifier::nearest(const cv::Mat& image) const {
   if (identity_) return image;
   cv::Mat out;
   // Outside the source image: 0 (no depth) for depth; masks are made so that 0 there is handled by the caller.
-  cv::remap(image, out, map_x_, map_y_, cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::remap(image, out, nearest_xy_, cv::noArray(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
   return out;
 }
 

@@ -40,14 +40,17 @@ struct PhotometricOptions {
   void check() const;
 };
 
-// Undistorts images to the pinhole model of the undistorted keypoints (same K).
+// Undistorts images to the pinhole model of the undistorted keypoints (same K). The maps are kept in OpenCV's
+// fixed-point form (cv::convertMaps): cv::remap rounds float maps to that same form on every call, so the output
+// is the same and the rounding is done once instead of per frame.
 class ImageRectifier {
  public:
   explicit ImageRectifier(const core::PinholeCamera& camera);
   cv::Mat linear(const cv::Mat& image) const;   // grey images
   cv::Mat nearest(const cv::Mat& image) const;  // depth, masks
  private:
-  cv::Mat map_x_, map_y_;
+  cv::Mat linear_xy_, linear_a_;  // CV_16SC2 whole-pixel positions, CV_16UC1 sub-pixel table indices
+  cv::Mat nearest_xy_;            // CV_16SC2 rounded positions
   bool identity_ = true;
 };
 
