@@ -28,23 +28,41 @@ void PhotometricOptions::check() const {
 ImageRectifier::ImageRectifier(const core::PinholeCamera& camera) {
   identity_ = !camera.intrinsics().hasDistortion();
   if (identity_) return;
+  cv::Mat map_x, map_y;
   cv::initUndistortRectifyMap(camera.K(), camera.distortion(), cv::noArray(), camera.K(),
-                              cv::Size(camera.width(), camera.height()), CV_32FC1, map_x_, map_y_);
+                              cv::Size(camera.width(), camera.height()), CV_32FC1, map_x, map_y);
+  cv::convertMaps(map_x, map_y, linear_xy_, linear_a_, CV_16SC2, false);
+  cv::Mat unused;
+  cv::convertMaps(map_x, map_y, nearest_xy_, unused, CV_16SC2, true);
 }
 
 cv::Mat ImageRectifier::linear(const cv::Mat& image) const {
-  if (identity_) return image;
   cv::Mat out;
-  cv::remap(image, out, map_x_, map_y_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  linear(image, out);
   return out;
 }
 
 cv::Mat ImageRectifier::nearest(const cv::Mat& image) const {
-  if (identity_) return image;
   cv::Mat out;
-  // Outside the source image: 0 (no depth) for depth; masks are made so that 0 there is handled by the caller.
-  cv::remap(image, out, map_x_, map_y_, cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
+  nearest(image, out);
   return out;
+}
+
+void ImageRectifier::linear(const cv::Mat& image, cv::Mat& out) const {
+  if (identity_) {
+    out = image;
+    return;
+  }
+  cv::remap(image, out, linear_xy_, linear_a_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+}
+
+void ImageRectifier::nearest(const cv::Mat& image, cv::Mat& out) const {
+  if (identity_) {
+    out = image;
+    return;
+  }
+  // Outside the source image: 0 (no depth) for depth; masks are made so that 0 there is handled by the caller.
+  cv::remap(image, out, nearest_xy_, cv::noArray(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
 }
 
 namespace {
@@ -213,31 +231,34 @@ bool fitBrightness(LevelState& s, const core::SE3& T_cr, int min_points) {
 PhotometricImage makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const StereoProjection& camera,
                                       const PhotometricOptions& options) {
   PhotometricImage out;
-  cv::Mat g0;
-  gray.convertTo(g0, CV_32F);
-  cv::Mat m0;
+  makePhotometricImage(gray, mask, camera, options, out);
+  return out;
+}
+
+void makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const StereoProjection& camera,
+                          const PhotometricOptions& options, PhotometricImage& out) {
+  const auto levels = static_cast<std::size_t>(options.levels);
+  out.gray.resize(levels);
+  out.mask.resize(levels);
+  out.intrinsics.resize(levels);
+  gray.convertTo(out.gray[0], CV_32F);
   if (mask.empty()) {
-    m0 = cv::Mat::zeros(gray.size(), CV_8U);
+    out.mask[0].create(gray.size(), CV_8U);
+    out.mask[0].setTo(0);
   } else if (options.mask_margin > 0) {
     const int d = 2 * options.mask_margin + 1;
-    cv::dilate(mask, m0, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(d, d)));
+    cv::dilate(mask, out.mask[0], cv::getStructuringElement(cv::MORPH_RECT, cv::Size(d, d)));
   } else {
-    m0 = mask.clone();
+    mask.copyTo(out.mask[0]);
   }
-  out.gray.push_back(g0);
-  out.mask.push_back(m0);
-  out.intrinsics.push_back(camera);
-  for (int l = 1; l < options.levels; ++l) {
-    cv::Mat g, m;
-    cv::pyrDown(out.gray.back(), g);
+  out.intrinsics[0] = camera;
+  for (std::size_t l = 1; l < levels; ++l) {
+    cv::pyrDown(out.gray[l - 1], out.gray[l]);
     // A coarse pixel is excluded when any of the fine pixels under it is.
-    cv::dilate(out.mask.back(), m, cv::Mat::ones(3, 3, CV_8U));
-    cv::resize(m, m, g.size(), 0, 0, cv::INTER_NEAREST);
-    out.gray.push_back(g);
-    out.mask.push_back(m);
-    out.intrinsics.push_back(atLevel(camera, l));
+    cv::dilate(out.mask[l - 1], out.scratch, cv::Mat::ones(3, 3, CV_8U));
+    cv::resize(out.scratch, out.mask[l], out.gray[l].size(), 0, 0, cv::INTER_NEAREST);
+    out.intrinsics[l] = atLevel(camera, static_cast<int>(l));
   }
-  return out;
 }
 
 PhotometricTemplate makePhotometricTemplate(const PhotometricImage& image, const cv::Mat& depth,

@@ -40,14 +40,20 @@ struct PhotometricOptions {
   void check() const;
 };
 
-// Undistorts images to the pinhole model of the undistorted keypoints (same K).
+// Undistorts images to the pinhole model of the undistorted keypoints (same K). The maps are kept in OpenCV's
+// fixed-point form (cv::convertMaps): cv::remap rounds float maps to that same form on every call, so the output
+// is the same and the rounding is done once instead of per frame.
 class ImageRectifier {
  public:
   explicit ImageRectifier(const core::PinholeCamera& camera);
   cv::Mat linear(const cv::Mat& image) const;   // grey images
   cv::Mat nearest(const cv::Mat& image) const;  // depth, masks
+  // The same into `out`, reusing its buffer (no identity case: `out` then shares `image`'s pixels).
+  void linear(const cv::Mat& image, cv::Mat& out) const;
+  void nearest(const cv::Mat& image, cv::Mat& out) const;
  private:
-  cv::Mat map_x_, map_y_;
+  cv::Mat linear_xy_, linear_a_;  // CV_16SC2 whole-pixel positions, CV_16UC1 sub-pixel table indices
+  cv::Mat nearest_xy_;            // CV_16SC2 rounded positions
   bool identity_ = true;
 };
 
@@ -55,10 +61,15 @@ class ImageRectifier {
 struct PhotometricImage {
   std::vector<cv::Mat> gray, mask;
   std::vector<StereoProjection> intrinsics;  // per level
+  cv::Mat scratch;                           // reused by makePhotometricImage
   int levels() const { return static_cast<int>(gray.size()); }
 };
 PhotometricImage makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const StereoProjection& camera,
                                       const PhotometricOptions& options);
+// The same into `out`, reusing its buffers: a new frame's images then cost no allocation (on this machine the
+// first writes to freshly allocated megabyte images, page faults, cost more than the image operations).
+void makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const StereoProjection& camera,
+                          const PhotometricOptions& options, PhotometricImage& out);
 
 struct PhotometricPoint {
   Eigen::Vector3d p_r;  // in the reference camera

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <cmath>
 
@@ -163,6 +165,35 @@ TEST(PhotometricAlignment, OptionsAreChecked) {
   o = PhotometricOptions{};
   o.max_depth = 0.1;  // below min_depth
   EXPECT_ANY_THROW(o.check());
+}
+
+// The rectifier keeps fixed-point maps for speed; its images must be exactly those of cv::remap with the float maps
+// (Bonn's distortion: the pixels move by up to several pixels near the corners).
+TEST(PhotometricAlignment, RectifierMatchesRemapWithFloatMaps) {
+  core::CameraIntrinsics in;
+  in.fx = 542.8;
+  in.fy = 542.6;
+  in.cx = 315.6;
+  in.cy = 237.8;
+  in.k1 = 0.039903;
+  in.k2 = -0.099343;
+  in.p1 = -0.00073;
+  in.p2 = -0.000144;
+  const core::PinholeCamera cam(in);
+  const ImageRectifier rectifier(cam);
+  cv::Mat map_x, map_y;
+  cv::initUndistortRectifyMap(cam.K(), cam.distortion(), cv::noArray(), cam.K(), cv::Size(in.width, in.height),
+                              CV_32FC1, map_x, map_y);
+  cv::Mat gray(in.height, in.width, CV_8U), depth(in.height, in.width, CV_32F), expected;
+  cv::theRNG().state = 42;
+  cv::randu(gray, 0, 256);
+  cv::randu(depth, 0.3, 4.0);
+  cv::remap(gray, expected, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  EXPECT_EQ(cv::norm(rectifier.linear(gray), expected, cv::NORM_INF), 0);
+  cv::remap(depth, expected, map_x, map_y, cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
+  EXPECT_EQ(cv::norm(rectifier.nearest(depth), expected, cv::NORM_INF), 0);
+  cv::remap(gray, expected, map_x, map_y, cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
+  EXPECT_EQ(cv::norm(rectifier.nearest(gray), expected, cv::NORM_INF), 0);
 }
 
 }  // namespace

@@ -24,6 +24,7 @@ int fusePoints(map::Map& map, const map::KeyFramePtr& kf, const std::vector<map:
   const core::SE3 T = kf->T_cw();
   const Eigen::Vector3d O = kf->center();
   int fused = 0;
+  std::vector<int> candidates;  // reused: one allocation for the whole search
   for (map::MapPointPtr p : points) {
     if (!p || p->isBad() || p->isObservedBy(kf->id())) continue;
     const Eigen::Vector3d pw = p->position();
@@ -40,7 +41,7 @@ int fusePoints(map::Map& map, const map::KeyFramePtr& kf, const std::vector<map:
     if (p->normal().squaredNorm() > 0 && po.dot(p->normal()) < 0.5 * dist) continue;
     const int level = p->predictScale(dist, s);
     const double radius = options.radius * s.scales()[level];
-    const std::vector<int> candidates = f.featuresInArea(u, v, radius);
+    f.grid.featuresInArea(u, v, radius, -1, -1, candidates);
     const std::uint8_t* d = p->descriptor().ptr<std::uint8_t>(0);
     int best = 257, best_idx = -1;
     for (const int idx : candidates) {

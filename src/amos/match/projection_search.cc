@@ -24,6 +24,7 @@ int searchKeyFrameByProjection(map::Frame& frame, const map::KeyFrame& kf,
   const Eigen::Vector3d ow = frame.center();
   std::vector<int> matched_idx;
   std::vector<float> rot;
+  std::vector<int> candidates;  // reused: one allocation for the whole search
   int n = 0;
   for (int i = 0; i < kf.size(); ++i) {
     const map::MapPointPtr& p = kf.mapPoint(i);
@@ -37,7 +38,7 @@ int searchKeyFrameByProjection(map::Frame& frame, const map::KeyFrame& kf,
     if (dist < p->minDistance() || dist > p->maxDistance()) continue;
     const int level = p->predictScale(dist, s);
     const double radius = th * s.scales()[level];
-    const std::vector<int> candidates = f.featuresInArea(u, v, radius, level - 1, level + 1);
+    f.grid.featuresInArea(u, v, radius, level - 1, level + 1, candidates);
     const std::uint8_t* d = p->descriptor().ptr<std::uint8_t>(0);
     int best = 256, best_idx = -1;
     for (const int idx : candidates) {

@@ -54,6 +54,7 @@ int searchLastFrame(map::Frame& current, const map::Frame& last, double th,
   const bool backward = -t_lc.z() > s.baseline();
   std::vector<int> matched_idx;
   std::vector<float> rot;
+  std::vector<int> candidates;  // reused: one allocation for the whole search
   int n = 0;
   for (std::size_t i = 0; i < last.size(); ++i) {
     const map::MapPointPtr& p = last.map_points[i];
@@ -66,13 +67,12 @@ int searchLastFrame(map::Frame& current, const map::Frame& last, double th,
     if (!s.inBounds(u, v)) continue;
     const int octave = lf.keys[i].octave;
     const double radius = th * s.scales()[octave];
-    std::vector<int> candidates;
     if (forward) {
-      candidates = cf.featuresInArea(u, v, radius, octave, -1);
+      cf.grid.featuresInArea(u, v, radius, octave, -1, candidates);
     } else if (backward) {
-      candidates = cf.featuresInArea(u, v, radius, 0, octave);
+      cf.grid.featuresInArea(u, v, radius, 0, octave, candidates);
     } else {
-      candidates = cf.featuresInArea(u, v, radius, std::max(0, octave - 1), octave + 1);
+      cf.grid.featuresInArea(u, v, radius, std::max(0, octave - 1), octave + 1, candidates);
     }
     if (candidates.empty()) continue;
     const double ur = u - s.bf() * inv_z;
@@ -101,11 +101,12 @@ int searchLocalPoints(map::Frame& frame, const std::vector<ProjectedPoint>& poin
                       const match::MatchingOptions& options) {
   const map::Sensor& s = *frame.sensor;
   const map::FrameFeatures& f = *frame.features;
+  std::vector<int> candidates;  // reused: one allocation for the whole search
   int n = 0;
   for (const ProjectedPoint& pp : points) {
     const double r = (pp.view_cos > 0.998 ? 2.5 : 4.0) * th;
     const double radius = r * s.scales()[pp.level];
-    const std::vector<int> candidates = f.featuresInArea(pp.u, pp.v, radius, pp.level - 1, pp.level);
+    f.grid.featuresInArea(pp.u, pp.v, radius, pp.level - 1, pp.level, candidates);
     if (candidates.empty()) continue;
     const std::uint8_t* d = pp.point->descriptor().ptr<std::uint8_t>(0);
     int best = 256, second = 256, best_level = -1, second_level = -1, best_idx = -1;

@@ -17,9 +17,18 @@ PhotometricRefiner::PhotometricRefiner(const core::PinholeCamera& camera, const 
 const geometry::PhotometricImage& PhotometricRefiner::imageOf(const map::Frame& frame) {
   if (image_frame_ != frame.id) {
     core::require(!frame.gray.empty(), "PhotometricRefiner: frame without its grey image");
-    cv::Mat mask = outside_.size() == frame.gray.size() ? outside_.clone() : cv::Mat::zeros(frame.gray.size(), CV_8U);
-    if (!frame.dynamic_mask.empty()) mask |= rectifier_.nearest(frame.dynamic_mask);
-    image_ = geometry::makePhotometricImage(rectifier_.linear(frame.gray), mask, projection_, options_);
+    if (outside_.size() == frame.gray.size()) {
+      outside_.copyTo(mask_);
+    } else {
+      mask_.create(frame.gray.size(), CV_8U);
+      mask_.setTo(0);
+    }
+    if (!frame.dynamic_mask.empty()) {
+      rectifier_.nearest(frame.dynamic_mask, dynamic_);
+      cv::bitwise_or(mask_, dynamic_, mask_);
+    }
+    rectifier_.linear(frame.gray, gray_);
+    geometry::makePhotometricImage(gray_, mask_, projection_, options_, image_);
     image_frame_ = frame.id;
   }
   return image_;

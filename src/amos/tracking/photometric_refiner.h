@@ -45,6 +45,7 @@ class PhotometricRefiner {
   std::unordered_map<map::KeyFrameId, std::shared_ptr<const geometry::PhotometricTemplate>> templates_;
   std::optional<map::FrameId> image_frame_;  // the frame image_ was made from
   geometry::PhotometricImage image_;
+  cv::Mat gray_, mask_, dynamic_;            // undistorted inputs of image_, buffers reused from frame to frame
 };
 
 }  // namespace amos::tracking
