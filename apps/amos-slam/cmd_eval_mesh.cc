@@ -22,7 +22,7 @@ namespace amos::app {
 namespace {
 
 struct EvalMeshArgs {
-  std::string mesh, sequence, trajectory, swept, output;
+  std::string mesh, sequence, trajectory, swept, output, ghosts;
   double tolerance = 0.04, max_depth = 4.0, sweep_margin = -1;
 };
 
@@ -47,6 +47,7 @@ void evalMesh(const EvalMeshArgs& a) {
   const std::string output =
       a.output.empty() ? (std::filesystem::path(a.mesh).parent_path() / "mesh_eval.json").string() : a.output;
   io::writeFileAtomically(output, dense::toJson(s).dump(2) + "\n");
+  if (!a.ghosts.empty()) dense::writePointsPly(a.ghosts, s.ghost_points);
 #else
   (void)a;
   throw core::Error("eval-mesh: this build has no dense module (install libopen3d-dev and rebuild)");
@@ -79,6 +80,7 @@ void addEvalMeshCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--sweep-margin", args->sweep_margin,
                   "Distance (m) by which the swept volume is grown (default: the tolerance)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--ghosts", args->ghosts, "Also write the ghost vertices (ground truth frame) to this PLY file");
   cmd->add_option("--output", args->output, "JSON file of the figures (default: mesh_eval.json beside the mesh)");
   cmd->callback([args, &exit_code] {
     evalMesh(*args);

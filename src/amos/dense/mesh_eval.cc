@@ -9,6 +9,7 @@
 #include <open3d/geometry/KDTreeFlann.h>
 #include <open3d/geometry/PointCloud.h>
 #include <open3d/geometry/TriangleMesh.h>
+#include <open3d/io/PointCloudIO.h>
 #include <open3d/io/TriangleMeshIO.h>
 
 #include "amos/core/error.h"
@@ -79,7 +80,10 @@ MeshScore scoreMesh(const std::vector<Eigen::Vector3d>& vertices, const std::vec
     const bool in_sweep = std::isfinite(swept.distanceTo(vertices[i], sweep_margin));
     score.off_surface += off ? 1 : 0;
     score.in_sweep += in_sweep ? 1 : 0;
-    score.ghosts += off && in_sweep ? 1 : 0;
+    if (off && in_sweep) {
+      ++score.ghosts;
+      score.ghost_points.push_back(vertices[i]);
+    }
   }
   if (!to_truth.empty()) {
     score.accuracy_median_m = core::percentile(to_truth, 0.5);
@@ -149,6 +153,11 @@ nlohmann::json toJson(const MeshScore& s) {
           {"swept_cell_m", s.swept_cell_m},
           {"swept_volume_m3", s.swept_volume_m3},
           {"ate_rmse_m", s.ate_rmse_m}};
+}
+
+void writePointsPly(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
+  const open3d::geometry::PointCloud cloud(points);
+  core::require(open3d::io::WritePointCloudToPLY(path, cloud, {}), fmt::format("cannot write {}", path));
 }
 
 }  // namespace amos::dense

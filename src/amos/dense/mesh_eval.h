@@ -40,6 +40,7 @@ struct MeshScore {
   std::size_t swept_cells = 0;
   double swept_cell_m = 0, swept_volume_m3 = 0;
   double ate_rmse_m = 0;  // of the run's trajectory (ATE's own alignment), for reference
+  std::vector<Eigen::Vector3d> ghost_points;  // the ghost vertices (ground truth frame), to look at; not in toJson
 };
 
 // T_gt_est: the rotation nearest to the mean of the associated pairs' R_gt R_est^T (chordal mean) and the mean
@@ -66,5 +67,8 @@ struct MeshEvalRequest {
 MeshScore evaluateMesh(const MeshEvalRequest& request);
 
 nlohmann::json toJson(const MeshScore& score);
+
+// Writes points as a PLY point cloud (eval-mesh --ghosts). Throws core::Error naming the file.
+void writePointsPly(const std::string& path, const std::vector<Eigen::Vector3d>& points);
 
 }  // namespace amos::dense

@@ -55,6 +55,8 @@ TEST(MeshEval, AGhostIsInTheSweepAndOffTheStaticSurface) {
   EXPECT_EQ(s.ghosts, 2u);
   EXPECT_EQ(s.off_surface, 4u);
   EXPECT_EQ(s.in_sweep, 3u);
+  ASSERT_EQ(s.ghost_points.size(), 2u);
+  EXPECT_EQ(s.ghost_points[0], mesh[0]);
   EXPECT_NEAR(s.ghost_share, 2.0 / 5, 1e-12);
   EXPECT_NEAR(s.off_surface_share, 4.0 / 5, 1e-12);
   // Without movers (an empty sweep) nothing is a ghost, whatever is off the surface.
