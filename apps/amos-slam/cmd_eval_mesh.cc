@@ -1,6 +1,7 @@
 // amos-slam eval-mesh: scores a dense map (a run's mesh.ply, `run --dense`) against the true static surface of the
-// synthetic sequence it was made from (static_surface.ply, written by `amos-slam synth`): accuracy, completeness
-// and ghosts (dense/mesh_eval.h). Prints one line and writes the figures as JSON (--output, default
+// synthetic sequence it was made from (static_surface.ply and swept_volume.ply, written by `amos-slam synth`):
+// accuracy, completeness, ghosts (off the static surface inside the movers' swept volume) and vertices off the
+// static surface anywhere (dense/mesh_eval.h). Prints one line and writes the figures as JSON (--output, default
 // mesh_eval.json beside the mesh). Without the dense module (AMOS_WITH_OPEN3D off) it is an error.
 #include <fmt/format.h>
 
@@ -21,8 +22,8 @@ namespace amos::app {
 namespace {
 
 struct EvalMeshArgs {
-  std::string mesh, sequence, trajectory, output;
-  double tolerance = 0.04, max_depth = 4.0;
+  std::string mesh, sequence, trajectory, swept, output, ghosts;
+  double tolerance = 0.04, max_depth = 4.0, sweep_margin = -1;
 };
 
 void evalMesh(const EvalMeshArgs& a) {
@@ -33,15 +34,20 @@ void evalMesh(const EvalMeshArgs& a) {
   request.trajectory = a.trajectory;
   request.tolerance = a.tolerance;
   request.max_depth = a.max_depth;
+  request.swept = a.swept;
+  request.sweep_margin = a.sweep_margin;
   const dense::MeshScore s = dense::evaluateMesh(request);
   std::cout << fmt::format(
-      "accuracy median {:.4f} m  p90 {:.4f} m;  completeness {:.3f};  ghosts {} of {} vertices ({:.2f} %);  "
-      "tolerance {:.3f} m, {} truth points, ATE of the alignment {:.4f} m\n",
+      "accuracy median {:.4f} m  p90 {:.4f} m;  completeness {:.3f};  ghosts {} of {} vertices ({:.2f} %), "
+      "off the static surface {} ({:.2f} %);  tolerance {:.3f} m, sweep {:.3f} m^3 grown by {:.3f} m, {} truth "
+      "points, ATE of the alignment {:.4f} m\n",
       s.accuracy_median_m, s.accuracy_p90_m, s.completeness, s.ghosts, s.vertices, 100.0 * s.ghost_share,
-      s.tolerance_m, s.truth_points, s.ate_rmse_m);
+      s.off_surface, 100.0 * s.off_surface_share, s.tolerance_m, s.swept_volume_m3, s.sweep_margin_m, s.truth_points,
+      s.ate_rmse_m);
   const std::string output =
       a.output.empty() ? (std::filesystem::path(a.mesh).parent_path() / "mesh_eval.json").string() : a.output;
   io::writeFileAtomically(output, dense::toJson(s).dump(2) + "\n");
+  if (!a.ghosts.empty()) dense::writePointsPly(a.ghosts, s.ghost_points);
 #else
   (void)a;
   throw core::Error("eval-mesh: this build has no dense module (install libopen3d-dev and rebuild)");
@@ -53,7 +59,8 @@ void evalMesh(const EvalMeshArgs& a) {
 void addEvalMeshCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<EvalMeshArgs>();
   auto* cmd = app.add_subcommand(
-      "eval-mesh", "Score a dense map (run --dense) against a synthetic sequence's true static surface");
+      "eval-mesh",
+      "Score a dense map (run --dense) against a synthetic sequence's true static surface and movers' swept volume");
   cmd->add_option("--mesh", args->mesh, "The run's mesh.ply")->required()->check(CLI::ExistingFile);
   cmd->add_option("--sequence", args->sequence, "The synthetic sequence folder (static_surface.ply, groundtruth.txt)")
       ->required()
@@ -66,6 +73,14 @@ void addEvalMeshCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-depth", args->max_depth,
                   "True points seen only from farther than this (m) are left out (default 4 = Dense.maxDepth)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--swept", args->swept,
+                  "The movers' swept volume (default: swept_volume.ply of the sequence); a static twin is scored "
+                  "against its moving sibling's")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--sweep-margin", args->sweep_margin,
+                  "Distance (m) by which the swept volume is grown (default: the tolerance)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--ghosts", args->ghosts, "Also write the ghost vertices (ground truth frame) to this PLY file");
   cmd->add_option("--output", args->output, "JSON file of the figures (default: mesh_eval.json beside the mesh)");
   cmd->callback([args, &exit_code] {
     evalMesh(*args);

@@ -9,6 +9,7 @@
 #include <open3d/geometry/KDTreeFlann.h>
 #include <open3d/geometry/PointCloud.h>
 #include <open3d/geometry/TriangleMesh.h>
+#include <open3d/io/PointCloudIO.h>
 #include <open3d/io/TriangleMeshIO.h>
 
 #include "amos/core/error.h"
@@ -64,17 +65,32 @@ core::SE3 alignByPoses(const std::vector<io::StampedPose>& gt, const std::vector
 }
 
 MeshScore scoreMesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3d>& truth,
-                    double tolerance) {
+                    const synth::SweptVolume& swept, double tolerance, double sweep_margin) {
   MeshScore score;
   score.vertices = vertices.size();
   score.truth_points = truth.size();
   score.tolerance_m = tolerance;
+  score.sweep_margin_m = sweep_margin;
+  score.swept_cells = swept.size();
+  score.swept_cell_m = swept.cell();
+  score.swept_volume_m3 = swept.volumeM3();
   const std::vector<double> to_truth = nearestDistances(vertices, truth);
-  for (double d : to_truth) score.ghosts += d > tolerance ? 1 : 0;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const bool off = to_truth[i] > tolerance;
+    const bool in_sweep = std::isfinite(swept.distanceTo(vertices[i], sweep_margin));
+    score.off_surface += off ? 1 : 0;
+    score.in_sweep += in_sweep ? 1 : 0;
+    if (off && in_sweep) {
+      ++score.ghosts;
+      score.ghost_points.push_back(vertices[i]);
+    }
+  }
   if (!to_truth.empty()) {
     score.accuracy_median_m = core::percentile(to_truth, 0.5);
     score.accuracy_p90_m = core::percentile(to_truth, 0.9);
-    score.ghost_share = static_cast<double>(score.ghosts) / static_cast<double>(to_truth.size());
+    const double n = static_cast<double>(to_truth.size());
+    score.ghost_share = static_cast<double>(score.ghosts) / n;
+    score.off_surface_share = static_cast<double>(score.off_surface) / n;
   }
   const std::vector<double> to_mesh = nearestDistances(truth, vertices);
   std::size_t covered = 0;
@@ -89,6 +105,15 @@ MeshScore evaluateMesh(const MeshEvalRequest& request) {
                 fmt::format("{} is missing: render the sequence again with `amos-slam synth` (it writes the true "
                             "static surface since issue 43)",
                             surface.string()));
+  const fs::path swept_file =
+      request.swept.empty() ? fs::path(request.sequence) / synth::kSweptVolumeFile : fs::path(request.swept);
+  core::require(fs::exists(swept_file),
+                request.swept.empty()
+                    ? fmt::format("{} is missing: render the sequence again with `amos-slam synth` (it writes the "
+                                  "movers' swept volume since issue 43), or give one with --swept",
+                                  swept_file.string())
+                    : fmt::format("{}: no such swept volume file", swept_file.string()));
+  const synth::SweptVolume swept = synth::readSweptVolumePly(swept_file.string());
   std::vector<Eigen::Vector3d> truth;
   for (const synth::SurfaceSample& s : synth::readSurfacePly(surface.string())) {
     if (s.depth <= request.max_depth) truth.push_back(s.position.cast<double>());
@@ -105,7 +130,8 @@ MeshScore evaluateMesh(const MeshEvalRequest& request) {
   std::vector<Eigen::Vector3d> vertices;
   vertices.reserve(mesh.vertices_.size());
   for (const auto& v : mesh.vertices_) vertices.push_back(T_gt_est * Eigen::Vector3d(v));
-  MeshScore score = scoreMesh(vertices, truth, request.tolerance);
+  const double margin = request.sweep_margin < 0 ? request.tolerance : request.sweep_margin;
+  MeshScore score = scoreMesh(vertices, truth, swept, request.tolerance, margin);
   score.ate_rmse_m = eval::evaluate(gt, est).ate_rmse_m;
   return score;
 }
@@ -119,7 +145,19 @@ nlohmann::json toJson(const MeshScore& s) {
           {"completeness", s.completeness},
           {"ghosts", s.ghosts},
           {"ghost_share", s.ghost_share},
+          {"off_surface", s.off_surface},
+          {"off_surface_share", s.off_surface_share},
+          {"in_sweep", s.in_sweep},
+          {"sweep_margin_m", s.sweep_margin_m},
+          {"swept_cells", s.swept_cells},
+          {"swept_cell_m", s.swept_cell_m},
+          {"swept_volume_m3", s.swept_volume_m3},
           {"ate_rmse_m", s.ate_rmse_m}};
+}
+
+void writePointsPly(const std::string& path, const std::vector<Eigen::Vector3d>& points) {
+  const open3d::geometry::PointCloud cloud(points);
+  core::require(open3d::io::WritePointCloudToPLY(path, cloud, {}), fmt::format("cannot write {}", path));
 }
 
 }  // namespace amos::dense

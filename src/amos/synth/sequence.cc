@@ -17,6 +17,7 @@
 #include "amos/synth/random.h"
 #include "amos/synth/room.h"
 #include "amos/synth/static_surface.h"
+#include "amos/synth/swept_volume.h"
 #include "amos/synth/tum_writer.h"
 
 namespace amos::synth {
@@ -309,6 +310,7 @@ SequenceSummary renderSequence(const SequenceOptions& options, const std::string
   }
   writer.finish();
   writeSurfacePly((std::filesystem::path(output_dir) / kStaticSurfaceFile).string(), staticSurfaceSamples(generator));
+  writeSweptVolumePly((std::filesystem::path(output_dir) / kSweptVolumeFile).string(), sweptVolumeOf(generator));
   summary.frames = generator.frameCount();
   summary.render_ms_per_frame = render_ms / std::max(1, summary.frames);
   summary.write_ms_per_frame = write_ms / std::max(1, summary.frames);
