@@ -110,7 +110,7 @@ TEST(TumWriter, SameOptionsGiveByteIdenticalFiles) {
     EXPECT_EQ(readAll(entry.path()), readAll(other)) << entry.path();
     ++files;
   }
-  EXPECT_EQ(files, 3 * 3 + 7);  // 3 frames x (rgb, depth, mask) + 6 index files + static_surface.ply
+  EXPECT_EQ(files, 3 * 3 + 8);  // 3 frames x (rgb, depth, mask) + 6 index files + static_surface.ply, swept_volume.ply
 }
 
 TEST(TumWriter, UnwritableOutputIsAnError) {
