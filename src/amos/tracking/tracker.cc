@@ -194,8 +194,8 @@ TrackResult Tracker::track(map::Frame frame, const std::optional<core::SE3>& ext
       if (times_) times_->add("track.photometric", watch.elapsedMs());
       photometric_link_.reset();
       if (s.accepted) {
-        photometric_link_ = map::PoseLink{reference_kf_->id(), frame.T_cw * reference_kf_->T_cw().inverse(), s.information};
-        photometric_link_frame_ = frame.id;
+        photometric_link_ = FramePoseLink{
+            frame.id, {reference_kf_->id(), frame.T_cw * reference_kf_->T_cw().inverse(), s.information}};
       }
       spdlog::debug("frame {}: photometric refinement {} accepted {}, {} points, sigma {:.2f}", frame.id, s.attempted,
                     s.accepted, s.points, s.sigma);
@@ -639,7 +639,7 @@ void Tracker::createNewKeyFrame(map::Frame& frame) {
     kf = std::make_shared<map::KeyFrame>(map_->newKeyFrameId(), frame);
     map_->addKeyFrame(kf);
     if (photometric_) photometric_->addKeyFrame(kf->id(), frame);
-    if (photometric_link_ && photometric_link_frame_ == frame.id) kf->setPhotometricLink(*photometric_link_);
+    if (photometric_link_ && photometric_link_->frame == frame.id) kf->setPhotometricLink(photometric_link_->link);
     for (int i = 0; i < kf->size(); ++i) {
       const map::MapPointPtr p = kf->mapPoint(i);
       if (!p) continue;

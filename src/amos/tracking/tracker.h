@@ -212,10 +212,13 @@ class Tracker {
   std::optional<core::SE3> velocity_;
   map::KeyFramePtr reference_kf_;
   std::optional<PhotometricRefiner> photometric_;  // when options_.photometric
-  // The current frame's pose relative to its reference keyframe as the pixels alone measured it; a keyframe made
-  // from the frame carries it into bundle adjustment (map::PoseLink).
-  std::optional<map::PoseLink> photometric_link_;
-  map::FrameId photometric_link_frame_ = 0;
+  // A frame's pose relative to its reference keyframe as the pixels alone measured it; a keyframe made from that
+  // frame carries it into bundle adjustment (map::PoseLink).
+  struct FramePoseLink {
+    map::FrameId frame = 0;
+    map::PoseLink link;
+  };
+  std::optional<FramePoseLink> photometric_link_;
   map::FrameId last_keyframe_frame_ = 0;
   map::FrameId last_reloc_frame_ = 0;
   std::optional<core::SE3> last_tracked_T_cw_;  // pose of the last frame that was tracked (kept while lost)
