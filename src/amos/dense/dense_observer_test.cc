@@ -13,20 +13,36 @@
 #include "amos/dense/dense_outputs.h"
 #include "amos/dense/occupancy_grid.h"
 #include "amos/dense/test_room.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::dense {
 namespace {
 
 namespace fs = std::filesystem;
 
-TEST(DenseObserver, WritesEveryFileOfTheDenseMap) {
-  const fs::path dir = fs::temp_directory_path() / ("amos_dense_observer_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+// 5 cm voxels over the whole image: a coarse map of the test room, quick to fuse.
+DenseOptions coarseOptions() {
   DenseOptions o;
   o.voxel_size = 0.05;
   o.truncation = 0.15;
   o.scale = 1.0;
+  return o;
+}
+
+// A rendered room frame as a run hands a tracked frame to its observers (no dynamic mask: mode none).
+run::FrameSnapshot trackedSnapshot(const testing::RoomFrame& f, const core::SE3& T_wc, double timestamp) {
+  run::FrameSnapshot snapshot;
+  snapshot.timestamp = timestamp;
+  snapshot.state = tracking::TrackingState::kOk;
+  snapshot.T_cw = T_wc.inverse();
+  snapshot.frame.depth = f.depth;
+  snapshot.frame.bgr = f.bgr;
+  return snapshot;
+}
+
+TEST(DenseObserver, WritesEveryFileOfTheDenseMap) {
+  const fs::path dir = amos::testing::scratchDirForThisTest("amos_dense_observer_");
+  DenseOptions o = coarseOptions();
   o.mask_margin_px = 2;
   std::size_t last_cloud_frames = 0;
   DenseObserver observer(o, dir.string(), [&](const LiveCloud& cloud) { last_cloud_frames = cloud.frames_fused; });
@@ -38,12 +54,8 @@ TEST(DenseObserver, WritesEveryFileOfTheDenseMap) {
   for (int i = 0; i < 16; ++i) {
     const core::SE3 T_wc = testing::cameraPose({0, 0, 1.3}, 2 * M_PI * i / 16, -0.4);
     const testing::RoomFrame f = testing::renderRoom(start.camera, T_wc, boxes);
-    run::FrameSnapshot snapshot;
-    snapshot.timestamp = 10 + i * 0.1;
-    snapshot.state = i == 5 ? tracking::TrackingState::kLost : tracking::TrackingState::kOk;
-    snapshot.T_cw = T_wc.inverse();
-    snapshot.frame.depth = f.depth;
-    snapshot.frame.bgr = f.bgr;
+    run::FrameSnapshot snapshot = trackedSnapshot(f, T_wc, 10 + i * 0.1);
+    if (i == 5) snapshot.state = tracking::TrackingState::kLost;
     snapshot.dynamic_mask = f.mask;
     observer.onFrame(snapshot);
     if (i != 5) trajectory.push_back({snapshot.timestamp, T_wc});
@@ -65,27 +77,15 @@ TEST(DenseObserver, WritesEveryFileOfTheDenseMap) {
 }
 
 TEST(DenseObserver, WritesAnEmptyRemovedCloudWhenNothingWasDynamic) {
-  const fs::path dir = fs::temp_directory_path() / ("amos_dense_observer_none_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  DenseOptions o;
-  o.voxel_size = 0.05;
-  o.truncation = 0.15;
-  o.scale = 1.0;
-  DenseObserver observer(o, dir.string());
+  const fs::path dir = amos::testing::scratchDirForThisTest("amos_dense_observer_");
+  DenseObserver observer(coarseOptions(), dir.string());
   run::RunStart start;
   start.camera = testing::roomCamera();
   observer.onStart(start);
   std::vector<io::StampedPose> trajectory;
   for (int i = 0; i < 4; ++i) {
     const core::SE3 T_wc = testing::cameraPose({0, 0, 1.3}, 0.5 * i, -0.4);
-    const testing::RoomFrame f = testing::renderRoom(start.camera, T_wc, {});
-    run::FrameSnapshot snapshot;
-    snapshot.timestamp = i;
-    snapshot.state = tracking::TrackingState::kOk;
-    snapshot.T_cw = T_wc.inverse();
-    snapshot.frame.depth = f.depth;
-    snapshot.frame.bgr = f.bgr;  // no dynamic mask: mode none
+    const run::FrameSnapshot snapshot = trackedSnapshot(testing::renderRoom(start.camera, T_wc, {}), T_wc, i);
     observer.onFrame(snapshot);
     trajectory.push_back({snapshot.timestamp, T_wc});
   }
