@@ -32,17 +32,13 @@ source "$root/scripts/synth_lib.sh"
 usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; }
 while (($#)); do
   case "$1" in
-    --presets) presets=${2:?--presets needs a value}; shift 2 ;;
-    --modes) modes=${2:?--modes needs a value}; shift 2 ;;
     --tolerances) tolerances=${2:?--tolerances needs a value}; shift 2 ;;
     --reuse-runs) reuse=1; shift ;;
     -h | --help) usage; exit 0 ;;
     *) common_option "$1" "${2-}" || { echo "error: unknown argument '$1' (see --help)" >&2; exit 2; }; shift 2 ;;
   esac
 done
-check_common_options
-read -r -a preset_list <<< "$presets"
-read -r -a mode_list <<< "$modes"
+check_common_options  # also fills preset_list and mode_list
 read -r -a tolerance_list <<< "$tolerances"
 for t in "${tolerance_list[@]}"; do
   [[ "$t" =~ ^0?\.[0-9]+$ ]] || { echo "error: tolerance '$t' is not a distance in metres below 1" >&2; exit 2; }

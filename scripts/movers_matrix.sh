@@ -25,19 +25,11 @@ source "$root/scripts/synth_lib.sh"  # options, log, json_get, instance_get, ren
 usage() { sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; }
 while (($#)); do
   case "$1" in
-    --presets) presets=${2:?--presets needs a value}; shift 2 ;;
-    --modes) modes=${2:?--modes needs a value}; shift 2 ;;
     -h | --help) usage; exit 0 ;;
     *) common_option "$1" "${2-}" || { echo "error: unknown argument '$1' (see --help)" >&2; exit 2; }; shift 2 ;;
   esac
 done
-check_common_options
-read -r -a preset_list <<< "$presets"
-read -r -a mode_list <<< "$modes"
-((${#preset_list[@]} && ${#mode_list[@]})) || { echo "error: empty --presets or --modes" >&2; exit 2; }
-for m in "${mode_list[@]}"; do
-  [[ "$m" =~ ^(none|prior|geometry|full)$ ]] || { echo "error: unknown mode '$m'" >&2; exit 2; }
-done
+check_common_options  # also fills preset_list and mode_list
 
 mkdir -p "$out/sequences" "$out/runs"
 cd "$root"

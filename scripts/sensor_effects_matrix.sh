@@ -39,7 +39,6 @@ source "$root/scripts/synth_lib.sh"  # options, log, json_get, formatting, media
 usage() { sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; }
 while (($#)); do
   case "$1" in
-    --presets) presets=${2:?--presets needs a value}; shift 2 ;;
     --effects) effects=${2:?--effects needs a value}; shift 2 ;;
     --offset-ms) offset_ms=${2:?--offset-ms needs a value}; shift 2 ;;
     --readout-ms) readout_ms=${2:?--readout-ms needs a value}; shift 2 ;;
@@ -47,10 +46,9 @@ while (($#)); do
     *) common_option "$1" "${2-}" || { echo "error: unknown argument '$1' (see --help)" >&2; exit 2; }; shift 2 ;;
   esac
 done
-check_common_options
-read -r -a preset_list <<< "$presets"
+check_common_options  # also fills preset_list
 read -r -a effect_list <<< "$effects"
-((${#preset_list[@]} && ${#effect_list[@]})) || { echo "error: empty --presets or --effects" >&2; exit 2; }
+((${#effect_list[@]})) || { echo "error: empty --effects" >&2; exit 2; }
 num "$offset_ms" || { echo "error: --offset-ms must be a number, got '$offset_ms'" >&2; exit 2; }
 num "$readout_ms" || { echo "error: --readout-ms must be a number, got '$readout_ms'" >&2; exit 2; }
 

@@ -1,12 +1,15 @@
-# Shared by the synthetic evaluation scripts (quality_matrix.sh, movers_matrix.sh); sourced, not run.
+# Shared by the synthetic evaluation scripts (*_matrix.sh, maps_check.sh); sourced, not run.
 # The functions read and set the caller's seeds, seed_list, frames, bin, out and config.
 
 abspath() { case "$1" in /*) printf '%s\n' "$1" ;; *) printf '%s\n' "$PWD/$1" ;; esac; }
 
-# common_option NAME VALUE: sets the option both matrices take (--seeds, --frames, --bin, --out, --config) and
-# returns 0, or returns 1 for any other NAME. Paths are made absolute against the current folder.
+# common_option NAME VALUE: sets the option every matrix takes (--seeds, --frames, --bin, --out, --config), and
+# --presets / --modes for a script that set a default for them, and returns 0; returns 1 for any other NAME. Paths
+# are made absolute against the current folder.
 common_option() {
   case "$1" in
+    --presets) [[ -n "${presets+set}" ]] || return 1; presets=${2:?--presets needs a value} ;;
+    --modes) [[ -n "${modes+set}" ]] || return 1; modes=${2:?--modes needs a value} ;;
     --seeds) seeds=${2:?--seeds needs a value} ;;
     --frames) frames=${2:?--frames needs a value} ;;
     --bin) bin=$(abspath "${2:?--bin needs a value}") ;;
@@ -31,7 +34,8 @@ parse_common_options() {
   check_common_options
 }
 
-# check_common_options: exits with a message naming the bad value; fills seed_list from seeds.
+# check_common_options: exits with a message naming the bad value; fills seed_list from seeds, and preset_list
+# and mode_list from presets and modes when the script has them.
 check_common_options() {
   [[ -x "$bin" ]] || { echo "error: amos-slam binary '$bin' not found or not executable; build first (scripts/build.sh) or pass --bin" >&2; exit 1; }
   [[ -f "$config" ]] || { echo "error: settings file '$config' not found" >&2; exit 1; }
@@ -42,6 +46,18 @@ check_common_options() {
   for s in "${seed_list[@]}"; do
     [[ "$s" =~ ^[0-9]+$ ]] || { echo "error: seed '$s' is not a non-negative integer" >&2; exit 2; }
   done
+  if [[ -n "${presets+set}" ]]; then
+    read -r -a preset_list <<< "$presets"
+    ((${#preset_list[@]})) || { echo "error: --presets is empty" >&2; exit 2; }
+  fi
+  if [[ -n "${modes+set}" ]]; then
+    read -r -a mode_list <<< "$modes"
+    ((${#mode_list[@]})) || { echo "error: --modes is empty" >&2; exit 2; }
+    local m
+    for m in "${mode_list[@]}"; do
+      [[ "$m" =~ ^(none|prior|geometry|full)$ ]] || { echo "error: unknown mode '$m'" >&2; exit 2; }
+    done
+  fi
 }
 
 log() { printf '[%s] %s\n' "$(date +%H:%M:%S)" "$*" >&2; }
