@@ -127,8 +127,9 @@ class ReprojectionCost final : public ceres::CostFunction {
   double sqrt_info_;
 };
 
-// Whitened relative-pose residual L^T log(T_a T_b^-1 T_ab^-1), information = L L^T. Its Jacobians (in the left
-// tangent of each pose) are taken by central differences: a few dozen such terms per solve cost nothing.
+// Whitened relative-pose residual L^T log(E), E = T_a T_b^-1 T_ab^-1, information = L L^T. In the left tangent of
+// each pose: exp(d) T_a turns E into exp(d) E, and exp(d) T_b turns it into exp(-Ad(T_a T_b^-1) d) E, so with J the
+// inverse left Jacobian of SE(3) at log(E) the derivatives are L^T J and -L^T J Ad(T_a T_b^-1).
 class RelativePoseCost final : public ceres::CostFunction {
  public:
   explicit RelativePoseCost(const BaRelativePose& rel) : T_ba_meas_(rel.T_ab.inverse()) {
@@ -141,31 +142,22 @@ class RelativePoseCost final : public ceres::CostFunction {
   }
 
   bool Evaluate(double const* const* params, double* residuals, double** jacobians) const override {
-    const core::SE3 Ta = fromBlock(params[0]), Tb = fromBlock(params[1]);
+    const core::SE3 T_ab_est = fromBlock(params[0]) * fromBlock(params[1]).inverse();
+    const core::Vector6d error = core::logSE3(T_ab_est * T_ba_meas_);
     Eigen::Map<core::Vector6d> out(residuals);
-    out = residual(Ta, Tb);
+    out = sqrt_info_ * error;
     if (!jacobians) return true;
-    constexpr double kStep = 1e-6;
+    const core::Matrix6d d_error = sqrt_info_ * core::leftJacobianInverseSE3(error);
     for (int block = 0; block < 2; ++block) {
       if (!jacobians[block]) continue;
       Eigen::Map<Eigen::Matrix<double, 6, 7, Eigen::RowMajor>> J(jacobians[block]);
       J.setZero();
-      for (int c = 0; c < 6; ++c) {
-        core::Vector6d d = core::Vector6d::Zero();
-        d[c] = kStep;
-        const core::SE3 plus = core::expSE3(d), minus = core::expSE3(-d);
-        const core::Vector6d rp = block == 0 ? residual(plus * Ta, Tb) : residual(Ta, plus * Tb);
-        const core::Vector6d rm = block == 0 ? residual(minus * Ta, Tb) : residual(Ta, minus * Tb);
-        J.col(c) = (rp - rm) / (2 * kStep);
-      }
+      J.leftCols<6>() = block == 0 ? d_error : core::Matrix6d(-d_error * core::adjointSE3(T_ab_est));
     }
     return true;
   }
 
  private:
-  core::Vector6d residual(const core::SE3& Ta, const core::SE3& Tb) const {
-    return sqrt_info_ * core::logSE3(Ta * Tb.inverse() * T_ba_meas_);
-  }
   core::SE3 T_ba_meas_;
   Eigen::Matrix<double, 6, 6> sqrt_info_;
 };
