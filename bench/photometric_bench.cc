@@ -1,9 +1,9 @@
-// Micro-benchmarks of the photometric pose refinement (issue 42) on two real Bonn crowd frames (640x480, with the
-// camera's distortion): the per-frame image preparation (undistortion, mask, pyramid), a keyframe's template, and
-// the joint refinement with 400 feature terms. Single-threaded OpenCV, so the figures are per core.
+// Micro-benchmarks of the photometric pose refinement (issue 42) on two real Bonn crowd frames (640x480, raw pixels
+// with the camera's distortion, sampled through the lens model): the per-frame image preparation (mask, pyramid), a
+// keyframe's template, and the joint refinement with 400 feature terms. Single-threaded OpenCV, so the figures are
+// per core.
 //   bin/bench_photometric --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
-#include <opencv2/calib3d.hpp>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -52,7 +52,6 @@ core::PinholeCamera bonnCamera() {  // configs/bonn.yaml
 
 struct Fixture {
   core::PinholeCamera camera = bonnCamera();
-  geometry::ImageRectifier rectifier{camera};
   geometry::StereoProjection projection{camera.fx(), camera.fy(), camera.cx(), camera.cy(), camera.fx() * 0.08};
   geometry::PhotometricOptions options;
   cv::Mat gray_r, depth_r, gray_c, depth_c, mask;
@@ -68,7 +67,7 @@ struct Fixture {
     mask(cv::Rect(400, 100, 120, 300)).setTo(255);  // a person-sized dynamic region
   }
   geometry::PhotometricImage image(const cv::Mat& gray) const {
-    return geometry::makePhotometricImage(rectifier.linear(gray), rectifier.nearest(mask), projection, options);
+    return geometry::makePhotometricImage(gray, mask, projection, camera.intrinsics().lens(), options);
   }
 };
 
@@ -83,49 +82,19 @@ BENCHMARK(BM_PhotometricImage)->Unit(benchmark::kMicrosecond);
 void BM_PhotometricImageReused(benchmark::State& state) {
   const Fixture f;
   if (!f.ok) return state.SkipWithError("missing AMOS_SHARED_DIR/data/bonn_crowd_dev");
-  cv::Mat gray, mask;
   geometry::PhotometricImage image;
   for (auto _ : state) {
-    f.rectifier.linear(f.gray_c, gray);
-    f.rectifier.nearest(f.mask, mask);
-    geometry::makePhotometricImage(gray, mask, f.projection, f.options, image);
+    geometry::makePhotometricImage(f.gray_c, f.mask, f.projection, f.camera.intrinsics().lens(), f.options, image);
     benchmark::DoNotOptimize(image.gray.front().data);
   }
 }
 BENCHMARK(BM_PhotometricImageReused)->Unit(benchmark::kMicrosecond);
 
-// What the undistortion of the grey image and the mask cost with float maps, which cv::remap rounds to its
-// fixed-point form on every call (the rectifier keeps the fixed-point maps).
-void BM_RemapWithFloatMaps(benchmark::State& state) {
-  const Fixture f;
-  if (!f.ok) return state.SkipWithError("missing AMOS_SHARED_DIR/data/bonn_crowd_dev");
-  cv::Mat map_x, map_y, gray, mask;
-  cv::initUndistortRectifyMap(f.camera.K(), f.camera.distortion(), cv::noArray(), f.camera.K(), f.gray_c.size(),
-                              CV_32FC1, map_x, map_y);
-  for (auto _ : state) {
-    cv::remap(f.gray_c, gray, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-    cv::remap(f.mask, mask, map_x, map_y, cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
-    benchmark::DoNotOptimize(gray.data);
-  }
-}
-BENCHMARK(BM_RemapWithFloatMaps)->Unit(benchmark::kMicrosecond);
-
-void BM_RemapWithFixedPointMaps(benchmark::State& state) {
-  const Fixture f;
-  if (!f.ok) return state.SkipWithError("missing AMOS_SHARED_DIR/data/bonn_crowd_dev");
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(f.rectifier.linear(f.gray_c).data);
-    benchmark::DoNotOptimize(f.rectifier.nearest(f.mask).data);
-  }
-}
-BENCHMARK(BM_RemapWithFixedPointMaps)->Unit(benchmark::kMicrosecond);
-
 void BM_PhotometricTemplate(benchmark::State& state) {
   const Fixture f;
   if (!f.ok) return state.SkipWithError("missing AMOS_SHARED_DIR/data/bonn_crowd_dev");
   const geometry::PhotometricImage image = f.image(f.gray_r);
-  const cv::Mat depth = f.rectifier.nearest(f.depth_r);
-  for (auto _ : state) benchmark::DoNotOptimize(geometry::makePhotometricTemplate(image, depth, f.options));
+  for (auto _ : state) benchmark::DoNotOptimize(geometry::makePhotometricTemplate(image, f.depth_r, f.options));
 }
 BENCHMARK(BM_PhotometricTemplate)->Unit(benchmark::kMicrosecond);
 
@@ -149,7 +118,7 @@ void BM_PhotometricRefine(benchmark::State& state) {
   const Fixture f;
   if (!f.ok) return state.SkipWithError("missing AMOS_SHARED_DIR/data/bonn_crowd_dev");
   const geometry::PhotometricTemplate reference =
-      geometry::makePhotometricTemplate(f.image(f.gray_r), f.rectifier.nearest(f.depth_r), f.options);
+      geometry::makePhotometricTemplate(f.image(f.gray_r), f.depth_r, f.options);
   const geometry::PhotometricImage current = f.image(f.gray_c);
   const std::vector<geometry::PoseObservation> features = featuresOf(reference, f.projection);
   geometry::PhotometricProblem problem;

@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "amos/core/distortion.h"
+
 namespace amos::core {
 
 struct CameraIntrinsics {
@@ -14,6 +16,7 @@ struct CameraIntrinsics {
   // Throws Error naming the offending field when the values cannot describe a camera.
   void check() const;
   bool hasDistortion() const { return k1 != 0 || k2 != 0 || p1 != 0 || p2 != 0 || k3 != 0; }
+  RadialTangential lens() const { return {k1, k2, p1, p2, k3}; }
 };
 
 class PinholeCamera {

@@ -1,13 +1,14 @@
 #include "amos/geometry/photometric_alignment.h"
 
-#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <Eigen/Cholesky>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
+#include "amos/core/error.h"
 #include "amos/core/option_error.h"
 
 namespace amos::geometry {
@@ -25,46 +26,6 @@ void PhotometricOptions::check() const {
   core::requireAtLeast(min_points, "min_points", 1);
 }
 
-ImageRectifier::ImageRectifier(const core::PinholeCamera& camera) {
-  identity_ = !camera.intrinsics().hasDistortion();
-  if (identity_) return;
-  cv::Mat map_x, map_y;
-  cv::initUndistortRectifyMap(camera.K(), camera.distortion(), cv::noArray(), camera.K(),
-                              cv::Size(camera.width(), camera.height()), CV_32FC1, map_x, map_y);
-  cv::convertMaps(map_x, map_y, linear_xy_, linear_a_, CV_16SC2, false);
-  cv::Mat unused;
-  cv::convertMaps(map_x, map_y, nearest_xy_, unused, CV_16SC2, true);
-}
-
-cv::Mat ImageRectifier::linear(const cv::Mat& image) const {
-  cv::Mat out;
-  linear(image, out);
-  return out;
-}
-
-cv::Mat ImageRectifier::nearest(const cv::Mat& image) const {
-  cv::Mat out;
-  nearest(image, out);
-  return out;
-}
-
-void ImageRectifier::linear(const cv::Mat& image, cv::Mat& out) const {
-  if (identity_) {
-    out = image;
-    return;
-  }
-  cv::remap(image, out, linear_xy_, linear_a_, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-}
-
-void ImageRectifier::nearest(const cv::Mat& image, cv::Mat& out) const {
-  if (identity_) {
-    out = image;
-    return;
-  }
-  // Outside the source image: 0 (no depth) for depth; masks are made so that 0 there is handled by the caller.
-  cv::remap(image, out, nearest_xy_, cv::noArray(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(0));
-}
-
 namespace {
 
 StereoProjection atLevel(const StereoProjection& k, int level) {
@@ -73,12 +34,13 @@ StereoProjection atLevel(const StereoProjection& k, int level) {
   return {k.fx * s, k.fy * s, (k.cx + 0.5) * s - 0.5, (k.cy + 0.5) * s - 0.5, k.bf * s};
 }
 
-// Bilinear value and central-difference gradient of a CV_32F image at (u, v); false near the border.
-bool sample(const cv::Mat& img, double u, double v, double& value, double& gx, double& gy) {
+// Bilinear value and central-difference gradient of a CV_8U or CV_32F image at (u, v); false near the border.
+template <typename T>
+bool sampleAs(const cv::Mat& img, double u, double v, double& value, double& gx, double& gy) {
   if (u < 1 || v < 1 || u >= img.cols - 2 || v >= img.rows - 2) return false;
   const int x = static_cast<int>(u), y = static_cast<int>(v);
   const double fx = u - x, fy = v - y;
-  auto at = [&](int r, int c) { return static_cast<double>(img.at<float>(r, c)); };
+  auto at = [&](int r, int c) { return static_cast<double>(img.at<T>(r, c)); };
   auto bil = [&](int r, int c) {
     return (1 - fy) * ((1 - fx) * at(r, c) + fx * at(r, c + 1)) + fy * ((1 - fx) * at(r + 1, c) + fx * at(r + 1, c + 1));
   };
@@ -89,6 +51,11 @@ bool sample(const cv::Mat& img, double u, double v, double& value, double& gx, d
   gx = (1 - fy) * ((1 - fx) * dx(y, x) + fx * dx(y, x + 1)) + fy * ((1 - fx) * dx(y + 1, x) + fx * dx(y + 1, x + 1));
   gy = (1 - fy) * ((1 - fx) * dy(y, x) + fx * dy(y, x + 1)) + fy * ((1 - fx) * dy(y + 1, x) + fx * dy(y + 1, x + 1));
   return true;
+}
+
+bool sample(const cv::Mat& img, double u, double v, double& value, double& gx, double& gy) {
+  return img.depth() == CV_8U ? sampleAs<std::uint8_t>(img, u, v, value, gx, gy)
+                              : sampleAs<float>(img, u, v, value, gx, gy);
 }
 
 double huberCost(double e, double k) {
@@ -131,6 +98,8 @@ struct LevelState {
   const cv::Mat* gray;
   const cv::Mat* mask;
   StereoProjection k;
+  const core::RadialTangential* lens;  // nullptr: no distortion, the pinhole expressions exactly
+  double max_r2;
   double huber_k = 1.345;
   double a = 1, b = 0, sigma = 1;
 };
@@ -141,15 +110,34 @@ bool photometricResidual(const LevelState& s, const PhotometricPoint& pt, const 
   const Eigen::Vector3d pc = T_cr * pt.p_r;
   if (pc.z() <= 0.05) return false;
   const double iz = 1.0 / pc.z();
-  const double u = s.k.fx * pc.x() * iz + s.k.cx, v = s.k.fy * pc.y() * iz + s.k.cy;
+  double u, v;
+  Eigen::Matrix2d J_lens;  // d(distorted) / d(normalised)
+  if (s.lens) {
+    const Eigen::Vector2d xn(pc.x() * iz, pc.y() * iz);
+    if (xn.squaredNorm() > s.max_r2) return false;
+    const Eigen::Vector2d xd = s.lens->distort(xn, J ? &J_lens : nullptr);
+    u = s.k.fx * xd.x() + s.k.cx;
+    v = s.k.fy * xd.y() + s.k.cy;
+  } else {
+    u = s.k.fx * pc.x() * iz + s.k.cx;
+    v = s.k.fy * pc.y() * iz + s.k.cy;
+  }
   double value, gx, gy;
   if (!sample(*s.gray, u, v, value, gx, gy)) return false;
   if (s.mask->at<std::uint8_t>(cvRound(v), cvRound(u)) != 0) return false;
   r = value - (s.a * pt.intensity + s.b);
   if (J) {
-    const double du_x = s.k.fx * iz, du_z = -s.k.fx * pc.x() * iz * iz;
-    const double dv_y = s.k.fy * iz, dv_z = -s.k.fy * pc.y() * iz * iz;
-    const Eigen::RowVector3d dr_dp(gx * du_x, gy * dv_y, gx * du_z + gy * dv_z);
+    Eigen::RowVector3d dr_dp;
+    if (s.lens) {
+      // dr/dxn = (gx fx, gy fy) J_lens; dxn/dp = (1/z, 0, -x/z^2; 0, 1/z, -y/z^2).
+      const double a = gx * s.k.fx, b = gy * s.k.fy;
+      const double wx = a * J_lens(0, 0) + b * J_lens(1, 0), wy = a * J_lens(0, 1) + b * J_lens(1, 1);
+      dr_dp << wx * iz, wy * iz, -(wx * pc.x() + wy * pc.y()) * iz * iz;
+    } else {
+      const double du_x = s.k.fx * iz, du_z = -s.k.fx * pc.x() * iz * iz;
+      const double dv_y = s.k.fy * iz, dv_z = -s.k.fy * pc.y() * iz * iz;
+      dr_dp << gx * du_x, gy * dv_y, gx * du_z + gy * dv_z;
+    }
     (*J).leftCols<3>() = dr_dp;
     (*J).rightCols<3>() = -dr_dp * core::skew(pc);
   }
@@ -229,19 +217,38 @@ bool fitBrightness(LevelState& s, const core::SE3& T_cr, int min_points) {
 }  // namespace
 
 PhotometricImage makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const StereoProjection& camera,
-                                      const PhotometricOptions& options) {
+                                      const core::RadialTangential& lens, const PhotometricOptions& options) {
   PhotometricImage out;
-  makePhotometricImage(gray, mask, camera, options, out);
+  makePhotometricImage(gray, mask, camera, lens, options, out);
   return out;
 }
 
+namespace {
+
+// The largest squared radius of undistorted normalised coordinates over the image's border (corners and edge
+// middles: with barrel or pincushion distortion the extreme lies at one of them).
+double maxRadius2(const StereoProjection& k, const core::RadialTangential& lens, cv::Size size) {
+  const double w = size.width - 1, h = size.height - 1;
+  const std::pair<double, double> border[] = {{0, 0}, {w, 0}, {0, h}, {w, h}, {w / 2, 0}, {w / 2, h}, {0, h / 2},
+                                              {w, h / 2}};
+  double r2 = 0;
+  for (const auto& [u, v] : border) {
+    r2 = std::max(r2, lens.undistort({(u - k.cx) / k.fx, (v - k.cy) / k.fy}).squaredNorm());
+  }
+  return r2;
+}
+
+}  // namespace
+
 void makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const StereoProjection& camera,
-                          const PhotometricOptions& options, PhotometricImage& out) {
+                          const core::RadialTangential& lens, const PhotometricOptions& options,
+                          PhotometricImage& out) {
+  core::require(gray.type() == CV_8UC1, "makePhotometricImage: the grey image must be CV_8UC1");
   const auto levels = static_cast<std::size_t>(options.levels);
   out.gray.resize(levels);
   out.mask.resize(levels);
   out.intrinsics.resize(levels);
-  gray.convertTo(out.gray[0], CV_32F);
+  out.gray[0] = gray;
   if (mask.empty()) {
     out.mask[0].create(gray.size(), CV_8U);
     out.mask[0].setTo(0);
@@ -252,8 +259,11 @@ void makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const Stereo
     mask.copyTo(out.mask[0]);
   }
   out.intrinsics[0] = camera;
+  out.lens = lens;
+  out.max_r2 = lens.none() ? std::numeric_limits<double>::infinity() : maxRadius2(camera, lens, gray.size());
+  if (levels > 1) gray.convertTo(out.scratch_float, CV_32F);  // the pyramid is smoothed in float, as before
   for (std::size_t l = 1; l < levels; ++l) {
-    cv::pyrDown(out.gray[l - 1], out.gray[l]);
+    cv::pyrDown(l == 1 ? out.scratch_float : out.gray[l - 1], out.gray[l]);
     // A coarse pixel is excluded when any of the fine pixels under it is.
     cv::dilate(out.mask[l - 1], out.scratch, cv::Mat::ones(3, 3, CV_8U));
     cv::resize(out.scratch, out.mask[l], out.gray[l].size(), 0, 0, cv::INTER_NEAREST);
@@ -261,44 +271,72 @@ void makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const Stereo
   }
 }
 
+namespace {
+
+// Selects level l's template points (see makePhotometricTemplate) from its grey image of pixel type T.
+template <typename T>
+void selectPoints(const PhotometricImage& image, int l, const cv::Mat& depth, const PhotometricOptions& options,
+                  std::vector<PhotometricPoint>& out) {
+  const cv::Mat& g = image.gray[l];
+  const cv::Mat& m = image.mask[l];
+  const StereoProjection& k = image.intrinsics[l];
+  const int cell = std::max(2, options.cell >> l);
+  const int scale = 1 << l;
+  for (int cy = 2; cy + cell <= g.rows - 2; cy += cell) {
+    for (int cx = 2; cx + cell <= g.cols - 2; cx += cell) {
+      double best = options.min_gradient * options.min_gradient;
+      int bx = -1, by = -1;
+      float bz = 0;
+      for (int y = cy; y < cy + cell; ++y) {
+        for (int x = cx; x < cx + cell; ++x) {
+          if (m.at<std::uint8_t>(y, x) != 0) continue;
+          const double gx = 0.5 * (g.at<T>(y, x + 1) - g.at<T>(y, x - 1));
+          const double gy = 0.5 * (g.at<T>(y + 1, x) - g.at<T>(y - 1, x));
+          const double g2 = gx * gx + gy * gy;
+          if (g2 <= best) continue;
+          // The depth at the same raw pixel (its level-0 centre).
+          const int x0 = std::clamp(x * scale + scale / 2, 1, depth.cols - 2);
+          const int y0 = std::clamp(y * scale + scale / 2, 1, depth.rows - 2);
+          const float z = depth.at<float>(y0, x0);
+          if (!(z >= options.min_depth && z <= options.max_depth)) continue;
+          cv::Mat block = depth(cv::Rect(x0 - 1, y0 - 1, 3, 3));
+          double lo, hi;
+          cv::minMaxLoc(block, &lo, &hi);
+          if (lo <= 0 || hi - lo > options.depth_edge * z) continue;
+          best = g2;
+          bx = x;
+          by = y;
+          bz = z;
+        }
+      }
+      if (bx < 0) continue;
+      PhotometricPoint chosen;
+      if (image.lens.none()) {
+        chosen.p_r = {(bx - k.cx) * bz / k.fx, (by - k.cy) * bz / k.fy, bz};
+      } else {
+        // Along the undistorted ray of the raw pixel: reprojected through the lens it lands on that pixel.
+        const Eigen::Vector2d xn = image.lens.undistort({(bx - k.cx) / k.fx, (by - k.cy) / k.fy});
+        chosen.p_r = {xn.x() * bz, xn.y() * bz, bz};
+      }
+      chosen.intensity = g.at<T>(by, bx);
+      out.push_back(chosen);
+    }
+  }
+}
+
+}  // namespace
+
 PhotometricTemplate makePhotometricTemplate(const PhotometricImage& image, const cv::Mat& depth,
                                             const PhotometricOptions& options) {
+  core::require(depth.type() == CV_32FC1 && depth.size() == image.gray.front().size(),
+                "makePhotometricTemplate: the depth must be CV_32FC1, registered to the grey image");
   PhotometricTemplate out;
   out.levels.resize(image.levels());
   for (int l = 0; l < image.levels(); ++l) {
-    const cv::Mat& g = image.gray[l];
-    const cv::Mat& m = image.mask[l];
-    const StereoProjection& k = image.intrinsics[l];
-    const int cell = std::max(2, options.cell >> l);
-    const int scale = 1 << l;
-    for (int cy = 2; cy + cell <= g.rows - 2; cy += cell) {
-      for (int cx = 2; cx + cell <= g.cols - 2; cx += cell) {
-        double best = options.min_gradient * options.min_gradient;
-        PhotometricPoint chosen;
-        bool found = false;
-        for (int y = cy; y < cy + cell; ++y) {
-          for (int x = cx; x < cx + cell; ++x) {
-            if (m.at<std::uint8_t>(y, x) != 0) continue;
-            const double gx = 0.5 * (g.at<float>(y, x + 1) - g.at<float>(y, x - 1));
-            const double gy = 0.5 * (g.at<float>(y + 1, x) - g.at<float>(y - 1, x));
-            const double g2 = gx * gx + gy * gy;
-            if (g2 <= best) continue;
-            const int x0 = std::clamp(x * scale + scale / 2, 1, depth.cols - 2);
-            const int y0 = std::clamp(y * scale + scale / 2, 1, depth.rows - 2);
-            const float z = depth.at<float>(y0, x0);
-            if (!(z >= options.min_depth && z <= options.max_depth)) continue;
-            cv::Mat block = depth(cv::Rect(x0 - 1, y0 - 1, 3, 3));
-            double lo, hi;
-            cv::minMaxLoc(block, &lo, &hi);
-            if (lo <= 0 || hi - lo > options.depth_edge * z) continue;
-            best = g2;
-            chosen.p_r = {(x - k.cx) * z / k.fx, (y - k.cy) * z / k.fy, z};
-            chosen.intensity = g.at<float>(y, x);
-            found = true;
-          }
-        }
-        if (found) out.levels[l].push_back(chosen);
-      }
+    if (image.gray[l].depth() == CV_8U) {
+      selectPoints<std::uint8_t>(image, l, depth, options, out.levels[l]);
+    } else {
+      selectPoints<float>(image, l, depth, options, out.levels[l]);
     }
   }
   return out;
@@ -313,8 +351,9 @@ PhotometricResult refinePosePhotometrically(const PhotometricProblem& p, const c
   core::SE3 T = initial_T_cw;
   bool refined_finest = false;
   for (int l = levels - 1; l >= 0; --l) {
-    LevelState s{&p.reference->levels[l], &p.current->gray[l], &p.current->mask[l], p.current->intrinsics[l],
-                 o.huber_k};
+    const PhotometricImage& c = *p.current;
+    LevelState s{&p.reference->levels[l], &c.gray[l], &c.mask[l], c.intrinsics[l], c.lens.none() ? nullptr : &c.lens,
+                 c.max_r2, o.huber_k};
     if (!fitBrightness(s, T * T_wr, o.min_points)) continue;
     // Gauss-Newton; each iteration's evaluation also checks the step before it (a step that raised the joint
     // cost is taken back and the level ends), so the data are visited once per iteration.

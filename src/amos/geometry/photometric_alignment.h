@@ -14,13 +14,17 @@
 // 6-dof chi-square bound under the feature information) was tried and not kept
 // (docs/experiments/photometric-refinement.md).
 //
-// Images are undistorted first (ImageRectifier), so one pinhole model serves keypoints and pixels alike.
+// Images stay in the camera's raw (distorted) pixel grid: a template point is projected to normalised coordinates,
+// through the lens distortion, then K, and the raw pyramid is sampled there (the Jacobian takes the distortion's
+// 2x2 Jacobian by the chain rule); template points are back-projected along the undistorted ray of their raw pixel.
+// No image is resampled, and a raw pixel inside the image is a real pixel (undistorted images have corners with no
+// source). Without distortion this is the plain pinhole path, term for term.
 #include <opencv2/core.hpp>
 #include <Eigen/Core>
 
 #include <vector>
 
-#include "amos/core/camera.h"
+#include "amos/core/distortion.h"
 #include "amos/core/pose.h"
 #include "amos/geometry/pose_optimizer.h"
 
@@ -40,42 +44,35 @@ struct PhotometricOptions {
   void check() const;
 };
 
-// Undistorts images to the pinhole model of the undistorted keypoints (same K). The maps are kept in OpenCV's
-// fixed-point form (cv::convertMaps): cv::remap rounds float maps to that same form on every call, so the output
-// is the same and the rounding is done once instead of per frame.
-class ImageRectifier {
- public:
-  explicit ImageRectifier(const core::PinholeCamera& camera);
-  cv::Mat linear(const cv::Mat& image) const;   // grey images
-  cv::Mat nearest(const cv::Mat& image) const;  // depth, masks
-  // The same into `out`, reusing its buffer (no identity case: `out` then shares `image`'s pixels).
-  void linear(const cv::Mat& image, cv::Mat& out) const;
-  void nearest(const cv::Mat& image, cv::Mat& out) const;
- private:
-  cv::Mat linear_xy_, linear_a_;  // CV_16SC2 whole-pixel positions, CV_16UC1 sub-pixel table indices
-  cv::Mat nearest_xy_;            // CV_16SC2 rounded positions
-  bool identity_ = true;
-};
-
-// An undistorted grey image pyramid (CV_32F) with the dynamic mask at each level (CV_8U, non-zero = excluded).
+// A grey image pyramid in the camera's raw (distorted) pixel grid, with the dynamic mask at each level (CV_8U,
+// non-zero = excluded). Level 0 is the camera's CV_8U image itself (shared, not copied: a bilinear sample of the
+// bytes is the sample of their float conversion), coarser levels CV_32F.
 struct PhotometricImage {
   std::vector<cv::Mat> gray, mask;
-  std::vector<StereoProjection> intrinsics;  // per level
-  cv::Mat scratch;                           // reused by makePhotometricImage
+  std::vector<StereoProjection> intrinsics;  // per level: K scaled about pixel centres, (u + 0.5) / 2^l - 0.5
+  core::RadialTangential lens;               // of the raw pixels, on normalised coordinates
+  // Squared normalised radius of the image's farthest corner, undistorted: beyond it the lens polynomial can fold
+  // rays from outside the view back into the image, so projections there are refused.
+  double max_r2 = 0;
+  cv::Mat scratch, scratch_float;            // reused by makePhotometricImage
   int levels() const { return static_cast<int>(gray.size()); }
 };
+// `gray` CV_8U, `mask` CV_8U (or empty: nothing excluded), both in the raw grid of a camera with pinhole part
+// `camera` and distortion `lens`.
 PhotometricImage makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const StereoProjection& camera,
-                                      const PhotometricOptions& options);
+                                      const core::RadialTangential& lens, const PhotometricOptions& options);
 // The same into `out`, reusing its buffers: a new frame's images then cost no allocation (on this machine the
 // first writes to freshly allocated megabyte images, page faults, cost more than the image operations).
 void makePhotometricImage(const cv::Mat& gray, const cv::Mat& mask, const StereoProjection& camera,
-                          const PhotometricOptions& options, PhotometricImage& out);
+                          const core::RadialTangential& lens, const PhotometricOptions& options,
+                          PhotometricImage& out);
 
 struct PhotometricPoint {
-  Eigen::Vector3d p_r;  // in the reference camera
+  Eigen::Vector3d p_r;  // in the reference camera (the undistorted ray of its raw pixel, times the depth)
   double intensity = 0;
 };
-// The reference keyframe's selected pixels with depth, per level.
+// The reference keyframe's selected pixels with depth, per level. `depth` (CV_32F, metres) is registered to the raw
+// grid of `image` at level 0.
 struct PhotometricTemplate {
   std::vector<std::vector<PhotometricPoint>> levels;
   bool empty() const { return levels.empty(); }

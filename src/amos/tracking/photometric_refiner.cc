@@ -7,28 +7,17 @@
 namespace amos::tracking {
 
 PhotometricRefiner::PhotometricRefiner(const core::PinholeCamera& camera, const geometry::PhotometricOptions& options)
-    : options_(options), rectifier_(camera) {
+    : options_(options), lens_(camera.intrinsics().lens()) {
   options_.check();
   projection_ = {camera.fx(), camera.fy(), camera.cx(), camera.cy(), 0};
-  // Pixels of the undistorted image that no source pixel maps to are excluded like dynamic ones.
-  outside_ = rectifier_.nearest(cv::Mat(camera.height(), camera.width(), CV_8U, cv::Scalar(255))) == 0;
 }
 
+// The frame's raw grey image and dynamic mask as the camera and the segmenter delivered them: the refinement
+// samples them through the lens model, so nothing is undistorted here.
 const geometry::PhotometricImage& PhotometricRefiner::imageOf(const map::Frame& frame) {
   if (image_frame_ != frame.id) {
     core::require(!frame.gray.empty(), "PhotometricRefiner: frame without its grey image");
-    if (outside_.size() == frame.gray.size()) {
-      outside_.copyTo(mask_);
-    } else {
-      mask_.create(frame.gray.size(), CV_8U);
-      mask_.setTo(0);
-    }
-    if (!frame.dynamic_mask.empty()) {
-      rectifier_.nearest(frame.dynamic_mask, dynamic_);
-      cv::bitwise_or(mask_, dynamic_, mask_);
-    }
-    rectifier_.linear(frame.gray, gray_);
-    geometry::makePhotometricImage(gray_, mask_, projection_, options_, image_);
+    geometry::makePhotometricImage(frame.gray, frame.dynamic_mask, projection_, lens_, options_, image_);
     image_frame_ = frame.id;
   }
   return image_;
@@ -65,7 +54,7 @@ void PhotometricRefiner::addKeyFrame(map::KeyFrameId id, const map::Frame& frame
   if (frame.gray.empty() || frame.depth_image.empty()) return;
   const geometry::PhotometricImage& image = imageOf(frame);
   templates_[id] = std::make_shared<const geometry::PhotometricTemplate>(
-      geometry::makePhotometricTemplate(image, rectifier_.nearest(frame.depth_image), options_));
+      geometry::makePhotometricTemplate(image, frame.depth_image, options_));
 }
 
 }  // namespace amos::tracking

@@ -1,7 +1,7 @@
 #pragma once
 // Tracking's side of the photometric refinement (geometry/photometric_alignment.h): keeps a template of every
-// keyframe tracking made (its selected pixels with depth, from the undistorted grey image outside the dynamic
-// mask), and refines each tracked frame's pose against its reference keyframe's template jointly with the frame's
+// keyframe tracking made (its selected pixels with depth, from the raw grey image outside the dynamic mask), and
+// refines each tracked frame's pose against its reference keyframe's template jointly with the frame's
 // feature inliers. The frame's pose is stored relative to that keyframe (T_cr), so the refinement tightens exactly
 // the relation the output trajectory keeps.
 //
@@ -39,13 +39,11 @@ class PhotometricRefiner {
   const geometry::PhotometricImage& imageOf(const map::Frame& frame);
 
   geometry::PhotometricOptions options_;
-  geometry::ImageRectifier rectifier_;
   geometry::StereoProjection projection_;
-  cv::Mat outside_;  // CV_8U, 255 where the undistorted image has no source pixel
+  core::RadialTangential lens_;
   std::unordered_map<map::KeyFrameId, std::shared_ptr<const geometry::PhotometricTemplate>> templates_;
   std::optional<map::FrameId> image_frame_;  // the frame image_ was made from
-  geometry::PhotometricImage image_;
-  cv::Mat gray_, mask_, dynamic_;            // undistorted inputs of image_, buffers reused from frame to frame
+  geometry::PhotometricImage image_;         // its buffers are reused from frame to frame
 };
 
 }  // namespace amos::tracking
