@@ -7,11 +7,6 @@
 
 namespace amos::map {
 
-std::vector<int> FrameFeatures::featuresInArea(double u, double v, double radius, int min_level,
-                                               int max_level) const {
-  return grid.featuresInArea(u, v, radius, min_level, max_level);
-}
-
 std::shared_ptr<FrameFeatures> buildFrameFeatures(const Sensor& sensor, const std::vector<cv::KeyPoint>& raw_keys,
                                                   const cv::Mat& descriptors, const cv::Mat& depth,
                                                   const cv::Mat& dynamic_mask, FrameBuildStats* stats) {

@@ -31,8 +31,6 @@ struct FrameFeatures {
 
   std::size_t size() const { return keys.size(); }
   bool hasDepth(int i) const { return depth[i] > 0; }
-  // Indices of keypoints within `radius` of (u, v) on levels [min_level, max_level] (-1: no bound).
-  std::vector<int> featuresInArea(double u, double v, double radius, int min_level = -1, int max_level = -1) const;
 };
 
 struct FrameBuildStats {

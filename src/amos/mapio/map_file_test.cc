@@ -120,7 +120,8 @@ void expectSameMap(const map::Map& a, const map::Map& b) {
       const map::MapPointPtr &pa = ka->mapPoint(i), &pb = kb->mapPoint(i);
       ASSERT_EQ(pa == nullptr, pb == nullptr) << "keypoint " << i;
       if (pa) EXPECT_EQ(pa->id(), pb->id());
-      EXPECT_EQ(ka->features().featuresInArea(x.pt.x, x.pt.y, 3), kb->features().featuresInArea(x.pt.x, x.pt.y, 3));
+      EXPECT_EQ(ka->features().grid.featuresInArea(x.pt.x, x.pt.y, 3),
+                kb->features().grid.featuresInArea(x.pt.x, x.pt.y, 3));
     }
     expectSameMat(ka->features().descriptors, kb->features().descriptors);
     expectSameMat(ka->thumbnail(), kb->thumbnail());

@@ -85,7 +85,8 @@ struct SequenceSummary {
 };
 
 // Renders the sequence into output_dir (created if needed) in the TUM layout: rgb/, depth/, masks/, rgb.txt,
-// depth.txt, masks.txt, associations.txt, groundtruth.txt, instances.json, static_surface.ply (static_surface.h), swept_volume.ply (swept_volume.h).
+// depth.txt, masks.txt, associations.txt, groundtruth.txt, instances.json, static_surface.ply (static_surface.h),
+// swept_volume.ply (swept_volume.h).
 SequenceSummary renderSequence(const SequenceOptions& options, const std::string& output_dir);
 
 // The sequence of `preset`, `seed` and `frames` (all other options at their defaults), rendered once into

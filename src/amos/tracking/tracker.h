@@ -36,8 +36,9 @@ enum class ExternalPosePolicy { kReplace, kCompete };
 
 // ORB-SLAM2's RGB-D "close points" keyframe test (100 tracked, 70 untracked) is set for its 1000 features per
 // frame: counts of a frame's points, so they scale with the features extracted. Held at 100 / 70 with 2000
-// features the test rarely fires: on the Bonn crowd a frame tracking 130-160 of its close points while 300-400
-// more are not in the map made no keyframe for 55 frames, and the pose slid 3 cm sideways (docs/experiments/close-points-scale.md).
+// features the test rarely fires: on the Bonn crowd frames tracking 110-160 of their close points while 300-400
+// more were not in the map made no keyframe for 55 frames, and the pose slid 5 cm sideways
+// (docs/experiments/close-points-scale.md).
 inline int closeTrackedMaxFor(int num_features) { return num_features / 10; }
 inline int closeUntrackedMinFor(int num_features) { return num_features * 7 / 100; }
 
