@@ -1,4 +1,4 @@
-// The corpora of the sequence-index and trajectory fuzz targets (fuzz/corpus/), replayed through the targets' entry
+// The corpora of the sequence-index, trajectory and png fuzz targets (fuzz/corpus/), replayed through the targets' entry
 // functions: no input may crash or throw anything but core::Error.
 #include <gtest/gtest.h>
 
@@ -14,6 +14,10 @@ TEST(FuzzCorpus, SequenceIndexInputsGiveFramesOrCoreErrors) {
 
 TEST(FuzzCorpus, TrajectoryInputsGivePosesOrCoreErrors) {
   EXPECT_GE(testing::replayFuzzCorpus("trajectory", fuzz::readTrajectoryInput), 4u);
+}
+
+TEST(FuzzCorpus, PngInputsGiveImagesOrEmptyMats) {
+  EXPECT_GE(testing::replayFuzzCorpus("png", fuzz::decodePngInput), 14u);
 }
 
 }  // namespace

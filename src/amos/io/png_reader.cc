@@ -132,10 +132,18 @@ constexpr std::uint64_t kMaxInflateRatio = 1032;
 struct PngLayout {
   std::uint32_t width = 0, height = 0;
   int bit_depth = 0;
-  int channels = 0;  // samples per pixel: grey 1, grey+alpha 2, RGB 3, RGBA 4
+  int channels = 0;  // samples per pixel: grey or palette 1, grey+alpha 2, RGB 3, RGBA 4
+  bool interlaced = false;
   std::vector<std::pair<const std::uint8_t*, std::size_t>> idat;  // the IDAT chunks' data, in order
   std::size_t idat_bytes = 0;
+  // Why OpenCV decodes it, when it does (the first reason found); the chunks are still walked, so that a PNG handed
+  // over is checked as much as one decoded here (its CRCs, and its image data against its size).
+  std::optional<std::string> opencv_reason;
 };
+
+void handToOpenCvLater(PngLayout& layout, std::string reason) {
+  if (!layout.opencv_reason) layout.opencv_reason = std::move(reason);
+}
 
 // Reads IHDR's fields into `layout`; rejects what libpng rejects (png_check_IHDR), hands over what is valid but not
 // handled here.
@@ -155,14 +163,33 @@ void readHeader(const std::uint8_t* ihdr, PngLayout& layout) {
   if (compression != 0 || filter != 0 || interlace > 1)
     reject(fmt::format("IHDR has an invalid compression ({}), filter ({}) or interlace ({}) method", compression,
                        filter, interlace));
-  if (interlace != 0) handToOpenCv("interlaced");
-  if (colour_type == 3) handToOpenCv("palette colour type");
-  if (bit_depth < 8) handToOpenCv(fmt::format("bit depth {}", bit_depth));
+  // libpng (png_set_user_limits) or OpenCV (CV_IO_MAX_IMAGE_PIXELS; cv::imread throws) refuse these too.
   if (layout.width > kMaxSide || layout.height > kMaxSide ||
       std::uint64_t{layout.width} * layout.height > kMaxPixels)
-    handToOpenCv(fmt::format("size {}x{} beyond libpng's or OpenCV's limits", layout.width, layout.height));
+    reject(fmt::format("size {}x{} beyond the limits of {} pixels a side and {} pixels", layout.width, layout.height,
+                       kMaxSide, kMaxPixels));
   layout.bit_depth = bit_depth;
-  layout.channels = colour_type == 0 ? 1 : colour_type == 4 ? 2 : colour_type == 2 ? 3 : 4;
+  layout.channels = colour_type == 0 || colour_type == 3 ? 1 : colour_type == 4 ? 2 : colour_type == 2 ? 3 : 4;
+  layout.interlaced = interlace != 0;
+  if (interlace != 0) handToOpenCvLater(layout, "interlaced");
+  if (colour_type == 3) handToOpenCvLater(layout, "palette colour type");
+  if (bit_depth < 8) handToOpenCvLater(layout, fmt::format("bit depth {}", bit_depth));
+}
+
+// The fewest bytes the inflated image data of `layout` can have: exact without interlacing (a filter byte and the
+// packed samples of each row); with it, at least the packed samples of all the pixels.
+std::uint64_t minimumImageDataBytes(const PngLayout& layout) {
+  const std::uint64_t bits_per_pixel = std::uint64_t(layout.channels) * layout.bit_depth;
+  if (layout.interlaced) return (std::uint64_t{layout.width} * layout.height * bits_per_pixel + 7) / 8;
+  return std::uint64_t{layout.height} * (1 + (layout.width * bits_per_pixel + 7) / 8);
+}
+
+// Rejects a header that claims more pixels than its image data can inflate to, before anything of the image's
+// size is allocated (here or by OpenCV, which allocates the image from the header before libpng reads the data).
+void requireImageDataFor(const PngLayout& layout) {
+  if (minimumImageDataBytes(layout) > kMaxInflateRatio * layout.idat_bytes)
+    reject(fmt::format("the image data ({} bytes) is too short for {}x{}", layout.idat_bytes, layout.width,
+                       layout.height));
 }
 
 void checkCrc(std::uint32_t type, const std::uint8_t* type_and_data, std::uint32_t length) {
@@ -195,7 +222,7 @@ PngLayout readChunks(const std::uint8_t* data, std::size_t size, bool orientatio
       continue;
     }
     if (type == kIDAT) {
-      if (after_idat) handToOpenCv("IDAT chunks that are not consecutive");
+      if (after_idat) handToOpenCvLater(layout, "IDAT chunks that are not consecutive");
       checkCrc(type, type_and_data, length);
       in_idat = true;
       layout.idat.emplace_back(body, length);
@@ -208,11 +235,13 @@ PngLayout readChunks(const std::uint8_t* data, std::size_t size, bool orientatio
       break;
     }
     const bool critical = (type & 0x20000000u) == 0;  // bit 5 of the first letter: lower case = ancillary
-    if (critical) handToOpenCv(fmt::format("critical chunk {}", typeName(type)));
-    if (type == ktRNS) handToOpenCv("tRNS chunk");
-    if (type == keXIf && orientation_applies) handToOpenCv("eXIf chunk (cv::imread applies its orientation)");
+    if (critical) handToOpenCvLater(layout, fmt::format("critical chunk {}", typeName(type)));
+    if (type == ktRNS) handToOpenCvLater(layout, "tRNS chunk");
+    if (type == keXIf && orientation_applies)
+      handToOpenCvLater(layout, "eXIf chunk (cv::imread applies its orientation)");
   }
   if (layout.idat.empty()) reject("no IDAT chunk");
+  requireImageDataFor(layout);
   return layout;
 }
 
@@ -359,10 +388,7 @@ cv::Mat decodeLayout(const PngLayout& layout, Mode mode) {
   const std::size_t sample_bytes = static_cast<std::size_t>(layout.bit_depth / 8);
   const std::size_t bytes_per_pixel = layout.channels * sample_bytes;
   const std::size_t row_bytes = layout.width * bytes_per_pixel;
-  const std::uint64_t expected = std::uint64_t{layout.height} * (row_bytes + 1);
-  if (expected > kMaxInflateRatio * layout.idat_bytes)
-    reject(fmt::format("the image data ({} bytes) is too short for {}x{}", layout.idat_bytes, layout.width,
-                       layout.height));
+  const std::uint64_t expected = minimumImageDataBytes(layout);  // exact: not interlaced
   std::uint8_t* raw = inflateImageData(layout, static_cast<std::size_t>(expected));
 
   cv::Mat image(static_cast<int>(layout.height), static_cast<int>(layout.width), outputType(layout, mode));
@@ -381,9 +407,15 @@ cv::Mat decodeLayout(const PngLayout& layout, Mode mode) {
   return image;
 }
 
-Decoded decodeHere(const std::uint8_t* data, std::size_t size, Mode mode, bool orientation_applies) {
+// Decodes with `mode`, or only checks the PNG before it goes to OpenCV (no mode: flags not handled here).
+Decoded decodeHere(const std::uint8_t* data, std::size_t size, std::optional<Mode> mode, int imread_flags) {
+  const bool orientation_applies =
+      mode == Mode::colour && (imread_flags & cv::IMREAD_IGNORE_ORIENTATION) == 0;
   try {
-    return {decodeLayout(readChunks(data, size, orientation_applies), mode), {PngRoute::decoded, {}}};
+    const PngLayout layout = readChunks(data, size, orientation_applies);
+    if (!mode) handToOpenCv(fmt::format("imread flags {}", imread_flags));
+    if (layout.opencv_reason) handToOpenCv(*layout.opencv_reason);
+    return {decodeLayout(layout, *mode), {PngRoute::decoded, {}}};
   } catch (const Handoff& handoff) {
     return {cv::Mat(), {handoff.route, handoff.reason}};
   } catch (const std::bad_alloc&) {
@@ -393,22 +425,19 @@ Decoded decodeHere(const std::uint8_t* data, std::size_t size, Mode mode, bool o
 
 #endif  // AMOS_WITH_LIBDEFLATE
 
-// Why a PNG read with these flags is not decoded here; nullopt when it may be.
-std::optional<std::string> notDecodedHere(int imread_flags) {
+// Why no PNG is decoded or checked here; nullopt when they are.
+std::optional<std::string> notDecodedHere() {
 #if AMOS_WITH_LIBDEFLATE
-  if (!modeOf(imread_flags)) return fmt::format("imread flags {}", imread_flags);
   return std::nullopt;
 #else
   return "built without libdeflate";
 #endif
 }
 
-// The fast path's answer for flags it handles (notDecodedHere gave nullopt).
+// The fast path's answer (notDecodedHere gave nullopt): decoded, rejected, or checked and handed to OpenCV.
 Decoded tryDecode(const std::uint8_t* data, std::size_t size, int imread_flags) {
 #if AMOS_WITH_LIBDEFLATE
-  const Mode mode = *modeOf(imread_flags);
-  const bool orientation_applies = mode == Mode::colour && (imread_flags & cv::IMREAD_IGNORE_ORIENTATION) == 0;
-  return decodeHere(data, size, mode, orientation_applies);
+  return decodeHere(data, size, modeOf(imread_flags), imread_flags);
 #else
   return {cv::Mat(), {PngRoute::opencv, "built without libdeflate"}};
 #endif
@@ -448,7 +477,7 @@ cv::Mat decodePng(const std::uint8_t* data, std::size_t size, int imread_flags, 
     return cv::Mat();
   }
   Decoded decoded;
-  if (const auto why = notDecodedHere(imread_flags)) {
+  if (const auto why = notDecodedHere()) {
     decoded.info = {PngRoute::opencv, *why};
   } else {
     decoded = tryDecode(data, size, imread_flags);
@@ -465,7 +494,7 @@ cv::Mat readPng(const std::string& path, int imread_flags, PngReadInfo* info) {
   const bool caller_reports = info != nullptr;
   Decoded decoded;
   std::string problem;
-  if (const auto why = notDecodedHere(imread_flags)) {
+  if (const auto why = notDecodedHere()) {
     decoded.info = {PngRoute::opencv, *why};
   } else if (const auto size = readWholeFile(path, threadScratch().file, problem); !size) {
     decoded.info = {PngRoute::rejected, problem};

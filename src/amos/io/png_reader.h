@@ -12,16 +12,20 @@
 //
 // Handed to OpenCV (cv::imread for a file, cv::imdecode for bytes), so that the result is still cv::imread's:
 // other flags; interlaced, palette and 1/2/4-bit PNGs; a tRNS chunk; an eXIf chunk when the orientation would be
-// applied; critical chunks other than IHDR/IDAT/IEND; IDAT chunks that are not consecutive; sizes beyond libpng's
-// and OpenCV's limits; a zlib stream that libdeflate rejects although the CRCs are right, or that inflates to more
-// than the image needs (zlib has the last word); bytes that are not a PNG (OpenCV decodes another format, and gives
-// an empty Mat for anything else); every PNG when the build has no libdeflate (AMOS_WITH_LIBDEFLATE off).
+// applied; critical chunks other than IHDR/IDAT/IEND; IDAT chunks that are not consecutive; a zlib stream that
+// libdeflate rejects although the CRCs are right, or that inflates to more than the image needs (zlib has the last
+// word); bytes that are not a PNG (OpenCV decodes another format, and gives an empty Mat for anything else); every
+// PNG when the build has no libdeflate (AMOS_WITH_LIBDEFLATE off). A PNG is handed over only after its chunks were
+// walked and checked as below (with libdeflate), since OpenCV allocates the image its header declares before libpng
+// finds that the data is missing.
 //
-// Rejected here, because libpng rejects them too: a missing or empty file; a truncated file (it ends before IEND);
-// a CRC mismatch in IHDR, IDAT or IEND; an invalid IHDR; no IDAT; image data that is too short or un-filters with
-// an invalid filter type. The result is then an empty Mat, as from cv::imread (the caller reports it, e.g.
-// loadRgbdFrame's error naming the file); readPng also logs a warning naming the file and the problem, unless
-// the caller takes the reason through `info` to report it itself.
+// Rejected here, because libpng or OpenCV reject them too: a missing or empty file; a truncated file (it ends before
+// IEND); a CRC mismatch in IHDR, IDAT or IEND; an invalid IHDR; a size beyond libpng's limit of 1000000 pixels a side
+// or OpenCV's of 2^30 pixels; no IDAT; image data too short for the declared size (DEFLATE inflates a byte to at most
+// 1032, so a header claiming more than its IDAT chunks can hold is refused before anything of that size is
+// allocated) or that un-filters with an invalid filter type. The result is then an empty Mat, as from cv::imread
+// (the caller reports it, e.g. loadRgbdFrame's error naming the file); readPng also logs a warning naming the file
+// and the problem, unless the caller takes the reason through `info` to report it itself.
 // Every length is checked before it is used. The CRCs of the critical chunks are checked (libdeflate_crc32, about
 // 50 us for a 440 kB frame, 2 % of its decoding; libpng checks them too); those of ancillary chunks are not: such
 // chunks are skipped, as libpng skips them after a warning.

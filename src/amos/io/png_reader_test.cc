@@ -520,6 +520,58 @@ TEST(PngReader, BadImageDataIsRejectedOrLeftToOpenCv) {
   }
 }
 
+// A header that claims more pixels than its image data can inflate to is refused before anything of its size is
+// allocated, also when the PNG would otherwise go to OpenCV (which allocates the declared image before libpng reads
+// the data): interlaced, palette, 1-bit, a tRNS chunk, other flags.
+TEST(PngReader, HeadersClaimingMoreThanTheImageDataHoldsAreRejectedBeforeOpenCv) {
+  if (!pngFastPathAvailable()) GTEST_SKIP() << "built without libdeflate: every PNG is cv::imread's";
+  const Bytes seven_zeros = zlibStored(Bytes(7, 0));
+  RawImage rgb = randomImage(4, 4, 8, 2, 1), indexed = rgb, bilevel = rgb;
+  rgb.width = rgb.height = indexed.width = indexed.height = 5000;
+  indexed.colour_type = 3;
+  bilevel.width = bilevel.height = 20000;  // 1 bit a pixel: 50 MB
+  bilevel.colour_type = 0;
+  bilevel.bit_depth = 1;
+  const std::vector<std::pair<std::string, Bytes>> lying = {
+      {"interlaced", PngBuilder().header(rgb, 1).imageData(seven_zeros, 8192).end()},
+      {"palette", PngBuilder().header(indexed).chunk("PLTE", {0, 0, 0}).imageData(seven_zeros, 8192).end()},
+      {"1-bit", PngBuilder().header(bilevel).imageData(seven_zeros, 8192).end()},
+      {"tRNS", PngBuilder().header(rgb).chunk("tRNS", {0, 1, 0, 2, 0, 3}).imageData(seven_zeros, 8192).end()}};
+  for (const auto& [what, png] : lying) {
+    for (int flags : {int{cv::IMREAD_COLOR}, int{cv::IMREAD_UNCHANGED}, int{cv::IMREAD_GRAYSCALE}}) {
+      PngReadInfo info;
+      EXPECT_TRUE(decodePng(png.data(), png.size(), flags, &info).empty()) << what;
+      EXPECT_EQ(info.route, PngRoute::rejected) << what << " flags " << flags << ": " << info.reason;
+      EXPECT_NE(info.reason.find("is too short for"), std::string::npos) << what << ": " << info.reason;
+    }
+  }
+  // The same kinds with enough data still go to OpenCV.
+  RawImage small = randomImage(5, 4, 8, 2, 3);
+  const Bytes interlaced =
+      PngBuilder().header(small, 1).imageData(zlibStored(filterRows(small, [](std::uint32_t) { return 0; })), 64).end();
+  for (int flags : kFlags) expectLikeImdecode(interlaced, flags, PngRoute::opencv, "interlaced, enough data");
+}
+
+// Sizes beyond libpng's limit of 1000000 a side or OpenCV's of 2^30 pixels (for which cv::imdecode throws) are
+// rejected here, whatever the flags.
+TEST(PngReader, SizesBeyondTheLimitsAreRejected) {
+  if (!pngFastPathAvailable()) GTEST_SKIP() << "built without libdeflate: every PNG is cv::imread's";
+  const Bytes data = zlibStored(Bytes(7, 0));
+  for (const auto& [width, height] : {std::pair<std::uint32_t, std::uint32_t>{1000001, 1}, {1, 1000001},
+                                      {40000, 40000}}) {
+    RawImage image = randomImage(1, 1, 8, 0, 1);
+    image.width = width;
+    image.height = height;
+    const Bytes png = PngBuilder().header(image).imageData(data, 8192).end();
+    for (int flags : {int{cv::IMREAD_COLOR}, int{cv::IMREAD_UNCHANGED}, int{cv::IMREAD_GRAYSCALE}}) {
+      PngReadInfo info;
+      EXPECT_TRUE(decodePng(png.data(), png.size(), flags, &info).empty()) << width << "x" << height;
+      EXPECT_EQ(info.route, PngRoute::rejected) << width << "x" << height << ": " << info.reason;
+      EXPECT_NE(info.reason.find("beyond the limits"), std::string::npos) << info.reason;
+    }
+  }
+}
+
 // Random damage that gets past the CRCs: to the scanlines before compression (a valid zlib stream of rows with wrong
 // samples or filter types) or to the zlib stream (CRC recomputed). Ours equals cv::imdecode's, empty or not.
 TEST(PngReader, RandomlyDamagedImagesDecodeLikeImdecode) {

@@ -94,10 +94,17 @@ void putPose(ByteWriter& w, const core::SE3& T) {
     for (int c = 0; c < 4; ++c) w.put(T.matrix()(r, c));
 }
 
+// A double that must be finite (poses, positions): a NaN or infinity would spread through every later estimate.
+double getFinite(ByteReader& r, const char* what) {
+  const auto v = r.get<double>(what);
+  if (!std::isfinite(v)) r.fail(fmt::format("malformed: {} holds {}, not a finite number", what, v));
+  return v;
+}
+
 core::SE3 getPose(ByteReader& r, const char* what) {
   core::SE3 T = core::SE3::Identity();
   for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 4; ++c) T.matrix()(i, c) = r.get<double>(what);
+    for (int c = 0; c < 4; ++c) T.matrix()(i, c) = getFinite(r, what);
   return T;
 }
 
@@ -107,7 +114,7 @@ void putVector3(ByteWriter& w, const Eigen::Vector3d& v) {
 
 Eigen::Vector3d getVector3(ByteReader& r, const char* what) {
   Eigen::Vector3d v;
-  for (int i = 0; i < 3; ++i) v[i] = r.get<double>(what);
+  for (int i = 0; i < 3; ++i) v[i] = getFinite(r, what);
   return v;
 }
 
@@ -127,8 +134,14 @@ cv::Mat getImage(ByteReader& r, const char* what) {
   if (rows < 0 || cols < 0 || rows > 4096 || cols > 4096 || (type != CV_32F && type != CV_8U)) {
     r.fail(fmt::format("malformed: {} of {} x {} type {}", what, rows, cols, type));
   }
+  // Checked before the allocation: a corrupt size would otherwise take up to 64 MB before the read fails.
+  const std::size_t bytes = std::size_t(rows) * std::size_t(cols) * CV_ELEM_SIZE(type);
+  if (bytes > r.remaining()) {
+    r.fail(fmt::format("malformed: {} of {} x {} type {} is more than the {} bytes left", what, rows, cols, type,
+                       r.remaining()));
+  }
   cv::Mat m(rows, cols, type);
-  r.getBytes(m.data, m.total() * m.elemSize(), what);
+  r.getBytes(m.data, bytes, what);
   return m;
 }
 
@@ -395,19 +408,24 @@ MapFileSummary decodeMap(const std::string& bytes, const std::string& source,
     const auto reference = r.get<std::uint64_t>("map point reference keyframe");
     const Eigen::Vector3d position = getVector3(r, "map point position");
     const Eigen::Vector3d normal = getVector3(r, "map point normal");
-    const auto min_d = r.get<double>("map point distance");
-    const auto max_d = r.get<double>("map point distance");
+    const auto min_d = getFinite(r, "map point distance");
+    const auto max_d = getFinite(r, "map point distance");
     auto p = std::make_shared<map::MapPoint>(id, position, first_kf_of_point, first_frame);
     p->setReferenceKeyFrame(reference);
     p->setNormalAndDistances(normal, min_d, max_d);
     cv::Mat descriptor(1, kDescriptorBytes, CV_8U);
     r.getBytes(descriptor.data, kDescriptorBytes, "map point descriptor");
     p->setDescriptor(descriptor);
-    // The counters start at visible = found = 1 (MapPoint's constructor).
-    p->increaseVisible(r.get<std::int32_t>("map point counters") - 1);
-    p->increaseFound(r.get<std::int32_t>("map point counters") - 1);
-    p->increaseDynamicHits(r.get<std::int32_t>("map point counters"));
-    p->increaseMaskedViews(r.get<std::int32_t>("map point counters"));
+    // The counters start at visible = found = 1 (MapPoint's constructor) and only grow.
+    const auto counter = [&](std::int32_t least) {
+      const auto n = r.get<std::int32_t>("map point counters");
+      if (n < least) fail(fmt::format("malformed: map point {} has a counter of {}, below {}", id, n, least));
+      return n;
+    };
+    p->increaseVisible(counter(1) - 1);
+    p->increaseFound(counter(1) - 1);
+    p->increaseDynamicHits(counter(0));
+    p->increaseMaskedViews(counter(0));
     const std::size_t n_obs = r.getCount(12, "observations");
     for (std::size_t o = 0; o < n_obs; ++o) {
       const auto kf_id = r.get<std::uint64_t>("observation");

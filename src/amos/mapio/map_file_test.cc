@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <cstdint>
 #include <fstream>
+#include <initializer_list>
+#include <limits>
 #include <random>
 
 #include "amos/core/error.h"
@@ -244,6 +247,54 @@ TEST_F(MapFileErrors, OtherCalibrationNamesTheDifference) {
   const auto other_orb = std::make_shared<map::Sensor>(testIntrinsics(), map::SensorOptions{},
                                                        feature::OrbOptions{1000, 1.2, 4, 20, 7});
   EXPECT_NE(loadError(bytes_, other_orb).find("ORBextractor.nLevels 8 in the map, 4 here"), std::string::npos);
+}
+
+// The bytes with the header's payload size and checksum made to fit, so that a change reaches the payload's checks.
+std::string resealed(std::string bytes) {
+  const std::string_view payload(bytes.data() + kMapHeaderBytes, bytes.size() - kMapHeaderBytes);
+  const std::uint64_t size = payload.size();
+  const std::uint32_t crc = core::crc32(payload);
+  bytes.replace(16, 8, reinterpret_cast<const char*>(&size), 8);
+  bytes.replace(24, 4, reinterpret_cast<const char*>(&crc), 4);
+  return bytes;
+}
+
+// The bytes with the first `old` replaced by `replacement`, resealed.
+std::string patchedAndResealed(std::string bytes, const std::string& old, const std::string& replacement) {
+  const std::size_t at = bytes.find(old);
+  EXPECT_NE(at, std::string::npos);
+  if (at != std::string::npos) bytes.replace(at, old.size(), replacement);
+  return resealed(std::move(bytes));
+}
+
+std::string int32s(std::initializer_list<std::int32_t> values) {
+  std::string out;
+  for (const std::int32_t v : values) out.append(reinterpret_cast<const char*>(&v), sizeof v);
+  return out;
+}
+
+// A thumbnail claiming more than the file holds is refused before it is allocated (it took up to 64 MB before the
+// read failed); non-finite poses and positions and counters below their start are refused (a counter of INT_MIN
+// was decremented: signed overflow).
+TEST_F(MapFileErrors, LyingSizesNonFiniteValuesAndBadCountersNameTheFile) {
+  const std::string thumbnail = int32s({30, 40, CV_32F});
+  std::string message = loadError(patchedAndResealed(bytes_, thumbnail, int32s({4096, 4096, CV_32F})), sensor_);
+  EXPECT_NE(message.find("bad/room.map: malformed: thumbnail of 4096 x 4096 type 5 is more than the"),
+            std::string::npos) << message;
+
+  // The first pose of the payload: the removed keyframe's, after the camera (100 bytes), three ids, the count of
+  // removed keyframes and the record's id and parent.
+  std::string nan_pose = bytes_;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  nan_pose.replace(kMapHeaderBytes + 100 + 3 * 8 + 3 * 8, 8, reinterpret_cast<const char*>(&nan), 8);
+  message = loadError(resealed(nan_pose), sensor_);
+  EXPECT_NE(message.find("bad/room.map: malformed: removed keyframe pose holds nan"), std::string::npos) << message;
+
+  // Point 99's counters (visible 100, found 50, dynamic hits 3, masked views 0; buildMap); the pattern is unique.
+  const std::string counters = int32s({100, 50, 3, 0});
+  message = loadError(patchedAndResealed(bytes_, counters, int32s({INT32_MIN, 50, 3, 0})), sensor_);
+  EXPECT_NE(message.find("bad/room.map: malformed: map point"), std::string::npos) << message;
+  EXPECT_NE(message.find("has a counter of -2147483648, below 1"), std::string::npos) << message;
 }
 
 TEST(MapFile, MissingFileIsAnErrorNamingIt) {

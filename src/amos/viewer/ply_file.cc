@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -127,6 +128,29 @@ Header readHeader(const std::string& text, const std::string& file) {
   return h;
 }
 
+// The fewest bytes one item of `e` takes in the body: in binary, its scalars and its lists' counts (a list may be
+// empty); in ASCII, a character and a separator for each of those values.
+std::size_t minimumItemBytes(const Element& e, bool binary) {
+  std::size_t bytes = 0;
+  for (const Property& p : e.properties) bytes += binary ? sizeOf(p.list ? p.count_type : p.type) : 2;
+  return bytes;
+}
+
+// Refuses a header whose element counts claim more than the body holds, before anything of their size is
+// allocated or looped over (the last ASCII value needs no separator: one byte of slack).
+void requireCountsFitBody(const Header& h, std::size_t body_bytes, const std::string& file) {
+  std::size_t left = body_bytes + (h.binary ? 0 : 1);
+  for (const Element& e : h.elements) {
+    const std::size_t item = minimumItemBytes(e, h.binary);
+    if (item == 0) continue;  // no properties: nothing to read, whatever the count
+    core::require(e.count <= left / item,
+                  fmt::format("{}: element '{}' claims {} items of at least {} bytes, more than the {} bytes left "
+                              "in the file hold",
+                              file, e.name, e.count, item, left));
+    left -= e.count * item;
+  }
+}
+
 // The body's values one by one, binary or ASCII.
 class BodyReader {
  public:
@@ -135,6 +159,18 @@ class BodyReader {
 
   double next(Type type) {
     return binary_ ? nextBinary(type) : nextAscii();
+  }
+
+  // The item count of list property `p` of item `item` of `element`: a whole number, and no more items than the
+  // rest of the file can hold (so that a corrupt count fails at once, not after a loop over billions).
+  std::size_t listCount(const Property& p, const std::string& element, std::size_t item) {
+    const double n = next(p.count_type);
+    const std::size_t left = text_.size() - at_;
+    const std::size_t fit = binary_ ? left / sizeOf(p.type) : (left + 1) / 2;
+    core::require(n >= 0 && n == std::floor(n) && n <= static_cast<double>(fit),
+                  fmt::format("{}: {} {}: list '{}' claims {} items, more than the {} bytes left in the file hold",
+                              file_, element, item, p.name, n, left));
+    return static_cast<std::size_t>(n);
   }
 
  private:
@@ -179,9 +215,21 @@ class BodyReader {
   std::string file_;
 };
 
+// A colour value as a byte: floats are 0..1, integers 0..255; out of range (NaN too) is clamped.
 std::uint8_t colourByte(double v, Type type) {
   const double byte = isFloat(type) ? v * 255.0 : v;
-  return static_cast<std::uint8_t>(std::clamp(std::lround(byte), 0L, 255L));
+  if (!(byte > 0)) return 0;
+  return static_cast<std::uint8_t>(std::lround(std::min(byte, 255.0)));
+}
+
+// A vertex coordinate as a float: refused when it is not a finite number a float can hold (NaN, infinite, or a
+// double beyond FLT_MAX), which the viewer could not place.
+float coordinate(double v, const std::string& file, std::size_t vertex, Role role) {
+  static const char* const kAxes[] = {"x", "y", "z"};
+  core::require(std::isfinite(v) && std::abs(v) <= FLT_MAX,
+                fmt::format("{}: vertex {} has {} = {}, not a finite coordinate", file, vertex,
+                            kAxes[static_cast<int>(role) - static_cast<int>(Role::kX)], v));
+  return static_cast<float>(v);
 }
 
 void readVertices(const Element& e, BodyReader& body, ColouredGeometry& g, const std::string& file) {
@@ -198,14 +246,14 @@ void readVertices(const Element& e, BodyReader& body, ColouredGeometry& g, const
     for (std::size_t k = 0; k < e.properties.size(); ++k) {
       const Property& p = e.properties[k];
       if (p.list) {
-        const auto n = static_cast<std::size_t>(body.next(p.count_type));
+        const std::size_t n = body.listCount(p, e.name, i);
         for (std::size_t j = 0; j < n; ++j) body.next(p.type);
         continue;
       }
       const double v = body.next(p.type);
       switch (roles[k]) {
         case Role::kX: case Role::kY: case Role::kZ:
-          g.xyz[3 * i + static_cast<int>(roles[k]) - static_cast<int>(Role::kX)] = static_cast<float>(v);
+          g.xyz[3 * i + static_cast<int>(roles[k]) - static_cast<int>(Role::kX)] = coordinate(v, file, i, roles[k]);
           break;
         case Role::kRed: case Role::kGreen: case Role::kBlue:
           g.rgb[3 * i + static_cast<int>(roles[k]) - static_cast<int>(Role::kRed)] = colourByte(v, p.type);
@@ -218,6 +266,7 @@ void readVertices(const Element& e, BodyReader& body, ColouredGeometry& g, const
 }
 
 void readFaces(const Element& e, BodyReader& body, ColouredGeometry& g, const std::string& file) {
+  if (e.properties.empty()) return;
   const std::size_t vertices = g.vertexCount();
   std::vector<std::uint32_t> polygon;
   for (std::size_t i = 0; i < e.count; ++i) {
@@ -226,7 +275,7 @@ void readFaces(const Element& e, BodyReader& body, ColouredGeometry& g, const st
         body.next(p.type);
         continue;
       }
-      const auto n = static_cast<std::size_t>(body.next(p.count_type));
+      const std::size_t n = body.listCount(p, e.name, i);
       polygon.clear();
       for (std::size_t j = 0; j < n; ++j) {
         const double index = body.next(p.type);
@@ -242,9 +291,10 @@ void readFaces(const Element& e, BodyReader& body, ColouredGeometry& g, const st
 }
 
 void skipElement(const Element& e, BodyReader& body) {
+  if (e.properties.empty()) return;
   for (std::size_t i = 0; i < e.count; ++i)
     for (const Property& p : e.properties) {
-      const std::size_t n = p.list ? static_cast<std::size_t>(body.next(p.count_type)) : 1;
+      const std::size_t n = p.list ? body.listCount(p, e.name, i) : 1;
       for (std::size_t j = 0; j < n; ++j) body.next(p.type);
     }
 }
@@ -254,8 +304,12 @@ void skipElement(const Element& e, BodyReader& body) {
 ColouredGeometry readPly(const std::filesystem::path& path) {
   const std::string file = path.string();
   core::require(std::filesystem::is_regular_file(path), fmt::format("{}: no such file", file));
-  const std::string text = readWholeFile(path);
+  return parsePly(readWholeFile(path), file);
+}
+
+ColouredGeometry parsePly(const std::string& text, const std::string& file) {
   const Header header = readHeader(text, file);
+  requireCountsFitBody(header, text.size() - header.body_offset, file);
   BodyReader body(text, header.body_offset, header.binary, file);
   ColouredGeometry g;
   bool have_vertices = false;

@@ -5,6 +5,7 @@
 // has none) and triangles (polygons are split into fans). Any other property is skipped by its size.
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace amos::viewer {
@@ -18,7 +19,13 @@ struct ColouredGeometry {
 };
 
 // Reads an ASCII or binary little-endian PLY. Throws core::Error naming the file and what is wrong (not a PLY,
-// an unsupported format or property type, no x y z, a truncated body, a face index out of range).
+// an unsupported format or property type, no x y z, a truncated body, a face index out of range, a vertex
+// coordinate that is not a finite float). Every count is checked against the bytes the file has before it is
+// used: an element count or a list's item count claiming more than the rest of the file can hold is an error at
+// once (no allocation or loop of the claimed size).
 ColouredGeometry readPly(const std::filesystem::path& path);
+
+// The same for the file's bytes in memory; `file` names them in errors.
+ColouredGeometry parsePly(const std::string& text, const std::string& file);
 
 }  // namespace amos::viewer
