@@ -96,12 +96,16 @@ inline std::string get(int port, const std::string& path, const std::string& ext
                             "\r\nConnection: close\r\n" + extra_headers + "\r\n");
 }
 
-// This process's resident memory in bytes.
-inline std::size_t residentBytes() {
-  std::ifstream statm("/proc/self/statm");
-  std::size_t pages = 0, resident = 0;
-  statm >> pages >> resident;
-  return resident * static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+// This process's peak resident memory so far in bytes (VmHWM).
+inline std::size_t peakResidentBytes() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  std::size_t kb = 0;
+  while (status >> key) {
+    if (key == "VmHWM:" && status >> kb) return kb * 1024;
+    status.ignore(1 << 10, '\n');
+  }
+  return 0;
 }
 
 }  // namespace amos::viewer::testing
