@@ -80,6 +80,7 @@ def follow():
                 pass
         except (OSError, http.client.HTTPException):
             record("/api/events", None, 0)
+            time.sleep(pause)
 
 
 streams = max(1, clients // 10)

@@ -297,6 +297,10 @@ GuardedServer::GuardedServer(ServerLimits limits) : impl_(std::make_unique<Impl>
     int yes = 1;
     setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<void*>(&yes), sizeof(yes));
   });
+  // Only for the Keep-Alive header httplib writes: the limits themselves are kept here.
+  core.set_keep_alive_max_count(static_cast<std::size_t>(impl_->limits.max_requests_per_connection));
+  core.set_keep_alive_timeout(
+      std::max<time_t>(1, std::chrono::duration_cast<std::chrono::seconds>(impl_->limits.idle_timeout).count()));
   core.set_exception_handler([](const httplib::Request& req, httplib::Response& res, std::exception_ptr error) {
     std::string what = "unknown error";
     try {
