@@ -6,8 +6,7 @@
 
 #include <chrono>
 
-#include "amos/core/error.h"
-#include "amos/core/thread_signals.h"
+#include "amos/viewer/file_reply.h"
 #include "amos/viewer/run_folder.h"
 #include "amos/viewer/web_assets.h"
 #include "amos/viewer/whole_file.h"
@@ -21,61 +20,40 @@ std::string sseMessage(std::uint64_t seq, const std::string& event, const std::s
 
 }  // namespace
 
+ServerLimits ViewerServer::limits() {
+  ServerLimits limits;
+  limits.workers = kRequestThreads;
+  return limits;
+}
+
 ViewerServer::ViewerServer(LiveState& state, ServerOptions options)
-    : state_(state), options_(std::move(options)), server_(std::make_unique<httplib::Server>()) {
+    : state_(state), options_(std::move(options)), server_(limits()) {
   const std::filesystem::path three = threeJsDir();
   three_js_ = readWholeFile(three / "build" / "three.min.js");
   orbit_controls_js_ = readWholeFile(three / "examples" / "js" / "controls" / "OrbitControls.js");
   if (three_js_.empty())
     spdlog::warn("viewer: {} is missing (install libjs-three): the page has no 3D view",
                  (three / "build" / "three.min.js").string());
-  // Short timeouts: a browser that stops reading loses its connection instead of holding a thread.
-  server_->set_write_timeout(3, 0);
-  server_->set_read_timeout(3, 0);
-  server_->set_keep_alive_max_count(100);
-  server_->new_task_queue = [] { return new httplib::ThreadPool(kRequestThreads); };
-  // SO_REUSEADDR only (a port in TIME_WAIT can be bound again), not httplib's default SO_REUSEPORT, with which a
-  // second process binds a port in use and the two share its connections.
-  server_->set_socket_options([](socket_t sock) {
-    int yes = 1;
-    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<void*>(&yes), sizeof(yes));
-  });
   addRoutes();
-  if (options_.port == 0) {
-    port_ = server_->bind_to_any_port(options_.bind);
-  } else {
-    port_ = server_->bind_to_port(options_.bind, options_.port) ? options_.port : -1;
-  }
-  core::require(port_ > 0, fmt::format("viewer: cannot listen on {}:{}: port {} is in use (or {} is not an address "
-                                       "of this machine); choose another with --viewer-port / --viewer-bind",
-                                       options_.bind, options_.port, options_.port, options_.bind));
-  thread_ = std::thread([this] {
-    // The request threads httplib starts from here inherit this mask: SIGINT / SIGTERM stay with the main thread.
-    core::blockTerminationSignalsInThisThread();
-    server_->listen_after_bind();
-  });
-  // httplib 0.11's stop() does nothing before the listening loop has started, and the loop then never ends: a
-  // server stopped at once (a run that fails before its first frame, a test) would hang its destructor. The library
-  // gives no signal for the start, so wait here (briefly: it is the next thing that thread does) until it runs.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (!server_->is_running() && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+  port_ = server_.listen(options_.bind, options_.port);
 }
 
 ViewerServer::~ViewerServer() { stop(); }
 
 std::string ViewerServer::url() const {
-  const std::string host = options_.bind == "0.0.0.0" ? "127.0.0.1" : options_.bind;
-  return fmt::format("http://{}:{}/", host, port_);
+  if (options_.bind == "0.0.0.0") return fmt::format("http://127.0.0.1:{}/", port_);
+  if (options_.bind == "::") return fmt::format("http://[::1]:{}/", port_);
+  if (options_.bind.find(':') != std::string::npos) return fmt::format("http://[{}]:{}/", options_.bind, port_);
+  return fmt::format("http://{}:{}/", options_.bind, port_);
 }
 
 void ViewerServer::stop() {
-  state_.close();
-  if (server_) server_->stop();
-  if (thread_.joinable()) thread_.join();
+  state_.close();  // ends the event streams
+  server_.stop();
 }
 
 void ViewerServer::addRoutes() {
-  httplib::Server& s = *server_;
+  httplib::Server& s = server_.routes();
   auto asset = [](const std::string& name) {
     return [name](const httplib::Request&, httplib::Response& res) {
       const WebAsset* a = findWebAsset(name);
@@ -175,7 +153,7 @@ void ViewerServer::addRoutes() {
       res.set_content("refused: only the files of this run, by a relative path without '..'\n", "text/plain");
       return;
     }
-    res.set_content(readWholeFile(*file), std::string(mimeTypeOf(file->filename().string())).c_str());
+    replyWithFile(*file, req.get_header_value("Range"), res);
   });
 }
 

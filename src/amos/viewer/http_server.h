@@ -8,23 +8,22 @@
 //                              "reload" when the browser fell too far behind; a comment every second otherwise
 //   GET /api/frame.jpg         the current frame with its dynamic mask and keypoints (404 before the first)
 //   GET /api/dense/NAME.bin    a dense layer (dense_layer.h: live, mesh, cloud, removed; 404 when there is none)
-//   GET /files/PATH            a file of the finished run (`view` only; run_folder.h: anything outside -> 403)
-// Requests run in the server's own threads (kRequestThreads), which never touch the SLAM run: a slow or vanished
-// browser costs only its own connection (a write times out after a few seconds). An event stream holds its thread
-// while it is open, so at most kMaxEventStreams are served at once (more get 503): the other requests always have
-// threads left, whatever the number of open tabs. The port is this process's alone: a port in use, by another
-// viewer too, is an error at start (no SO_REUSEPORT sharing, which would let two processes listen on it).
+//   GET /files/PATH            a file of the finished run (`view` only; run_folder.h: anything outside -> 403),
+//                              streamed, whole or one byte range (file_reply.h)
+// Every request is bounded in the memory, time and threads it can take (guarded_server.h, request_head.h): heads
+// are read without holding a thread and within limits, only GET / HEAD without a body and with this server's Host
+// are served, a file is streamed and at most one byte range of it is sent, and no handler's exception leaves the
+// server. Requests run in the server's own threads (kRequestThreads), which never touch the SLAM run: a slow,
+// vanished or hostile client costs only its own connection. An event stream holds its thread while it is open, so
+// at most kMaxEventStreams are served at once (more get 503): the other requests always have threads left,
+// whatever the number of open tabs. The port is this process's alone: a port in use, by another viewer too, is an
+// error at start (no SO_REUSEPORT sharing, which would let two processes listen on it).
 #include <atomic>
 #include <filesystem>
-#include <memory>
 #include <string>
-#include <thread>
 
+#include "amos/viewer/guarded_server.h"
 #include "amos/viewer/live_state.h"
-
-namespace httplib {
-class Server;
-}
 
 namespace amos::viewer {
 
@@ -38,6 +37,8 @@ class ViewerServer {
  public:
   static constexpr int kRequestThreads = 20;
   static constexpr int kMaxEventStreams = 12;
+  // The limits every connection is held to (ServerLimits' defaults, with kRequestThreads workers).
+  static ServerLimits limits();
 
   // Binds and starts serving; throws core::Error naming the address when it cannot bind.
   ViewerServer(LiveState& state, ServerOptions options);
@@ -56,10 +57,9 @@ class ViewerServer {
   LiveState& state_;
   ServerOptions options_;
   std::string three_js_, orbit_controls_js_;
-  std::unique_ptr<httplib::Server> server_;
-  int port_ = 0;
   std::atomic<int> event_streams_{0};
-  std::thread thread_;
+  GuardedServer server_;
+  int port_ = 0;
 };
 
 }  // namespace amos::viewer

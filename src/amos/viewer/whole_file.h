@@ -1,6 +1,6 @@
 #pragma once
 // A file's whole contents, for the small files the viewer serves and reads (three.js, a run's stats.json and
-// settings file, files of a finished run).
+// settings file). The files of a finished run under /files/ are streamed instead (file_reply.h).
 #include <filesystem>
 #include <string>
 
