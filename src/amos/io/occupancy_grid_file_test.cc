@@ -7,18 +7,12 @@
 #include <sstream>
 
 #include "amos/core/error.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::io {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / (name + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 std::string textOf(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -39,7 +33,7 @@ OccupancyGridFile smallGrid() {
 }
 
 TEST(OccupancyGridFile, ReadsBackWhatItWroteInTheMapServerFormat) {
-  const fs::path dir = scratch("amos_grid_file_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("amos_grid_file_");
   writeOccupancyGridFile((dir / "floor.yaml").string(), smallGrid(), {"a comment"});
   const OccupancyGridFile back = readOccupancyGridFile((dir / "floor.yaml").string());
   EXPECT_EQ(back.width, 4);
@@ -66,7 +60,7 @@ TEST(OccupancyGridFile, AGridWhoseCellsDoNotFitItsSizeIsRefused) {
 }
 
 TEST(OccupancyGridFile, ReadingAMapWithoutResolutionNamesTheKey) {
-  const fs::path dir = scratch("amos_grid_file_bad_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("amos_grid_file_");
   std::ofstream(dir / "map.yaml") << "image: map.pgm\norigin: [0, 0, 0]\nnegate: 0\n";
   try {
     readOccupancyGridFile((dir / "map.yaml").string());
