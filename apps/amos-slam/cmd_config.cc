@@ -10,6 +10,7 @@
 
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
+#include "amos/run/settings_sections.h"
 #include "commands.h"
 
 namespace amos::app {
@@ -22,9 +23,9 @@ struct ConfigArgs {
 };
 
 void runConfig(const ConfigArgs& args, int& exit_code) {
-  if (args.keys_markdown) std::cout << config::keysMarkdown();
+  if (args.keys_markdown) std::cout << config::keysMarkdown(run::settingsSections());
   if (args.keys) {
-    config::Settings defaults;
+    config::Settings defaults = config::defaultSettings(run::settingsSections());
     for (const auto& section : config::settingsKeys(defaults)) {
       for (const auto& key : section.keys) {
         std::cout << key.name() << " " << (key.isRequired() ? "required" : key.defaultValue())
@@ -37,7 +38,7 @@ void runConfig(const ConfigArgs& args, int& exit_code) {
     core::require(in.good(), "cannot read " + args.readme);
     std::stringstream text;
     text << in.rdbuf();
-    const std::string updated = config::withKeyTables(text.str());
+    const std::string updated = config::withKeyTables(text.str(), run::settingsSections());
     if (updated != text.str()) {
       std::ofstream out(args.readme);
       out << updated;
@@ -46,7 +47,7 @@ void runConfig(const ConfigArgs& args, int& exit_code) {
     std::cout << args.readme << (updated == text.str() ? ": key tables up to date\n" : ": key tables written\n");
   }
   if (!args.check.empty()) {
-    config::loadSettings(args.check);
+    run::loadSettings(args.check);
     std::cout << args.check << ": ok\n";
   }
   exit_code = 0;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "amos/config/settings.h"
+#include "amos/run/settings_sections.h"
 #include "amos/report/mover_diagnosis.h"
 #include "commands.h"
 
@@ -37,7 +38,7 @@ void addDiagnoseMoversCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--summary", args->summary_only, "Print the per-instance summary only");
   cmd->callback([args, &exit_code] {
     args->options.per_frame = !args->summary_only;
-    report::diagnoseSequenceMovers(config::loadSettings(args->config), args->options, std::cout);
+    report::diagnoseSequenceMovers(run::loadSettings(args->config), args->options, std::cout);
     exit_code = 0;
   });
 }

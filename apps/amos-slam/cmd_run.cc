@@ -33,9 +33,10 @@
 #include <nlohmann/json.hpp>
 
 #include "amos/config/settings.h"
+#include "amos/run/settings_sections.h"
 #include "amos/config/settings_writer.h"
 #ifdef AMOS_HAVE_OPEN3D
-#include "amos/dense/dense_observer.h"
+#include "amos/run/dense_observer.h"
 #endif
 #include "amos/eval/jitter.h"
 #include "amos/core/error.h"
@@ -53,7 +54,8 @@ namespace {
 struct RunArgs {
   std::string sequence, config, output, mode = "full", models, camera, record;
   bool deterministic = false, save_masks = false, realtime = false, overwrite = false, strict = false;
-  bool dense = false;  // --dense
+  bool dense = false;             // --dense
+  bool fail_on_optional = false;  // --fail-on-optional
   std::size_t max_frames = 0, overlays = 8, progress_every = 100;
   std::size_t first_frame = 0;
   std::string load_map, save_map;  // --load-map / --save-map
@@ -79,9 +81,19 @@ std::string runOptionsJson(const RunArgs& a) {
 // disk stays valid (the per-frame files are flushed line by line, the others written whole and renamed).
 std::atomic<int> g_signal{0};
 sem_t g_signal_posted;
-char g_second_signal_line[1024] = {0};  // the line a second signal writes, made before the handler is installed
-std::size_t g_second_signal_length = 0;
+// The line a second signal writes: two buffers, the one in force named by g_second_signal_line, so that the line
+// can change (once the main outputs are written) while a handler may read the other one.
+char g_second_signal_lines[2][1024] = {{0}};
+std::size_t g_second_signal_lengths[2] = {0, 0};
+std::atomic<int> g_second_signal_line{0};
 static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
+
+void setSecondSignalLine(const std::string& line) {
+  const int next = 1 - g_second_signal_line.load();
+  g_second_signal_lengths[next] = std::min(line.size(), sizeof(g_second_signal_lines[next]));
+  std::copy_n(line.data(), g_second_signal_lengths[next], g_second_signal_lines[next]);
+  g_second_signal_line.store(next);
+}
 
 extern "C" void onStopSignal(int signal_number) {
   int none = 0;
@@ -89,7 +101,8 @@ extern "C" void onStopSignal(int signal_number) {
     sem_post(&g_signal_posted);
     return;
   }
-  const ssize_t written = write(STDERR_FILENO, g_second_signal_line, g_second_signal_length);
+  const int line = g_second_signal_line.load();
+  const ssize_t written = write(STDERR_FILENO, g_second_signal_lines[line], g_second_signal_lengths[line]);
   (void)written;
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
@@ -100,12 +113,10 @@ extern "C" void onStopSignal(int signal_number) {
 class StopSignals {
  public:
   explicit StopSignals(const std::string& output) {
-    const std::string line = fmt::format(
+    setSecondSignalLine(fmt::format(
         "amos-slam: second signal, ending at once; what is on disk in {} stays valid (trajectory_live.txt and "
         "frames.tsv hold every frame tracked so far)\n",
-        output);
-    g_second_signal_length = std::min(line.size(), sizeof(g_second_signal_line));
-    std::copy_n(line.data(), g_second_signal_length, g_second_signal_line);
+        output));
     g_signal.store(0);
     sem_init(&g_signal_posted, 0, 0);
     watcher_ = std::thread([this] {
@@ -262,7 +273,7 @@ std::vector<std::string> outputNames(const RunArgs& args) {
   if (args.save_masks) names.insert(names.end(), {"masks", "overlays"});
 #ifdef AMOS_HAVE_OPEN3D
   if (args.dense) {
-    for (const std::string& name : dense::DenseObserver::outputNames()) names.push_back(name);
+    for (const std::string& name : run::DenseObserver::outputNames()) names.push_back(name);
   }
 #endif
   for (const std::string& name : RunWatchers::outputNames()) names.push_back(name);
@@ -293,10 +304,58 @@ run::SequenceRunOptions sequenceRunOptions(const RunArgs& args) {
   return options;
 }
 
+// What a signal during the optional stages finds on disk, for the lines that answer it.
+std::string safeFiles(const RunArgs& args, bool map_saved) {
+  return fmt::format("trajectory.txt, keyframes.txt, map.ply, stats.json, settings_used.yaml{} in {}",
+                     map_saved ? " and the map file " + args.save_map : "", args.output);
+}
+
+#ifdef AMOS_HAVE_OPEN3D
+// The dense map's final fusion and files, once the main outputs are on disk. A first signal during it is answered at
+// once on stderr and stops the fusion; after a run a signal ended (a live session's Ctrl-C) the frames so far are
+// fused, and a second signal ends the program at once.
+report::OptionalStage denseStage(run::DenseObserver& dense, run::SequenceRunResult& result, StopSignals& signals,
+                                 const std::string& safe) {
+  std::atomic<bool> stop{false};
+  core::StopRequest::Subscription answer;
+  if (signals.received() == 0) {
+    answer = signals.request()->onStop([&stop, safe] {
+      std::fprintf(stderr, "amos-slam: interrupted during dense fusion: %s are written; stopping the fusion\n",
+                   safe.c_str());
+      stop = true;
+    });
+  }
+  spdlog::info("dense map: final fusion started; {} are written (a signal stops it)", safe);
+  return dense.finishMap(result.trajectory, result.info, &stop);
+}
+#endif
+
+// report.html, the last optional stage (nothing without the viewer module).
+void reportStage(RunWatchers& watchers, const RunArgs& args, report::RunInfo& info) {
+  if (RunWatchers::outputNames().empty()) return;
+  try {
+    watchers.writeReport(args.output, args.config, runOptionsJson(args));
+    info.optional_stages["report"] = {};
+  } catch (const std::exception& e) {
+    info.optional_stages["report"] = {report::OptionalStage::Status::kFailed, e.what()};
+  }
+}
+
+// The optional stages that did not end done, one line each (stdout, with the summary); a warning each too.
+std::vector<std::string> optionalStageProblems(const report::RunInfo& info) {
+  std::vector<std::string> problems;
+  for (const auto& [name, stage] : info.optional_stages) {
+    if (stage.status == report::OptionalStage::Status::kDone) continue;
+    problems.push_back(fmt::format("optional stage {}: {} ({})", name, report::toString(stage.status), stage.reason));
+    spdlog::warn("{}", problems.back());
+  }
+  return problems;
+}
+
 void runSlam(const RunArgs& args, int& exit_code) {
   core::require(!args.sequence.empty() || !args.camera.empty(),
                 "run: give --sequence DIR (a recorded sequence) or --camera openni2[:URI] (a live camera)");
-  const config::Settings settings = config::loadSettings(args.config);
+  const config::Settings settings = run::loadSettings(args.config);
   // Before anything else runs (models, the camera, the first frame): a wrong output path is found at once, the
   // input is never written, and the output folder is this run's until it ends.
   report::refuseInsideInput(args.record, "--record", args.sequence);
@@ -306,13 +365,13 @@ void runSlam(const RunArgs& args, int& exit_code) {
       report::prepareOutputFolder({args.output, args.overwrite, outputNames(args), args.sequence});
   RunWatchers watchers(args.viewer);
 #ifdef AMOS_HAVE_OPEN3D
-  std::unique_ptr<dense::DenseObserver> dense_map;
+  std::unique_ptr<run::DenseObserver> dense_map;
   if (args.dense) {
     // The live volume exists for the live view only; without --viewer the frames are kept and fused once, at the
     // end, with the final trajectory (the same final map), and tracking shares the cores with less.
-    dense::DenseOptions dense_options = settings.dense;
+    dense::DenseOptions dense_options = settings.section<dense::DenseOptions>();
     if (!args.viewer.enabled) dense_options.live_every = 0;
-    dense_map = std::make_unique<dense::DenseObserver>(dense_options, args.output,
+    dense_map = std::make_unique<run::DenseObserver>(dense_options, args.output,
                                                        liveCloudToViewer(watchers.denseCloudSink()));
   }
 #else
@@ -353,10 +412,11 @@ void runSlam(const RunArgs& args, int& exit_code) {
     throw;
   }
   if (line_open) std::fprintf(stderr, "\n");
-  const int signal_number = signals.received();
-  if (result.info.end.status == report::RunEnd::Status::kInterrupted) result.info.end.reason = signalName(signal_number);
-  // Every output is written whatever fails after the run: the map is saved right after the main files, and an
-  // error of the map or of report.html comes after the others are written.
+  if (result.info.end.status == report::RunEnd::Status::kInterrupted)
+    result.info.end.reason = signalName(signals.received());
+  // The main outputs first: trajectory, keyframes, map, stats, the saved map and the settings are on disk before
+  // any optional stage (the dense map's final fusion, report.html) starts, so neither a failure nor a kill during
+  // those loses them. An error of the saved map comes after the others are written.
   report::writeRunOutputs(args.output, result.slam(), result.info);
   std::string map_saved;
   std::exception_ptr map_error;
@@ -368,16 +428,31 @@ void runSlam(const RunArgs& args, int& exit_code) {
     }
   }
   writeSettingsUsed(settings, options, args);
-  try {
-    watchers.writeReport(args.output, args.config, runOptionsJson(args));
-  } catch (const std::exception& e) {
-    spdlog::warn("report.html not written: {}", e.what());
+  const std::string safe = safeFiles(args, !map_saved.empty());
+  setSecondSignalLine(fmt::format("amos-slam: second signal, ending at once; {} are written\n", safe));
+  const int signal_before_stages = signals.received();
+#ifdef AMOS_HAVE_OPEN3D
+  if (dense_map) {
+    result.info.optional_stages["dense"] = denseStage(*dense_map, result, signals, safe);
+    report::writeStatsJson(args.output, result.slam(), result.info);
   }
+#endif
+  if (signals.received() == signal_before_stages) {
+    reportStage(watchers, args, result.info);
+  } else if (!RunWatchers::outputNames().empty()) {
+    result.info.optional_stages["report"] = {report::OptionalStage::Status::kSkipped, "a signal stopped the run"};
+  }
+  if (!result.info.optional_stages.empty()) report::writeStatsJson(args.output, result.slam(), result.info);
   printSummary(result, args.output);
+  const std::vector<std::string> optional_problems = optionalStageProblems(result.info);
+  for (const std::string& line : optional_problems) std::cout << line << "\n";
   std::cout << map_saved << std::flush;  // now, not at exit: --viewer-hold may serve for hours with stdout in a file
   if (map_error) std::rethrow_exception(map_error);
-  if (signal_number == 0) watchers.holdIfAsked();
+  if (signals.received() == 0) watchers.holdIfAsked();
   result.rethrowFailure();  // main() reports it (stderr) and exits non-zero, after the outputs are written
+  const int signal_number = signals.received();
+  if (signal_number == 0 && args.fail_on_optional && !optional_problems.empty())
+    throw core::Error(fmt::format("--fail-on-optional: {}", fmt::join(optional_problems, "; ")));
   if (signal_number != 0) {
     spdlog::warn("run interrupted by {} after {} frames; the outputs in {} hold those frames",
                  signalName(signal_number), result.slam().stats().frames, args.output);
@@ -449,6 +524,10 @@ void addRunCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--dense", args->dense,
                 "Also fuse the static world into a dense map (the dynamic pixels left out) and write mesh.ply, "
                 "cloud.ply, removed_points.ply and occupancy.pgm/.yaml (Dense.* settings, docs/dense.md)");
+  cmd->add_flag("--fail-on-optional", args->fail_on_optional,
+                "Exit with status 1 when an optional stage after the main outputs fails (the dense map or one of its "
+                "files, report.html); by default such a failure is a warning in the summary and in stats.json "
+                "(optional_stages)");
   cmd->add_flag("--viewer", args->viewer.enabled,
                 "Serve a live view of the run (map, keyframes, trajectory, the frame with its dynamic mask, times) "
                 "on http://127.0.0.1:PORT/ while it goes; the address is printed on start");

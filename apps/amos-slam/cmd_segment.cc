@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "amos/config/settings.h"
+#include "amos/run/settings_sections.h"
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
 #include "amos/segmentation/segment_masks.h"
@@ -109,7 +110,7 @@ int runSegment(SegmentArgs args) {
                                        [](const std::string& c) { return c != "person"; });
   segmentation::ModelSources sources;
   sources.cli_dir = args.models;
-  if (!args.settings.empty()) sources.settings_dir = config::loadSettings(args.settings).segmentation.models_dir;
+  if (!args.settings.empty()) sources.settings_dir = run::loadSettings(args.settings).segmentation.models_dir;
   sources.environment = segmentation::processEnvironment();
 
   // Models are loaded and checked before any frame is read.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "amos/config/settings.h"
+#include "amos/run/settings_sections.h"
 #include "amos/core/stage_timer.h"
 #include "amos/feature/orb_extractor.h"
 #include "amos/io/dataset.h"
@@ -28,7 +29,7 @@ struct VocabArgs {
 };
 
 void trainVocabulary(const VocabArgs& args) {
-  const config::Settings settings = config::loadSettings(args.config);
+  const config::Settings settings = run::loadSettings(args.config);
   const feature::OrbExtractor extractor(settings.orb);
   std::vector<cv::Mat> images;
   std::size_t descriptors = 0;

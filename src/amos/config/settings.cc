@@ -5,7 +5,6 @@
 
 #include <cctype>
 
-#include "amos/config/dense_section.h"
 #include "amos/config/dynamic_section.h"
 #include "amos/config/slam_section.h"
 #include "amos/config/yaml_reader.h"
@@ -111,8 +110,8 @@ void checkByKey(const Settings& s, const std::vector<KeySection>& sections, cons
   }
 }
 
-Settings parse(YamlReader in) {
-  Settings s;
+Settings parse(YamlReader in, const SectionRegistry& added) {
+  Settings s = defaultSettings(added);
   s.source_file = in.path();
   const std::vector<KeySection> sections = settingsKeys(s);
   for (const auto& section : sections) {
@@ -140,32 +139,49 @@ std::vector<KeySection> settingsKeys(Settings& s) {
   sections.push_back(placeKeys(s));
   sections.push_back(dynamicKeys(s.dynamic));
   sections.push_back(segmentationKeys(s.segmentation));
-  sections.push_back(denseKeys(s.dense));
+  for (AddedSection& section : s.added) sections.push_back(section.keys());
   return sections;
 }
 
-std::string keysMarkdown() {
-  Settings defaults;
+Settings defaultSettings(const SectionRegistry& added) {
+  Settings s;
+  s.added = added.sections();
+  return s;
+}
+
+std::string keysMarkdown(const SectionRegistry& added) {
+  Settings defaults = defaultSettings(added);
   return keyTablesMarkdown(settingsKeys(defaults));
 }
 
-std::string withKeyTables(const std::string& readme) {
+std::string withKeyTables(const std::string& readme, const SectionRegistry& added) {
   const auto begin = readme.find(kTablesBegin), end = readme.find(kTablesEnd);
   core::require(begin != std::string::npos && end != std::string::npos && begin < end,
                 fmt::format("the settings README has no '{}' ... '{}' lines to put the key tables between",
                             kTablesBegin, kTablesEnd));
   const auto after_begin = readme.find('\n', begin) + 1;
-  return readme.substr(0, after_begin) + "\n" + keysMarkdown() + readme.substr(end);
+  return readme.substr(0, after_begin) + "\n" + keysMarkdown(added) + readme.substr(end);
 }
 
 void Settings::check() const {
   using core::option;
   camera.check();
-  core::requireOption(fps > 0, option(fps, "fps"), fmt::format("must be positive, got {}", fps));
-  core::requireOption(bf > 0, option(bf, "bf"), fmt::format("must be positive, got {}", bf));
-  core::requireOption(th_depth > 0, option(th_depth, "th_depth"), fmt::format("must be positive, got {}", th_depth));
-  core::requireOption(depth_factor > 0, option(depth_factor, "depth_factor"),
-                      fmt::format("must be positive, got {}", depth_factor));
+  // Bounds from the keys' meaning: a frame rate no camera exceeds; a virtual stereo baseline (bf / fx) of at most a
+  // metre; a close/far threshold inside any depth sensor's range (50 m); a depth unit that resolves a centimetre
+  // and lets 16 bits reach a metre.
+  core::requireOption(fps > 0 && fps <= 1000, option(fps, "fps"), fmt::format("must be in (0, 1000] Hz, got {}", fps));
+  core::requireOption(bf > 0 && bf <= camera.fx, option(bf, "bf"),
+                      fmt::format("must be in (0, camera.fx] (a baseline of at most 1 m), got {}", bf),
+                      {option(camera.fx, "camera.fx")});
+  core::requireOption(th_depth > 0 && closeDepthThreshold() <= 50, option(th_depth, "th_depth"),
+                      fmt::format("must be > 0 with th_depth x bf / camera.fx <= 50 m (the close/far threshold), got "
+                                  "{} ({:.1f} m)",
+                                  th_depth, closeDepthThreshold()),
+                      {option(bf, "bf"), option(camera.fx, "camera.fx")});
+  core::requireOption(depth_factor >= 100 && depth_factor <= 65535, option(depth_factor, "depth_factor"),
+                      fmt::format("must be in [100, 65535] (raw units per metre: a centimetre resolved, a metre "
+                                  "within 16 bits), got {}",
+                                  depth_factor));
   orb.check();
   tracking.check();
   mapping.check();
@@ -174,7 +190,7 @@ void Settings::check() const {
                       fmt::format("must be >= 1, got {}", covisibility.min_weight));
   dynamic.check();
   segmentation.check();
-  dense.check();
+  for (const AddedSection& section : added) section.check(section.options, camera);
 }
 
 io::ReaderOptions Settings::readerOptions() const {
@@ -185,10 +201,12 @@ io::ReaderOptions Settings::readerOptions() const {
   return o;
 }
 
-Settings loadSettings(const std::string& path) { return parse(YamlReader::fromFile(path)); }
+Settings loadSettings(const std::string& path, const SectionRegistry& added) {
+  return parse(YamlReader::fromFile(path), added);
+}
 
-Settings parseSettings(const std::string& yaml_text, const std::string& virtual_path) {
-  return parse(YamlReader::fromText(yaml_text, virtual_path));
+Settings parseSettings(const std::string& yaml_text, const std::string& virtual_path, const SectionRegistry& added) {
+  return parse(YamlReader::fromText(yaml_text, virtual_path), added);
 }
 
 }  // namespace amos::config

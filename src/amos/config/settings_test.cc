@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "amos/config/yaml_reader.h"
 #include "amos/core/error.h"
 
@@ -59,6 +63,19 @@ TEST(Settings, InvalidValueNamesFileLineAndKey) {
   const std::string orb = errorOf(std::string(kMinimal) + "ORBextractor.nFeatures: 0\n");
   EXPECT_NE(orb.find("ORBextractor.nFeatures"), std::string::npos) << orb;
   EXPECT_NE(orb.find("test.yaml:6"), std::string::npos) << orb;
+}
+
+TEST(Settings, TheCameraKeysHaveTheBoundsTheirMeaningGives) {
+  for (const auto& [line, key] : std::vector<std::pair<std::string, std::string>>{
+           {"Camera.fps: 100000\n", "Camera.fps"},
+           {"Camera.bf: 5000\n", "Camera.bf"},  // a 10 m baseline at fx 500
+           {"ThDepth: 100000\n", "ThDepth"},
+           {"DepthMapFactor: 1\n", "DepthMapFactor"},
+           {"DepthMapFactor: 100000\n", "DepthMapFactor"}}) {
+    const std::string e = errorOf(std::string(kMinimal) + line);
+    EXPECT_NE(e.find("test.yaml:6: " + key), std::string::npos) << line << e;
+  }
+  EXPECT_EQ(errorOf(std::string(kMinimal) + "Camera.fps: 60\nCamera.bf: 40\nThDepth: 40\nDepthMapFactor: 1000\n"), "");
 }
 
 TEST(Settings, MissingRequiredKeyIsAnError) {

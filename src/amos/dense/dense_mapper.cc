@@ -13,6 +13,7 @@
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
 #include "amos/core/thread_priority.h"
+#include "amos/dense/open3d_geometry.h"
 #include "amos/dense/tsdf_volume.h"
 
 namespace amos::dense {
@@ -21,8 +22,8 @@ namespace {
 
 using core::threadCpuMs;  // what fusion costs the machine, whatever else runs beside it
 
-const DenseOptions& checked(const DenseOptions& options) {
-  options.check();
+const DenseOptions& checked(const DenseOptions& options, const core::CameraIntrinsics& camera) {
+  options.checkFor(camera);
   return options;
 }
 
@@ -64,6 +65,25 @@ const core::SE3* poseAt(const std::map<double, core::SE3>& poses, double stamp) 
   return &it->second;
 }
 
+LiveCloud downsampledLiveCloud(const open3d::geometry::PointCloud& surface, double voxel) {
+  const auto cloud = surface.VoxelDownSample(voxel);
+  LiveCloud out;
+  out.points.reserve(cloud->points_.size());
+  out.colours.reserve(cloud->points_.size());
+  for (std::size_t i = 0; i < cloud->points_.size(); ++i) {
+    out.points.push_back(cloud->points_[i].cast<float>());
+    const Eigen::Vector3d c = cloud->HasColors() ? cloud->colors_[i] : Eigen::Vector3d(0.5, 0.5, 0.5);
+    out.colours.push_back({static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.x(), 0.0, 1.0))),
+                           static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.y(), 0.0, 1.0))),
+                           static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.z(), 0.0, 1.0)))});
+  }
+  return out;
+}
+
+void stopIfAsked(const std::atomic<bool>* stop) {
+  if (stop != nullptr && stop->load()) throw FusionStopped();
+}
+
 nlohmann::json floorJson(const FloorPlane& floor) {
   return {{"normal", {floor.normal.x(), floor.normal.y(), floor.normal.z()}},
           {"offset", floor.offset},
@@ -84,7 +104,7 @@ struct DenseMapper::LiveStats {
 
 DenseMapper::DenseMapper(const DenseOptions& options, const core::CameraIntrinsics& camera,
                          LiveCloudCallback on_live_cloud)
-    : options_(checked(options)),
+    : options_(checked(options, camera)),
       preparer_(camera, options),
       on_live_cloud_(std::move(on_live_cloud)),
       live_(options.live_every > 0 ? std::make_unique<TsdfVolume>(options) : nullptr),
@@ -136,31 +156,28 @@ void DenseMapper::process(const DenseFrame& frame) {
   live_stats_->thread_cpu_ms.push_back(threadCpuMs() - start);
 }
 
-LiveCloud liveCloudOf(const open3d::geometry::PointCloud& surface, double voxel) {
-  const auto cloud = surface.VoxelDownSample(voxel);
-  LiveCloud out;
-  out.points.reserve(cloud->points_.size());
-  out.colours.reserve(cloud->points_.size());
-  for (std::size_t i = 0; i < cloud->points_.size(); ++i) {
-    out.points.push_back(cloud->points_[i].cast<float>());
-    const Eigen::Vector3d c = cloud->HasColors() ? cloud->colors_[i] : Eigen::Vector3d(0.5, 0.5, 0.5);
-    out.colours.push_back({static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.x(), 0.0, 1.0))),
-                           static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.y(), 0.0, 1.0))),
-                           static_cast<std::uint8_t>(std::lround(255 * std::clamp(c.z(), 0.0, 1.0)))});
-  }
-  return out;
+LiveCloud liveCloudOf(const DenseCloud& surface, double voxel) {
+  return downsampledLiveCloud(open3dCloud(surface), voxel);
+}
+
+std::shared_ptr<const LiveCloud> DenseMapper::liveSnapshot() const {
+  std::lock_guard<std::mutex> lock(snapshot_mutex_);
+  return snapshot_;
 }
 
 void DenseMapper::publishLiveCloud() {
-  if (!on_live_cloud_) return;
   const auto now = std::chrono::steady_clock::now();
   if (live_stats_->live_fused > 1 && now - live_stats_->last_cloud < std::chrono::duration<double>(options_.live_period_s))
     return;
   live_stats_->last_cloud = now;
   const double start = threadCpuMs();
-  LiveCloud out = liveCloudOf(*live_->extractCloud(), options_.live_cloud_voxel);
-  out.frames_fused = live_stats_->live_fused;
-  on_live_cloud_(out);
+  auto out = std::make_shared<LiveCloud>(downsampledLiveCloud(*live_->extractCloud(), options_.live_cloud_voxel));
+  out->frames_fused = live_stats_->live_fused;
+  {
+    std::lock_guard<std::mutex> lock(snapshot_mutex_);
+    snapshot_ = out;
+  }
+  if (on_live_cloud_) on_live_cloud_(*out);
   live_stats_->live_cloud_ms.push_back(threadCpuMs() - start);
 }
 
@@ -170,7 +187,14 @@ void DenseMapper::finish() {
   if (failure_) std::rethrow_exception(failure_);
 }
 
-DenseMap DenseMapper::fuseFinal(const std::vector<io::StampedPose>& trajectory) const {
+DenseMap DenseMapper::fuseFinal(const std::atomic<bool>* stop) const {
+  std::vector<io::StampedPose> as_pushed;
+  as_pushed.reserve(kept_.size());
+  for (const StoredFrame& frame : kept_) as_pushed.push_back({frame.timestamp, frame.T_cw.inverse()});
+  return fuseFinal(as_pushed, stop);
+}
+
+DenseMap DenseMapper::fuseFinal(const std::vector<io::StampedPose>& trajectory, const std::atomic<bool>* stop) const {
   core::require(!thread_.joinable(), "DenseMapper::fuseFinal before finish()");
   // In a thread of its own with serial OpenMP (tsdf_volume.h): Open3D's spinning OpenMP threads made the final
   // fusion slower on two cores than one thread is (Bonn-like synthetic run on a loaded machine: 42 ms median,
@@ -180,7 +204,7 @@ DenseMap DenseMapper::fuseFinal(const std::vector<io::StampedPose>& trajectory) 
   std::thread worker([&] {
     try {
       serialOpenMpInThisThread();
-      map = fuseFinalHere(trajectory);
+      map = fuseFinalHere(trajectory, stop);
     } catch (...) {
       failure = std::current_exception();
     }
@@ -190,45 +214,52 @@ DenseMap DenseMapper::fuseFinal(const std::vector<io::StampedPose>& trajectory) 
   return map;
 }
 
-DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajectory) const {
+DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajectory,
+                                    const std::atomic<bool>* stop) const {
   core::Stopwatch total;
   const std::map<double, core::SE3> poses = posesByStamp(trajectory);
   const core::CameraIntrinsics& camera = preparer_.intrinsics();
   TsdfVolume volume(options_);
   DenseMap map;
-  map.removed = std::make_shared<open3d::geometry::PointCloud>();
+  auto removed = std::make_shared<open3d::geometry::PointCloud>();
   std::vector<double> integrate_ms;
   std::vector<Eigen::Vector3d> centres, down_axes, forward_axes;
   for (const StoredFrame& stored : kept_) {
+    stopIfAsked(stop);
     const core::SE3* T_wc = poseAt(poses, stored.timestamp);
     if (T_wc == nullptr) continue;  // not in the final trajectory
     const PreparedFrame frame = decompressFrame(stored);
     core::Stopwatch watch;
     volume.integrate(frame.depth, frame.bgr, camera, T_wc->inverse());
     integrate_ms.push_back(watch.elapsedMs());
-    addRemovedPoints(frame, camera, *T_wc, 2, *map.removed);
-    if (map.removed->points_.size() > 2'000'000) map.removed = map.removed->VoxelDownSample(options_.voxel_size);
+    addRemovedPoints(frame, camera, *T_wc, 2, *removed);
+    if (removed->points_.size() > 2'000'000) removed = removed->VoxelDownSample(options_.voxel_size);
     centres.push_back(T_wc->translation());
     down_axes.push_back(T_wc->linear().col(1));
     forward_axes.push_back(T_wc->linear().col(2));
   }
-  map.removed = map.removed->VoxelDownSample(options_.voxel_size);
+  map.removed = plainCloud(*removed->VoxelDownSample(options_.voxel_size));
+  stopIfAsked(stop);
   core::Stopwatch watch;
-  map.mesh = volume.extractMesh();
+  map.mesh = plainMesh(*volume.extractMesh());  // colours clamped to bytes: the TSDF's averages can step past 1
   const double mesh_ms = watch.elapsedMs();
+  stopIfAsked(stop);
   watch.restart();
-  map.cloud = volume.extractCloud();
+  map.cloud = plainCloud(*volume.extractCloud());
   const double cloud_ms = watch.elapsedMs();
-  // The TSDF's colour averages can step past 1 by rounding; PLY stores bytes.
-  for (auto* colours : {&map.mesh->vertex_colors_, &map.cloud->colors_}) {
-    for (auto& c : *colours) c = c.cwiseMax(0.0).cwiseMin(1.0);
-  }
+  stopIfAsked(stop);
   watch.restart();
-  map.floor = findFloor(map.cloud->points_, centres, down_axes);
-  if (map.floor) {
-    Eigen::Vector3d forward = Eigen::Vector3d::Zero();
-    for (const auto& f : forward_axes) forward += f;
-    map.grid = buildOccupancyGrid(map.cloud->points_, *map.floor, centres.front(), forward, options_);
+  // The floor plan is one product among four: when it fails, the mesh and the clouds are still the map's.
+  try {
+    map.floor = findFloor(map.cloud.points, centres, down_axes);
+    if (map.floor) {
+      Eigen::Vector3d forward = Eigen::Vector3d::Zero();
+      for (const auto& f : forward_axes) forward += f;
+      map.grid = buildOccupancyGrid(map.cloud.points, *map.floor, centres.front(), forward, options_);
+    }
+  } catch (const std::exception& e) {
+    map.grid.reset();
+    map.floor_plan_error = e.what();
   }
   const double floor_ms = watch.elapsedMs();
   const LiveStats& live = *live_stats_;
@@ -247,16 +278,17 @@ DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajecto
   s["blocks"] = volume.blocks();
   s["voxels"] = volume.voxels();
   s["volume_mb"] = static_cast<double>(volume.bytes()) / 1e6;
-  s["mesh"] = {{"vertices", map.mesh->vertices_.size()}, {"triangles", map.mesh->triangles_.size()},
+  s["mesh"] = {{"vertices", map.mesh.vertices.size()}, {"triangles", map.mesh.triangles.size()},
                {"extraction_ms", mesh_ms}};
-  s["cloud"] = {{"points", map.cloud->points_.size()}, {"extraction_ms", cloud_ms}};
-  s["removed_points"] = map.removed->points_.size();
+  s["cloud"] = {{"points", map.cloud.points.size()}, {"extraction_ms", cloud_ms}};
+  s["removed_points"] = map.removed.points.size();
   s["floor"] = map.floor ? floorJson(*map.floor) : nlohmann::json(nullptr);
   if (map.grid) {
-    s["occupancy"] = {{"width", map.grid->cells.cols}, {"height", map.grid->cells.rows},
+    s["occupancy"] = {{"width", map.grid->width}, {"height", map.grid->height},
                       {"resolution_m", map.grid->resolution}, {"free", map.grid->count(kFreeCell)},
                       {"occupied", map.grid->count(kOccupiedCell)}, {"unknown", map.grid->count(kUnknownCell)}};
   }
+  if (!map.floor_plan_error.empty()) s["floor_plan_error"] = map.floor_plan_error;
   s["floor_and_grid_ms"] = floor_ms;
   s["final_s"] = total.elapsedMs() / 1000.0;
   return map;

@@ -17,35 +17,40 @@
 // and counted. The fusion thread (nice +5, OpenMP regions serial: tsdf_volume.h) prepares each frame
 // (frame_preparation.h), compresses it into the store and, every Dense.liveEvery-th, fuses it into the live
 // volume; at most every Dense.livePeriod seconds it hands a downsampled coloured cloud of the live volume to the
-// callback (in the fusion thread). finish() drains the queue and joins the thread; fuseFinal() then runs in a
-// thread of its own (serial OpenMP as well) while the caller waits.
+// callback (in the fusion thread) and keeps it as the latest snapshot (liveSnapshot(), any thread). finish() drains
+// the queue and joins the thread; fuseFinal() then runs in a thread of its own (serial OpenMP as well) while the
+// caller waits, and gives the map as plain data (dense_map.h); dense_map_files.h writes it.
+//
+// Without the run loop (a program driving it itself):
+//   DenseMapper mapper(options, camera);             // options.live_every > 0 for live snapshots
+//   mapper.push({stamp, T_cw, {depth, bgr, dynamic_mask}});   // per tracked frame; never waits
+//   mapper.liveSnapshot();                            // the live volume's surface so far, or nullptr
+//   mapper.finish();
+//   DenseMap map = mapper.fuseFinal();                // with the poses as pushed (or fuseFinal(final trajectory))
+//   writeMeshPly("mesh.ply", map.mesh);  if (map.grid) writeFloorPlan("floor.yaml", *map.grid, *map.floor);
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <functional>
 #include <memory>
-#include <optional>
+#include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include "amos/core/bounded_queue.h"
 #include "amos/core/camera.h"
 #include "amos/core/pose.h"
+#include "amos/dense/dense_map.h"
 #include "amos/dense/dense_options.h"
-#include "amos/dense/floor_plane.h"
 #include "amos/dense/frame_preparation.h"
 #include "amos/dense/frame_store.h"
-#include "amos/dense/occupancy_grid.h"
 #include "amos/io/trajectory.h"
 
-namespace open3d::geometry {
-class PointCloud;
-class TriangleMesh;
-}  // namespace open3d::geometry
 
 namespace amos::dense {
 
@@ -65,15 +70,11 @@ struct LiveCloud {
 };
 using LiveCloudCallback = std::function<void(const LiveCloud&)>;
 // A surface cloud downsampled to `voxel` (m), colours as bytes: what the viewer is handed.
-LiveCloud liveCloudOf(const open3d::geometry::PointCloud& surface, double voxel);
+LiveCloud liveCloudOf(const DenseCloud& surface, double voxel);
 
-struct DenseMap {
-  std::shared_ptr<open3d::geometry::TriangleMesh> mesh;  // coloured, world frame of the final trajectory
-  std::shared_ptr<open3d::geometry::PointCloud> cloud;   // the surface's points, coloured
-  std::shared_ptr<open3d::geometry::PointCloud> removed; // the dynamic readings left out, voxel-downsampled
-  std::optional<FloorPlane> floor;
-  std::optional<OccupancyGrid> grid;  // when a floor was found
-  nlohmann::json stats;               // stats.json's "dense" section
+// Thrown by fuseFinal when its stop flag was set: the final fusion was abandoned.
+struct FusionStopped : std::runtime_error {
+  FusionStopped() : std::runtime_error("the final dense fusion was stopped") {}
 };
 
 class DenseMapper {
@@ -87,15 +88,21 @@ class DenseMapper {
   bool push(DenseFrame frame);
   // Fuses what is queued and stops the fusion thread; rethrows its error.
   void finish();
-  // The final map from every kept frame whose time stamp the trajectory (T_wc) holds. After finish().
-  DenseMap fuseFinal(const std::vector<io::StampedPose>& trajectory) const;
+  // The final map from every kept frame whose time stamp the trajectory (T_wc) holds. After finish(). When `stop`
+  // is given and becomes true, the fusion ends at the next frame or stage and throws FusionStopped.
+  DenseMap fuseFinal(const std::vector<io::StampedPose>& trajectory, const std::atomic<bool>* stop = nullptr) const;
+  // The same with the poses the frames were pushed with.
+  DenseMap fuseFinal(const std::atomic<bool>* stop = nullptr) const;
+  // The latest surface of the live volume (what the callback was last handed), or nullptr before the first one or
+  // without a live volume (Dense.liveEvery 0). Any thread.
+  std::shared_ptr<const LiveCloud> liveSnapshot() const;
 
  private:
   struct LiveStats;
   void fusionLoop();
   void process(const DenseFrame& frame);
   void publishLiveCloud();
-  DenseMap fuseFinalHere(const std::vector<io::StampedPose>& trajectory) const;
+  DenseMap fuseFinalHere(const std::vector<io::StampedPose>& trajectory, const std::atomic<bool>* stop) const;
 
   DenseOptions options_;
   FramePreparer preparer_;
@@ -105,6 +112,8 @@ class DenseMapper {
   std::unique_ptr<LiveStats> live_stats_;
   std::size_t pushed_ = 0, dropped_ = 0;  // run's thread
   std::exception_ptr failure_;
+  mutable std::mutex snapshot_mutex_;
+  std::shared_ptr<const LiveCloud> snapshot_;
   core::BoundedQueue<DenseFrame> queue_;
   std::thread thread_;  // last: started once the rest exists
 };

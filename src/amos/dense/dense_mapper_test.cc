@@ -11,6 +11,7 @@
 #include <open3d/geometry/TriangleMesh.h>
 
 #include "amos/core/stage_timer.h"
+#include "amos/core/option_error.h"
 #include "amos/dense/test_room.h"
 
 namespace amos::dense {
@@ -64,7 +65,7 @@ DenseMap fuse(const Sweep& sweep, const DenseOptions& options, LiveCloudCallback
 
 std::vector<double> distancesToStatic(const DenseMap& map, const std::vector<Box>& boxes) {
   std::vector<double> out;
-  for (const auto& v : map.mesh->vertices_) out.push_back(testing::distanceToStatic(v, boxes));
+  for (const auto& v : map.mesh.vertices) out.push_back(testing::distanceToStatic(v, boxes));
   return out;
 }
 
@@ -75,15 +76,15 @@ std::size_t ghosts(const std::vector<double>& distances, double tolerance) {
 TEST(DenseMapper, FusesAKnownRoomWithinAVoxel) {
   const DenseOptions o = roomOptions();
   const DenseMap map = fuse({}, o);
-  ASSERT_GT(map.mesh->vertices_.size(), 5000u);
+  ASSERT_GT(map.mesh.vertices.size(), 5000u);
   const std::vector<double> d = distancesToStatic(map, {});
   EXPECT_LT(core::percentile(d, 0.5), 0.3 * o.voxel_size);
   EXPECT_LT(core::percentile(d, 0.95), 1.0 * o.voxel_size);
   EXPECT_EQ(map.stats["frames_fused"].get<int>(), 24);
   EXPECT_EQ(map.stats["frames_dropped"].get<int>(), 0);
-  EXPECT_TRUE(map.mesh->HasVertexColors());
-  EXPECT_GT(map.cloud->points_.size(), 1000u);
-  EXPECT_TRUE(map.removed->points_.empty());  // nothing was marked dynamic
+  EXPECT_EQ(map.mesh.colours.size(), map.mesh.vertices.size());
+  EXPECT_GT(map.cloud.points.size(), 1000u);
+  EXPECT_TRUE(map.removed.points.empty());  // nothing was marked dynamic
 }
 
 TEST(DenseMapper, FindsTheFloorOfTheRoom) {
@@ -109,8 +110,8 @@ TEST(DenseMapper, AMaskedMoverLeavesNoSurfaceAndAnUnmaskedOneAGhost) {
   const std::size_t ghosts_unmasked = ghosts(distancesToStatic(smeared, {}), tolerance);
   EXPECT_GT(ghosts_unmasked, 500u);
   EXPECT_LT(ghosts_masked, ghosts_unmasked / 100 + 5);
-  EXPECT_GT(clean.removed->points_.size(), 100u);  // what was left out, back-projected
-  EXPECT_TRUE(smeared.removed->points_.empty());
+  EXPECT_GT(clean.removed.points.size(), 100u);  // what was left out, back-projected
+  EXPECT_TRUE(smeared.removed.points.empty());
 }
 
 TEST(DenseMapper, UsesTheFinalTrajectoryNotTheTrackedPoses) {
@@ -142,6 +143,36 @@ TEST(DenseMapper, HandsLiveCloudsToItsCallback) {
   });
   EXPECT_GT(calls.load(), 0);
   EXPECT_GT(points.load(), 100u);
+}
+
+TEST(DenseMapper, WithoutATrajectoryFusesThePosesAsPushedAndKeepsALiveSnapshot) {
+  const DenseOptions o = roomOptions();
+  const core::CameraIntrinsics k = testing::roomCamera();
+  DenseMapper mapper(o, k);  // no callback: the snapshot is there all the same
+  EXPECT_EQ(mapper.liveSnapshot(), nullptr);
+  for (int i = 0; i < 12; ++i) {
+    const core::SE3 T_wc = testing::cameraPose({0, 0, 1.3}, 2 * M_PI * i / 12, -0.35);
+    const testing::RoomFrame f = testing::renderRoom(k, T_wc, {});
+    mapper.push({double(i), T_wc.inverse(), {f.depth, f.bgr, f.mask}});
+  }
+  mapper.finish();
+  const auto snapshot = mapper.liveSnapshot();
+  ASSERT_NE(snapshot, nullptr);
+  EXPECT_GT(snapshot->points.size(), 100u);
+  const DenseMap map = mapper.fuseFinal();
+  EXPECT_EQ(map.stats["frames_fused"].get<int>(), 12);
+  EXPECT_LT(core::percentile(distancesToStatic(map, {}), 0.5), 0.3 * o.voxel_size);
+}
+
+TEST(DenseMapper, AStopFlagAbandonsTheFinalFusion) {
+  const core::CameraIntrinsics k = testing::roomCamera();
+  DenseMapper mapper(roomOptions(), k);
+  const core::SE3 T_wc = testing::cameraPose({0, 0, 1.3}, 0, -0.35);
+  const testing::RoomFrame f = testing::renderRoom(k, T_wc, {});
+  mapper.push({0.0, T_wc.inverse(), {f.depth, f.bgr, f.mask}});
+  mapper.finish();
+  const std::atomic<bool> stop{true};
+  EXPECT_THROW(mapper.fuseFinal(&stop), FusionStopped);
 }
 
 TEST(DenseMapper, KeepsEveryFrameStepthFrame) {

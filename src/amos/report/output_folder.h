@@ -19,7 +19,7 @@ namespace amos::report {
 // Everything a run may leave in its output folder (run_report.h, mask_outputs.h, run/live_log.h): trajectory.txt,
 // keyframes.txt, map.ply, stats.json, settings_used.yaml (config/settings_writer.h), trajectory_live.txt,
 // frames.tsv, masks/, overlays/, report.html (viewer/report_html.h), and with --dense mesh.ply, cloud.ply,
-// removed_points.ply, occupancy.pgm, occupancy.yaml (dense/dense_outputs.h).
+// removed_points.ply, occupancy.pgm, occupancy.yaml (run/dense_observer.h).
 const std::vector<std::string>& runOutputNames();
 
 inline constexpr const char* kManifestFile = "run_manifest.json";

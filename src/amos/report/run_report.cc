@@ -21,6 +21,16 @@ const char* toString(RunEnd::Status status) {
   return "?";
 }
 
+const char* toString(OptionalStage::Status status) {
+  switch (status) {
+    case OptionalStage::Status::kDone: return "done";
+    case OptionalStage::Status::kFailed: return "failed";
+    case OptionalStage::Status::kInterrupted: return "interrupted";
+    case OptionalStage::Status::kSkipped: return "skipped";
+  }
+  return "?";
+}
+
 nlohmann::json toJson(const SourceReport& source) {
   nlohmann::json j = {{"kind", source.kind},
                       {"delivered", source.delivered},
@@ -84,6 +94,12 @@ nlohmann::json statsJson(const system::SlamStats& s, const core::StageTimes& tim
                                       {"per_frame", info.removed_fractions}};
   }
   for (const auto& [name, section] : info.sections.items()) j[name] = section;
+  if (!info.optional_stages.empty()) {
+    nlohmann::json stages_json = nlohmann::json::object();
+    for (const auto& [name, stage] : info.optional_stages)
+      stages_json[name] = {{"status", toString(stage.status)}, {"reason", stage.reason}};
+    j["optional_stages"] = stages_json;
+  }
   j["wall_time_s"] = info.wall_time_s;
   j["fps"] = info.wall_time_s > 0 ? static_cast<double>(s.frames) / info.wall_time_s : 0.0;
   if (info.mask_outputs_s > 0) j["mask_outputs_s"] = info.mask_outputs_s;
@@ -120,7 +136,12 @@ void writeRunOutputs(const std::string& dir, const system::SlamSystem& slam, con
   io::writeTumTrajectory((d / "trajectory.txt").string(), slam.trajectory());
   io::writeTumTrajectory((d / "keyframes.txt").string(), slam.keyframeTrajectory());
   writeMapPly((d / "map.ply").string(), slam.mapPointPositions());
-  io::writeFileAtomically((d / "stats.json").string(), statsJson(slam.stats(), slam.times(), info).dump(2) + "\n");
+  writeStatsJson(dir, slam, info);
+}
+
+void writeStatsJson(const std::string& dir, const system::SlamSystem& slam, const RunInfo& info) {
+  io::writeFileAtomically((std::filesystem::path(dir) / "stats.json").string(),
+                          statsJson(slam.stats(), slam.times(), info).dump(2) + "\n");
 }
 
 }  // namespace amos::report

@@ -9,11 +9,14 @@
 //                   frames delivered / processed / dropped, latency from a frame's arrival to its pose), how its
 //                   association file paired RGB and depth ("association": rows, rows_beyond_window, duplicate_rows), the frames
 //                   skipped as unreadable by reason ("skipped_frames") and the depth dropouts, and how the run
-//                   ended ("end": status complete | interrupted | failed, reason)
-// Each file is written under a temporary name and renamed (io/atomic_file.h): a killed run never leaves a
+//                   ended ("end": status complete | interrupted | failed, reason), and how each optional stage
+//                   after it went ("optional_stages": name -> status done | failed | interrupted | skipped, reason)
+// The main files are written before any optional stage (the dense map's final fusion, report.html) starts;
+// stats.json is written again after each such stage. Each file is written under a temporary name and renamed (io/atomic_file.h): a killed run never leaves a
 // half-written one.
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -56,6 +59,16 @@ struct RunEnd {
 // "complete" | "interrupted" | "failed"
 const char* toString(RunEnd::Status status);
 
+// A stage after the main outputs are written, which the run's result does not depend on: the dense map's final
+// fusion and files, report.html. Its failure is a warning in the summary and in stats.json, not the run's.
+struct OptionalStage {
+  enum class Status { kDone, kFailed, kInterrupted, kSkipped };
+  Status status = Status::kDone;
+  std::string reason;  // why it failed, was interrupted or skipped; empty when done
+};
+// "done" | "failed" | "interrupted" | "skipped"
+const char* toString(OptionalStage::Status status);
+
 struct RunInfo {
   std::string sequence, config, mode;
   bool deterministic = false;
@@ -80,8 +93,10 @@ struct RunInfo {
   io::SkippedFrames skipped_frames;    // frames the source could not read, by reason
   DepthDropouts depth_dropouts;
   RunEnd end;
-  // More sections of stats.json, by name, from the run's observers (e.g. "dense": dense/dense_observer.h).
+  // More sections of stats.json, by name, from the run's observers (e.g. "dense": run/dense_observer.h).
   nlohmann::json sections = nlohmann::json::object();
+  // The optional stages that ran or were meant to, by name ("dense", "report"), in stats.json's "optional_stages".
+  std::map<std::string, OptionalStage> optional_stages;
 };
 
 nlohmann::json toJson(const SourceReport& source);
@@ -92,5 +107,7 @@ nlohmann::json statsJson(const system::SlamStats& stats, const core::StageTimes&
 void writeMapPly(const std::string& path, const std::vector<Eigen::Vector3d>& points);
 // Creates `dir` if needed; throws core::Error naming the file that cannot be written.
 void writeRunOutputs(const std::string& dir, const system::SlamSystem& slam, const RunInfo& info);
+// stats.json alone (again, after an optional stage); throws core::Error naming it when it cannot be written.
+void writeStatsJson(const std::string& dir, const system::SlamSystem& slam, const RunInfo& info);
 
 }  // namespace amos::report

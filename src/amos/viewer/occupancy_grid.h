@@ -1,7 +1,8 @@
 #pragma once
 // The 2D occupancy grid of `run --dense` as report.html shows it: occupancy.yaml + occupancy.pgm in the format of
 // the ROS map_server / Nav2 (yaml keys image, resolution, origin [x, y, yaw], negate, occupied_thresh,
-// free_thresh; a P5 PGM, 254 free, 0 occupied, 205 unknown, row 0 at the top = the largest y).
+// free_thresh; a P5 PGM, 254 free, 0 occupied, 205 unknown, row 0 at the top = the largest y), read by
+// io/occupancy_grid_file.h.
 #include <nlohmann/json.hpp>
 
 #include <opencv2/core.hpp>

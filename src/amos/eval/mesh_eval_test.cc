@@ -1,10 +1,15 @@
-#include "amos/dense/mesh_eval.h"
+#include "amos/eval/mesh_eval.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
+#include <filesystem>
+#include <fstream>
 
-namespace amos::dense {
+#include "amos/core/error.h"
+
+namespace amos::eval {
 namespace {
 
 std::vector<Eigen::Vector3d> plane(double z, double step) {
@@ -86,5 +91,21 @@ TEST(MeshEval, AlignsAStillCameraByItsPoses) {
   EXPECT_TRUE(alignByPoses(gt, est).isApprox(T_gt_est, 1e-9));
 }
 
+TEST(MeshEval, AMeshWithAVertexThatIsNotFiniteIsAnErrorNamingTheFile) {
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("amos_nan_mesh_" + std::to_string(::getpid()) + ".ply");
+  std::ofstream(file) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                         "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                         "0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n";
+  try {
+    readMeshVertices(file.string());
+    ADD_FAILURE() << "read a mesh with a NaN vertex";
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string() + ": vertex 1 of 3 is not finite"), std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(file);
+}
+
 }  // namespace
-}  // namespace amos::dense
+}  // namespace amos::eval

@@ -27,7 +27,7 @@
 #include "amos/io/trajectory.h"
 #include "amos/synth/swept_volume.h"
 
-namespace amos::dense {
+namespace amos::eval {
 
 struct MeshScore {
   std::size_t vertices = 0, truth_points = 0;
@@ -50,6 +50,10 @@ core::SE3 alignByPoses(const std::vector<io::StampedPose>& gt, const std::vector
 MeshScore scoreMesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3d>& truth,
                     const synth::SweptVolume& swept, double tolerance, double sweep_margin);
 
+// The vertices of a mesh PLY. Throws core::Error naming the file when it cannot be read, and the first vertex that
+// is not finite: such a file is damaged (a dense map never has one), and scoring the rest would hide it.
+std::vector<Eigen::Vector3d> readMeshVertices(const std::string& path);
+
 struct MeshEvalRequest {
   std::string mesh;        // mesh.ply (or any PLY with vertices) of a run
   std::string sequence;    // the synthetic sequence folder: static_surface.ply, swept_volume.ply, groundtruth.txt
@@ -71,4 +75,4 @@ nlohmann::json toJson(const MeshScore& score);
 // Writes points as a PLY point cloud (eval-mesh --ghosts). Throws core::Error naming the file.
 void writePointsPly(const std::string& path, const std::vector<Eigen::Vector3d>& points);
 
-}  // namespace amos::dense
+}  // namespace amos::eval

@@ -1,9 +1,13 @@
-#include "amos/config/dense_section.h"
+#pragma once
+// The Dense.* keys: the settings name and meaning of each member of DenseOptions, for a key list that has
+// add(name, &member, meaning) (config::KeySection; run/settings_sections.h registers the section). Written against
+// that one call so that the dense module, which stands below config, need not include it.
+#include "amos/dense/dense_options.h"
 
-namespace amos::config {
+namespace amos::dense {
 
-KeySection denseKeys(dense::DenseOptions& o) {
-  KeySection s{"Dense static map (run --dense)"};
+template <typename KeyList>
+void listDenseKeys(DenseOptions& o, KeyList& s) {
   s.add("Dense.voxelSize", &o.voxel_size, "edge of a TSDF voxel (m); about 2 sigma of the depth noise at 3 m");
   s.add("Dense.truncation", &o.truncation,
         "half-width of the signed-distance band (m), at least 2 voxels; 3 sigma of the depth noise at maxDepth");
@@ -26,7 +30,6 @@ KeySection denseKeys(dense::DenseOptions& o) {
   s.add("Dense.gridMinHeight", &o.grid_min_height,
         "surface higher than this above the floor (m) marks a cell occupied ...");
   s.add("Dense.gridMaxHeight", &o.grid_max_height, "... up to this height (m)");
-  return s;
 }
 
-}  // namespace amos::config
+}  // namespace amos::dense

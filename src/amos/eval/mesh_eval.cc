@@ -1,4 +1,4 @@
-#include "amos/dense/mesh_eval.h"
+#include "amos/eval/mesh_eval.h"
 
 #include <fmt/format.h>
 
@@ -19,7 +19,7 @@
 #include "amos/io/trajectory.h"
 #include "amos/synth/static_surface.h"
 
-namespace amos::dense {
+namespace amos::eval {
 
 namespace fs = std::filesystem;
 
@@ -43,8 +43,8 @@ std::vector<double> nearestDistances(const std::vector<Eigen::Vector3d>& queries
 }  // namespace
 
 core::SE3 alignByPoses(const std::vector<io::StampedPose>& gt, const std::vector<io::StampedPose>& est) {
-  const auto g = eval::sortedUniqueByTimestamp(gt), e = eval::sortedUniqueByTimestamp(est);
-  const auto pairs = eval::associate(eval::timestampsOf(g), eval::timestampsOf(e));
+  const auto g = sortedUniqueByTimestamp(gt), e = sortedUniqueByTimestamp(est);
+  const auto pairs = associate(timestampsOf(g), timestampsOf(e));
   core::require(!pairs.empty(), "eval-mesh: no pose of the trajectory has a ground-truth pose at its time stamp");
   Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
   for (const auto& [i, j] : pairs) sum += g[i].T_wc.linear() * e[j].T_wc.linear().transpose();
@@ -99,6 +99,19 @@ MeshScore scoreMesh(const std::vector<Eigen::Vector3d>& vertices, const std::vec
   return score;
 }
 
+std::vector<Eigen::Vector3d> readMeshVertices(const std::string& path) {
+  open3d::geometry::TriangleMesh mesh;
+  core::require(fs::exists(path) && open3d::io::ReadTriangleMesh(path, mesh),
+                fmt::format("{}: cannot be read as a mesh", path));
+  for (std::size_t i = 0; i < mesh.vertices_.size(); ++i) {
+    const Eigen::Vector3d& v = mesh.vertices_[i];
+    core::require(v.allFinite(), fmt::format("{}: vertex {} of {} is not finite ({}, {}, {}): the mesh is damaged, "
+                                             "nothing is scored",
+                                             path, i, mesh.vertices_.size(), v.x(), v.y(), v.z()));
+  }
+  return std::move(mesh.vertices_);
+}
+
 MeshScore evaluateMesh(const MeshEvalRequest& request) {
   const fs::path surface = fs::path(request.sequence) / synth::kStaticSurfaceFile;
   core::require(fs::exists(surface),
@@ -118,9 +131,7 @@ MeshScore evaluateMesh(const MeshEvalRequest& request) {
   for (const synth::SurfaceSample& s : synth::readSurfacePly(surface.string())) {
     if (s.depth <= request.max_depth) truth.push_back(s.position.cast<double>());
   }
-  open3d::geometry::TriangleMesh mesh;
-  core::require(fs::exists(request.mesh) && open3d::io::ReadTriangleMesh(request.mesh, mesh),
-                fmt::format("{}: cannot be read as a mesh", request.mesh));
+  const std::vector<Eigen::Vector3d> mesh = readMeshVertices(request.mesh);
   const std::string trajectory_file = request.trajectory.empty()
                                           ? (fs::path(request.mesh).parent_path() / "trajectory.txt").string()
                                           : request.trajectory;
@@ -128,11 +139,11 @@ MeshScore evaluateMesh(const MeshEvalRequest& request) {
   const auto est = io::readTumTrajectory(trajectory_file);
   const core::SE3 T_gt_est = alignByPoses(gt, est);
   std::vector<Eigen::Vector3d> vertices;
-  vertices.reserve(mesh.vertices_.size());
-  for (const auto& v : mesh.vertices_) vertices.push_back(T_gt_est * Eigen::Vector3d(v));
+  vertices.reserve(mesh.size());
+  for (const auto& v : mesh) vertices.push_back(T_gt_est * v);
   const double margin = request.sweep_margin < 0 ? request.tolerance : request.sweep_margin;
   MeshScore score = scoreMesh(vertices, truth, swept, request.tolerance, margin);
-  score.ate_rmse_m = eval::evaluate(gt, est).ate_rmse_m;
+  score.ate_rmse_m = evaluate(gt, est).ate_rmse_m;
   return score;
 }
 
@@ -160,4 +171,4 @@ void writePointsPly(const std::string& path, const std::vector<Eigen::Vector3d>&
   core::require(open3d::io::WritePointCloudToPLY(path, cloud, {}), fmt::format("cannot write {}", path));
 }
 
-}  // namespace amos::dense
+}  // namespace amos::eval
