@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <type_traits>
+
 #include "amos/core/error.h"
 
 namespace amos::config {
@@ -31,16 +33,27 @@ std::string escapeCell(std::string text) {
   return text;
 }
 
+// The member as a number, for the bounds of numeric keys.
+template <typename T>
+std::function<double()> numberOf(const T* member) {
+  if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+    return [member] { return static_cast<double>(*member); };
+  } else {
+    return {};
+  }
+}
+
 }  // namespace
 
 SettingsKey::SettingsKey(std::string name, const void* member, Kind kind, std::string description, Reader read,
-                         std::function<std::string()> value)
+                         std::function<std::string()> value, std::function<double()> number)
     : name_(std::move(name)),
       description_(std::move(description)),
       kind_(kind),
       member_(member),
       read_(std::move(read)),
-      value_(std::move(value)) {
+      value_(std::move(value)),
+      number_(std::move(number)) {
   default_ = value_();
 }
 
@@ -49,7 +62,7 @@ SettingsKey::SettingsKey(std::string name, T* member, std::string description)
     : SettingsKey(
           std::move(name), member, kindOf(member), std::move(description),
           [member](YamlReader& in, const std::string& key) { in.read(key, *member); },
-          [member] { return textOf(*member); }) {}
+          [member] { return textOf(*member); }, numberOf(member)) {}
 
 template SettingsKey::SettingsKey(std::string, double*, std::string);
 template SettingsKey::SettingsKey(std::string, float*, std::string);
@@ -79,6 +92,26 @@ SettingsKey& SettingsKey::experimental() {
   return *this;
 }
 
+SettingsKey& SettingsKey::within(double low, double high, std::string reason) {
+  return within(low, [high] { return high; }, std::move(reason));
+}
+
+SettingsKey& SettingsKey::within(double low, std::function<double()> high, std::string reason) {
+  core::require(static_cast<bool>(number_), fmt::format("key '{}' is not a number and cannot have bounds", name_));
+  low_ = low;
+  high_ = std::move(high);
+  bound_reason_ = std::move(reason);
+  return *this;
+}
+
+void SettingsKey::checkBounds(const YamlReader& in, const std::string& found) const {
+  if (!isBounded()) return;
+  const double value = number_(), high = high_();
+  if (value >= low_ && value <= high) return;
+  throw core::Error(fmt::format("{}: {} must be in [{}, {}] ({}), got {}", in.where(found), found, low_, high,
+                                bound_reason_, value_()));
+}
+
 std::string SettingsKey::nameIn(const YamlReader& in) const {
   std::string found = in.has(name_) ? name_ : std::string();
   for (const auto& old : former_) {
@@ -103,6 +136,7 @@ void SettingsKey::read(YamlReader& in) const {
                  name_);
   }
   read_(in, found);
+  checkBounds(in, found);
 }
 
 void throwNotAChoice(const YamlReader& in, const std::string& key, const std::vector<std::string>& choices,

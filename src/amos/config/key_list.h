@@ -34,6 +34,11 @@ class SettingsKey {
   // least one shipped config (a test checks that), marked as such in the key tables. An experiment that no shipped
   // config turns on is deleted, with a record in docs/experiments/.
   SettingsKey& experimental();
+  // The bounds the key's meaning gives its value (numeric keys): [low, high], with the reason, checked as the key is
+  // read ("file:line: K must be in [low, high] (reason), got v"). `high` may follow keys read before (the
+  // image size): then it is a function, called at reading.
+  SettingsKey& within(double low, double high, std::string reason);
+  SettingsKey& within(double low, std::function<double()> high, std::string reason);
 
   const std::string& name() const { return name_; }
   const std::string& description() const { return description_; }
@@ -44,6 +49,10 @@ class SettingsKey {
   Kind kind() const { return kind_; }
   const std::vector<std::string>& choices() const { return choices_; }
   const void* member() const { return member_; }
+  bool isBounded() const { return static_cast<bool>(high_); }
+  // The bounds (when isBounded()), the upper one as it stands now.
+  double lowBound() const { return low_; }
+  double highBound() const { return high_(); }
   // The member's value, written as a settings file writes it (flags 1 / 0, lists [a, b], empty text "").
   std::string value() const { return value_(); }
 
@@ -57,7 +66,8 @@ class SettingsKey {
  private:
   using Reader = std::function<void(YamlReader&, const std::string& name)>;
   SettingsKey(std::string name, const void* member, Kind kind, std::string description, Reader read,
-              std::function<std::string()> value);
+              std::function<std::string()> value, std::function<double()> number = {});
+  void checkBounds(const YamlReader& in, const std::string& found) const;
 
   std::string name_, description_, default_;
   std::vector<std::string> former_, choices_;
@@ -67,6 +77,10 @@ class SettingsKey {
   const void* member_;
   Reader read_;
   std::function<std::string()> value_;
+  std::function<double()> number_;  // the member as a number (numeric keys)
+  double low_ = 0;
+  std::function<double()> high_;
+  std::string bound_reason_;
 };
 
 // One section of the settings file: a table of configs/README.md.

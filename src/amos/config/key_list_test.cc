@@ -68,7 +68,7 @@ std::vector<std::string> otherValues(const SettingsKey& key, const std::string& 
   switch (key.kind()) {
     case SettingsKey::Kind::kNumber: {
       const double v = std::stod(current);
-      for (double c : {v * 1.5, v * 0.5, v + 1, v - 1, 0.5, 2.0}) out.push_back(fmt::format("{}", c));
+      for (double c : {v * 1.5, v * 0.5, v + 1, v - 1, 0.5, 2.0, v * 1.1}) out.push_back(fmt::format("{}", c));
       break;
     }
     case SettingsKey::Kind::kWholeNumber: {

@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include "amos/config/dynamic_section.h"
+#include "amos/config/key_bounds.h"
 #include "amos/config/slam_section.h"
 #include "amos/config/yaml_reader.h"
 #include "amos/core/error.h"
@@ -139,6 +142,7 @@ std::vector<KeySection> settingsKeys(Settings& s) {
   sections.push_back(placeKeys(s));
   sections.push_back(dynamicKeys(s.dynamic));
   sections.push_back(segmentationKeys(s.segmentation));
+  applyKeyBounds(sections, s.camera);
   for (AddedSection& section : s.added) sections.push_back(section.keys());
   return sections;
 }
@@ -183,6 +187,7 @@ void Settings::check() const {
                                   "within 16 bits), got {}",
                                   depth_factor));
   orb.check();
+  checkPyramid();
   tracking.check();
   mapping.check();
   this->loop.check();
@@ -191,6 +196,19 @@ void Settings::check() const {
   dynamic.check();
   segmentation.check();
   for (const AddedSection& section : added) section.check(section.options, camera);
+}
+
+void Settings::checkPyramid() const {
+  using core::option;
+  // ORB's top pyramid level must still hold a FAST corner away from the descriptor's border (19 px each side).
+  constexpr double kTopLevelMinSide = 40;
+  const double top_side = std::min(camera.width, camera.height) / std::pow(orb.scale_factor, orb.num_levels - 1);
+  core::requireOption(top_side >= kTopLevelMinSide, option(orb.num_levels, "orb.num_levels"),
+                      fmt::format("leaves the top pyramid level {:.1f} px on the image's smaller side, fewer than {} "
+                                  "(orb.scale_factor ^ (orb.num_levels - 1) must be at most camera.height / {})",
+                                  top_side, kTopLevelMinSide, kTopLevelMinSide),
+                      {option(orb.scale_factor, "orb.scale_factor"), option(camera.height, "camera.height"),
+                       option(camera.width, "camera.width")});
 }
 
 io::ReaderOptions Settings::readerOptions() const {

@@ -68,6 +68,10 @@ struct Settings {
   double closeDepthThreshold() const { return th_depth * bf / camera.fx; }
   // Throws core::Error naming the key at fault.
   void check() const;
+
+ private:
+  // The ORB pyramid's top level against the image.
+  void checkPyramid() const;
 };
 
 // Default settings with the sections of `added` at their defaults.

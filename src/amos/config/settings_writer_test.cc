@@ -74,7 +74,7 @@ TEST(SettingsWriter, UnusualValuesReadBackTheSame) {
   Settings s = minimal();
   s.camera.fx = 517.3000000000001;
   s.camera.cx = 1.0 / 3.0;
-  s.th_depth = 1e-7;
+  s.th_depth = 1.0 / 7.0;
   s.fps = 29.97;
   s.orb.scale_factor = 1.1 + 1e-12;
   s.rgb_order = false;

@@ -6,8 +6,11 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <limits>
 
 #include "amos/core/error.h"
 #include "amos/io/atomic_file.h"
@@ -15,6 +18,38 @@
 namespace amos::io {
 namespace fs = std::filesystem;
 namespace {
+
+// The next whitespace-separated number of a PNM header (skipping "#" comments), or -1 when there is none.
+long long nextHeaderNumber(std::istream& in) {
+  for (int c = in.peek(); c != EOF; c = in.peek()) {
+    if (c == '#') {
+      in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    } else if (std::isspace(c)) {
+      in.get();
+    } else {
+      break;
+    }
+  }
+  long long number = -1;
+  if (!(in >> number)) return -1;
+  return number;
+}
+
+// A binary PGM (P5) allocates width x height from its header before reading the pixels: the header must not claim
+// more pixels than the file holds. Other formats are left to OpenCV.
+void requirePgmFitsItsFile(const fs::path& image) {
+  std::ifstream in(image, std::ios::binary);
+  char magic[2] = {0, 0};
+  if (!in.read(magic, 2) || magic[0] != 'P' || magic[1] != '5') return;
+  const long long width = nextHeaderNumber(in), height = nextHeaderNumber(in), max_value = nextHeaderNumber(in);
+  core::require(width > 0 && height > 0 && max_value > 0 && max_value <= 65535 && std::isspace(in.get()),
+                fmt::format("{}: not a binary PGM header (P5 width height maxval)", image.string()));
+  const long long bytes_per_pixel = max_value > 255 ? 2 : 1;
+  const long long pixel_bytes = static_cast<long long>(fs::file_size(image)) - static_cast<long long>(in.tellg());
+  core::require(width <= pixel_bytes && height <= pixel_bytes && width * height * bytes_per_pixel <= pixel_bytes,
+                fmt::format("{}: the PGM header claims {} x {} pixels, but the file holds {} bytes of pixels",
+                            image.string(), width, height, pixel_bytes));
+}
 
 std::string where(const std::string& file, const YAML::Node& node) {
   return fmt::format("{}:{}", file, node.Mark().line + 1);
@@ -89,6 +124,7 @@ OccupancyGridFile readOccupancyGridFile(const std::string& yaml_path) {
   optional(root, "free_thresh", yaml_path, g.free_thresh);
   fs::path image = g.image_file;
   if (image.is_relative()) image = fs::path(yaml_path).parent_path() / image;
+  if (fs::is_regular_file(image)) requirePgmFitsItsFile(image);
   const cv::Mat pixels = cv::imread(image.string(), cv::IMREAD_GRAYSCALE);
   core::require(!pixels.empty(),
                 fmt::format("{}: the image it names, {}, cannot be read", yaml_path, image.string()));

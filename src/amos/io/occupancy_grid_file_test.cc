@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -68,6 +69,30 @@ TEST(OccupancyGridFile, ReadingAMapWithoutResolutionNamesTheKey) {
   } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("'resolution'"), std::string::npos) << e.what();
   }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace amos::io
+
+namespace amos::io {
+namespace {
+
+// A crafted floor plan: the header claims 60000 x 60000 pixels (3.6 GB) and the file holds a few bytes. It must be
+// refused from the header, naming the PGM, before anything that size is allocated.
+TEST(OccupancyGridFile, APgmHeaderClaimingMoreThanTheFileHoldsIsRefusedBeforeAllocating) {
+  const fs::path dir = amos::testing::scratchDirForThisTest("amos_grid_file_");
+  std::ofstream(dir / "map.yaml") << "image: map.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n";
+  std::ofstream(dir / "map.pgm", std::ios::binary) << "P5\n# crafted\n60000 60000\n255\n\x01\x02\x03\x04";
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    readOccupancyGridFile((dir / "map.yaml").string());
+    ADD_FAILURE() << "accepted a PGM whose header claims more than the file holds";
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("map.pgm"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("60000 x 60000"), std::string::npos) << e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
   fs::remove_all(dir);
 }
 
