@@ -165,7 +165,8 @@ std::vector<std::pair<std::string, std::string>> overridesOf(const py::object& o
   const py::object items = py::isinstance<py::dict>(overrides) ? overrides.attr("items")() : overrides;
   for (const py::handle item : items) {
     const py::tuple pair = py::reinterpret_borrow<py::object>(item).cast<py::tuple>();
-    if (pair.size() != 2) throw py::type_error("argument 'overrides' must be a dict {key: value} or (key, value) pairs");
+    if (pair.size() != 2)
+      throw py::type_error("argument 'overrides' must be a dict {key: value} or (key, value) pairs");
     out.emplace_back(py::str(pair[0]).cast<std::string>(), py::str(pair[1]).cast<std::string>());
   }
   return out;
@@ -318,14 +319,16 @@ per-frame work overlaps the current one's tracking: `amos-slam run`'s speed from
            "Hands a frame over (the arguments as track's) and returns at once; next() returns its result.")
       .def("next", &amos::Slam::next, py::call_guard<py::gil_scoped_release>(),
            "Finishes the oldest submitted frame and returns its FrameResult.")
-      .def("pending", &amos::Slam::pending, py::call_guard<py::gil_scoped_release>(), "Frames submitted and not yet returned by next().")
+      .def("pending", &amos::Slam::pending, py::call_guard<py::gil_scoped_release>(),
+           "Frames submitted and not yet returned by next().")
       .def("load_map", [](amos::Slam& s, const fs::path& path) {
              py::gil_scoped_release release;
              s.loadMap(path.string());
            }, py::arg("path"), "Starts from a saved map (str or pathlib.Path); only before the first frame.")
       .def("finish", &amos::Slam::finish, py::call_guard<py::gil_scoped_release>(),
            "Tracks the frames still submitted, lets local mapping settle and stops it. Idempotent.")
-      .def_property_readonly("finished", py::cpp_function(&amos::Slam::finished, py::call_guard<py::gil_scoped_release>()),
+      .def_property_readonly("finished",
+                             py::cpp_function(&amos::Slam::finished, py::call_guard<py::gil_scoped_release>()),
                              "Whether finish() was called.")
       .def("save_map", [](const amos::Slam& s, const fs::path& path) {
              py::gil_scoped_release release;

@@ -93,7 +93,8 @@ namespace {
 // The folder's state, for the call `method` (a template: SequenceFolder::Impl is private).
 template <typename Pointer>
 auto& use(const Pointer& impl, const char* method) {
-  core::require(impl != nullptr, fmt::format("amos::SequenceFolder::{}: this SequenceFolder was moved from", method));
+  core::require(impl != nullptr,
+                fmt::format("amos::SequenceFolder::{}: this SequenceFolder was moved from", method));
   return *impl;
 }
 
@@ -115,8 +116,8 @@ std::size_t SequenceFolder::size() const { return use(impl_, "size").index.frame
 
 RgbdImages SequenceFolder::read(std::size_t i) const {
   const auto& impl = use(impl_, "read");
-  core::require(i < impl.index.frames.size(), fmt::format("amos::SequenceFolder::read: argument 'i' = {}: {} has {} frames",
-                                                          i, impl.index.dir, impl.index.frames.size()));
+  core::require(i < impl.index.frames.size(), fmt::format("amos::SequenceFolder::read: argument 'i' = {}: {} has {} "
+                                                          "frames", i, impl.index.dir, impl.index.frames.size()));
   return readFrame(impl.index.frames[i]);
 }
 

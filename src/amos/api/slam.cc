@@ -15,6 +15,7 @@
 #include <sstream>
 #include <utility>
 
+#include "amos/api/allocator_tuning.h"
 #include "amos/api/engine.h"
 #include "amos/api/frame_checks.h"
 #include "amos/api/logging_default.h"
@@ -126,6 +127,7 @@ struct Slam::Impl {
   std::unique_ptr<api::Engine> engine;  // last: its threads stop before the rest goes
 
   explicit Impl(const Options& options) : settings(readSettings(options)), reader(settings.readerOptions()) {
+    if (options.tune_allocator) api::tuneAllocatorOnce();
     localization_only = options.localization_only;
     events->callback = options.on_keyframe;
     api::EngineOptions o;
