@@ -1,6 +1,6 @@
 # The installed package (issue 44): `cmake --install build --prefix P` puts in P
 #   bin/amos-slam
-#   include/amos/{slam.h,sequence_folder.h,version.h}        the public API (nothing of src/amos/)
+#   include/amos/{slam.h,sequence_folder.h,logging.h,version.h} the public API (nothing of src/amos/)
 #   lib/libamos_*.a                                            amos_slam and the modules it links (static)
 #   lib/cmake/AmosSlam/                                        find_package(AmosSlam) -> AmosSlam::amos_slam
 #   lib/pkgconfig/amos-slam.pc
@@ -70,6 +70,7 @@ set(AMOS_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/AmosSlam)
 install(TARGETS ${AMOS_INSTALLED_LIBRARIES} EXPORT AmosSlamTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS amos-slam RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/include/amos/slam.h ${PROJECT_SOURCE_DIR}/include/amos/sequence_folder.h
+  ${PROJECT_SOURCE_DIR}/include/amos/logging.h
   ${PROJECT_BINARY_DIR}/include/amos/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/amos)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/models/ DESTINATION ${CMAKE_INSTALL_DATADIR}/amos-slam/models)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/configs/ DESTINATION ${CMAKE_INSTALL_DATADIR}/amos-slam/configs

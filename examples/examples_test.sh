@@ -8,6 +8,10 @@
 #                              deterministic), and check both trajectories equal the installed
 #                              `amos-slam run --deterministic`'s trajectory.txt byte for byte; also writes a mask
 #                              overlay with examples/python/show_mask.py
+#   examples_test.sh detector  render a synthetic sequence with movers no front-end stage sees in mode none
+#                              (`amos-slam synth --preset objects_xyz`), run examples/python/with_my_detector.py on it
+#                              (the caller's masks: the sequence's own mover masks) and check that its masks removed
+#                              keypoints and that its trajectory is evaluated against the ground truth
 # The data is looked for in $AMOS_DATA_DIR (else the build's AMOS_DATA_DIR); without it the test is skipped (77),
 # or fails with AMOS_REQUIRE_SHARED_DATA=1. Everything runs from a scratch folder outside both trees, with
 # AMOS_MODELS unset, so the programs find the models in the installed data folder.
@@ -80,9 +84,24 @@ track() {
   fi
 }
 
+detector() {
+  [[ "${AMOS_WITH_PYTHON:-0}" == 1 ]] || { echo "the Python module is not built" >&2; exit 77; }
+  work=$(mktemp -d "${TMPDIR:-/tmp}/amos-detector.XXXXXX")
+  trap 'rm -rf "$work"' EXIT
+  cd "$work"
+  "$prefix/bin/amos-slam" synth --preset objects_xyz --seed 1 --frames 60 --output seq > synth.log 2>&1 ||
+    { tail -20 synth.log; exit 1; }
+  PYTHONPATH=$prefix/lib/python3/dist-packages "$AMOS_PYTHON" \
+    "$AMOS_SOURCE_DIR/examples/python/with_my_detector.py" seq "$AMOS_SOURCE_DIR/configs/tum3.yaml" traj.txt | tee out.txt
+  removed=$(sed -n 's/.*the masks removed \([0-9]*\) keypoints.*/\1/p' out.txt)
+  [[ "${removed:-0}" -gt 100 ]] || { echo "the caller's masks removed ${removed:-no} keypoints" >&2; exit 1; }
+  "$prefix/bin/amos-slam" eval --gt seq/groundtruth.txt --est traj.txt
+}
+
 case "${1:-}" in
   install) install_package ;;
   headers) compile_headers ;;
   track) track ;;
-  *) echo "usage: $0 install|headers|track" >&2; exit 2 ;;
+  detector) detector ;;
+  *) echo "usage: $0 install|headers|track|detector" >&2; exit 2 ;;
 esac

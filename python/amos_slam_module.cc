@@ -1,193 +1,399 @@
-// import amos_slam: the public C++ API (include/amos/slam.h, sequence_folder.h) for Python.
+// import amos_slam: the public C++ API (include/amos/slam.h, sequence_folder.h, logging.h) for Python.
 //   colour images: uint8 H x W x 3 arrays in OpenCV's BGR order (cv2.imread's), as amos::Slam::track takes them;
 //   depth: uint16 H x W raw sensor values (metres = value / DepthMapFactor) or float32 H x W metres;
 //   poses: 4 x 4 float64 arrays T_wc (camera to world); masks: uint8 H x W arrays (255 = dynamic).
-// Every array returned is a copy the caller owns; the arrays given are read, never kept or written. The GIL is
-// released while the library works (track, finish, constructing, maps), so other Python threads run meanwhile.
-// Lifetime as in C++: a Slam owns its threads and stops them in finish() or when it is collected. Keyframes are
-// polled (take_keyframe_events): a callback from the mapping thread into Python could wait for the GIL that a
-// caller of finish() holds.
+// Results are small classes with attributes and a repr (FrameResult, Frame, StampedPose, KeyFrame, MapSummary).
+// The arrays given are read, never kept or written; the arrays returned are the caller's. The GIL is released while
+// the library works (tracking, finishing, reading, and when a Slam or a folder is destroyed), so other Python
+// threads run meanwhile and the library's threads can log through `logging` (python_logging.h).
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
-#include <cstring>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
 #include <optional>
-#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "amos/sequence_folder.h"
 #include "amos/slam.h"
+#include "arrays.h"
+#include "python_logging.h"
 
 namespace py = pybind11;
+namespace fs = std::filesystem;
+using amos::python::arrayOf;
+using amos::python::ArraySpec;
+using amos::python::matOf;
 
 namespace {
 
-// A cv::Mat header over the array's pixels (no copy; the array must stay alive while it is used).
-cv::Mat matOf(const py::array& array, const char* what) {
-  const py::buffer_info info = array.request();
-  if (!(array.flags() & py::array::c_style))
-    throw std::invalid_argument(std::string(what) + " must be a C-contiguous array (numpy.ascontiguousarray)");
-  int depth = -1;
-  if (info.format == py::format_descriptor<std::uint8_t>::format()) depth = CV_8U;
-  if (info.format == py::format_descriptor<std::uint16_t>::format()) depth = CV_16U;
-  if (info.format == py::format_descriptor<float>::format()) depth = CV_32F;
-  if (depth < 0) throw std::invalid_argument(std::string(what) + ": expected uint8, uint16 or float32 elements");
-  if (info.ndim == 2) return cv::Mat(int(info.shape[0]), int(info.shape[1]), CV_MAKETYPE(depth, 1), info.ptr);
-  if (info.ndim == 3)
-    return cv::Mat(int(info.shape[0]), int(info.shape[1]), CV_MAKETYPE(depth, int(info.shape[2])), info.ptr);
-  throw std::invalid_argument(std::string(what) + ": expected an H x W or H x W x C array");
+const ArraySpec kBgr{"bgr", "uint8 H x W x 3 (BGR order)", 3, false, CV_8U};
+const ArraySpec kDepth{"depth", "uint16 H x W (raw) or float32 H x W (metres)", 1, true, CV_16U};
+const ArraySpec kPriorMask{"prior_mask", "uint8 H x W (non-zero = dynamic)", 1, false, CV_8U};
+
+// Destroys with the GIL released: a Slam's or a folder's destructor joins threads that may log through Python.
+template <typename T>
+struct ReleaseGilDelete {
+  void operator()(T* p) const {
+    if (PyGILState_Check()) {
+      py::gil_scoped_release release;
+      delete p;
+    } else {
+      delete p;
+    }
+  }
+};
+template <typename T>
+using Holder = std::unique_ptr<T, ReleaseGilDelete<T>>;
+
+// One frame read from a folder, its images as NumPy arrays (made once, shared with the folder's buffers).
+struct Frame {
+  py::array bgr, depth;
+  double timestamp = 0;
+  std::string rgb_file, depth_file;
+};
+
+Frame frameOf(amos::RgbdImages&& f) {
+  return {arrayOf(f.bgr), arrayOf(f.depth), f.timestamp, std::move(f.rgb_file), std::move(f.depth_file)};
 }
 
-// A new array with the image's pixels.
-py::array arrayOf(const cv::Mat& image) {
-  if (image.empty()) return py::array_t<std::uint8_t>(std::vector<py::ssize_t>{0, 0});
-  std::vector<py::ssize_t> shape{image.rows, image.cols};
-  if (image.channels() > 1) shape.push_back(image.channels());
-  py::array out;
-  switch (image.depth()) {
-    case CV_8U: out = py::array_t<std::uint8_t>(shape); break;
-    case CV_16U: out = py::array_t<std::uint16_t>(shape); break;
-    case CV_32F: out = py::array_t<float>(shape); break;
-    default: throw std::runtime_error("unsupported image type");
+py::object matrixOrNone(const std::optional<Eigen::Matrix4d>& T) {
+  if (!T) return py::none();
+  return py::cast(Eigen::Matrix4d(*T));
+}
+
+amos::Mode modeOf(const py::object& mode) {
+  if (py::isinstance<amos::Mode>(mode)) return mode.cast<amos::Mode>();
+  if (py::isinstance<py::str>(mode)) {
+    try {
+      return amos::parseMode(mode.cast<std::string>());
+    } catch (const std::runtime_error&) {
+      throw py::value_error("argument 'mode' must be an amos_slam.Mode or one of 'none', 'prior', 'geometry', "
+                            "'full', '' (the settings' Dynamic.mode), got '" + mode.cast<std::string>() + "'");
+    }
   }
-  const std::size_t row = image.cols * image.elemSize();
-  auto* dst = static_cast<std::uint8_t*>(out.mutable_data());
-  for (int r = 0; r < image.rows; ++r) std::memcpy(dst + r * row, image.ptr(r), row);
+  throw py::type_error("argument 'mode' must be an amos_slam.Mode or a str");
+}
+
+// A frame given to track_frames: an object with bgr, depth, timestamp (and prior_mask) attributes (a Frame), or a
+// tuple (bgr, depth, timestamp[, prior_mask]).
+struct FrameArguments {
+  py::object bgr, depth, prior_mask;
+  double timestamp = 0;
+};
+
+FrameArguments argumentsOf(const py::handle& item) {
+  FrameArguments a;
+  if (py::hasattr(item, "bgr")) {
+    a.bgr = item.attr("bgr");
+    a.depth = item.attr("depth");
+    a.timestamp = item.attr("timestamp").cast<double>();
+    a.prior_mask = py::getattr(item, "prior_mask", py::none());
+    return a;
+  }
+  if (py::isinstance<py::tuple>(item) || py::isinstance<py::list>(item)) {
+    const py::sequence s = py::reinterpret_borrow<py::sequence>(item);
+    if (s.size() == 3 || s.size() == 4) {
+      a.bgr = s[0];
+      a.depth = s[1];
+      a.timestamp = s[2].cast<double>();
+      a.prior_mask = s.size() == 4 ? py::object(s[3]) : py::none();
+      return a;
+    }
+  }
+  throw py::type_error("track_frames: each frame must be an amos_slam.Frame (or an object with bgr, depth, "
+                       "timestamp attributes) or a tuple (bgr, depth, timestamp[, prior_mask])");
+}
+
+void submit(amos::Slam& slam, const py::object& bgr, const py::object& depth, double timestamp,
+            const py::object& prior_mask) {
+  const cv::Mat colour = matOf(bgr, kBgr), depth_mat = matOf(depth, kDepth);
+  const cv::Mat mask = prior_mask.is_none() ? cv::Mat() : matOf(prior_mask, kPriorMask);
+  py::gil_scoped_release release;  // the arrays stay referenced by the caller meanwhile; submit copies them
+  slam.submit(colour, depth_mat, timestamp, mask);
+}
+
+// Slam.track_frames(iterable): the frames pulled one ahead of the results, so that the next frame's per-frame work
+// overlaps the current one's tracking (as amos::Slam::trackFrames does in C++).
+class FrameStream {
+ public:
+  FrameStream(py::object slam, const py::iterable& frames)
+      : owner_(std::move(slam)), slam_(owner_.cast<amos::Slam&>()), frames_(py::iter(frames)) {}
+
+  amos::FrameResult next() {
+    while (more_ && slam_.pending() < 2) pull();
+    if (slam_.pending() == 0) throw py::stop_iteration();
+    py::gil_scoped_release release;
+    return slam_.next();
+  }
+
+ private:
+  void pull() {
+    PyObject* item = PyIter_Next(frames_.ptr());
+    if (item == nullptr) {
+      if (PyErr_Occurred()) throw py::error_already_set();
+      more_ = false;
+      return;
+    }
+    const py::object frame = py::reinterpret_steal<py::object>(item);
+    const FrameArguments a = argumentsOf(frame);
+    submit(slam_, a.bgr, a.depth, a.timestamp, a.prior_mask);
+  }
+
+  py::object owner_;  // keeps the Slam alive
+  amos::Slam& slam_;
+  py::iterator frames_;
+  bool more_ = true;
+};
+
+std::string matrixRepr(const std::optional<Eigen::Matrix4d>& T) {
+  if (!T) return "None";
+  return fmt::format("[t {:.3f} {:.3f} {:.3f}]", (*T)(0, 3), (*T)(1, 3), (*T)(2, 3));
+}
+
+// {"key": "value"} or [("key", "value")], values converted with str().
+std::vector<std::pair<std::string, std::string>> overridesOf(const py::object& overrides) {
+  std::vector<std::pair<std::string, std::string>> out;
+  if (overrides.is_none()) return out;
+  const py::object items = py::isinstance<py::dict>(overrides) ? overrides.attr("items")() : overrides;
+  for (const py::handle item : items) {
+    const py::tuple pair = py::reinterpret_borrow<py::object>(item).cast<py::tuple>();
+    if (pair.size() != 2)
+      throw py::type_error("argument 'overrides' must be a dict {key: value} or (key, value) pairs");
+    out.emplace_back(py::str(pair[0]).cast<std::string>(), py::str(pair[1]).cast<std::string>());
+  }
   return out;
 }
 
-py::dict frameDict(const amos::RgbdImages& f) {
-  py::dict d;
-  d["bgr"] = arrayOf(f.bgr);
-  d["depth"] = arrayOf(f.depth);
-  d["timestamp"] = f.timestamp;
-  d["rgb_file"] = f.rgb_file;
-  d["depth_file"] = f.depth_file;
-  return d;
+Holder<amos::Slam> makeSlam(const py::object& settings_file, const py::object& mode, bool deterministic,
+                            const py::object& models_dir, const py::object& map_file, bool localization_only,
+                            const std::string& settings_yaml, const py::object& overrides) {
+  amos::Options o;
+  if (!settings_file.is_none()) o.settings_file = settings_file.cast<fs::path>().string();
+  o.settings_yaml = settings_yaml;
+  o.overrides = overridesOf(overrides);
+  o.mode = modeOf(mode);
+  o.deterministic = deterministic;
+  if (!models_dir.is_none()) o.models_dir = models_dir.cast<fs::path>().string();
+  if (!map_file.is_none()) o.map_file = map_file.cast<fs::path>().string();
+  o.localization_only = localization_only;
+  py::gil_scoped_release release;
+  return Holder<amos::Slam>(new amos::Slam(o));
 }
 
-py::dict keyFrameDict(const amos::KeyFrameEvent& e) {
-  py::dict d;
-  d["id"] = e.id;
-  d["timestamp"] = e.timestamp;
-  d["T_wc"] = Eigen::Matrix4d(e.T_wc);
-  return d;
+void bindValues(py::module_& m) {
+  py::enum_<amos::TrackingState>(m, "TrackingState", "Whether a frame was tracked.")
+      .value("NOT_INITIALIZED", amos::TrackingState::kNotInitialized, "No map yet.")
+      .value("OK", amos::TrackingState::kOk, "Tracked: FrameResult.T_wc is the frame's pose.")
+      .value("LOST", amos::TrackingState::kLost, "Not tracked (the system relocalises when it can).");
+
+  py::enum_<amos::Mode>(m, "Mode", "The dynamic front end: which of its stages judge what moves.")
+      .value("NONE", amos::Mode::kNone, "Every keypoint is used, apart from the caller's prior masks.")
+      .value("PRIOR", amos::Mode::kPrior, "The person segmentation network's masks.")
+      .value("GEOMETRY", amos::Mode::kGeometry, "The geometric stage alone (no network).")
+      .value("FULL", amos::Mode::kFull, "Both.")
+      .value("FROM_SETTINGS", amos::Mode::kFromSettings, "The settings' Dynamic.mode.");
+
+  py::class_<amos::FrameResult>(m, "FrameResult", "What Slam.track returns for one frame.")
+      .def_readonly("frame", &amos::FrameResult::frame, "0-based number of the frame in this Slam.")
+      .def_readonly("timestamp", &amos::FrameResult::timestamp, "The frame's time stamp, as given (seconds).")
+      .def_readonly("state", &amos::FrameResult::state, "The TrackingState after the frame.")
+      .def_property_readonly(
+          "T_wc", [](const amos::FrameResult& r) { return matrixOrNone(r.T_wc); },
+          "The frame's pose as tracked now (4 x 4 float64, camera to world), or None when it was not tracked.")
+      .def_readonly("new_keyframe", &amos::FrameResult::new_keyframe, "Whether the frame became a keyframe.")
+      .def_readonly("relocalized", &amos::FrameResult::relocalized, "Whether it was tracked again after being lost.")
+      .def_property_readonly(
+          "dynamic_mask", [](const amos::FrameResult& r) { return arrayOf(r.dynamic_mask); },
+          "uint8 H x W, 255 = judged dynamic (the front end's regions and the caller's prior mask).")
+      .def_readonly("keypoints", &amos::FrameResult::keypoints, "ORB keypoints extracted.")
+      .def_readonly("keypoints_removed", &amos::FrameResult::keypoints_removed,
+                    "Of those, inside the dynamic mask (not used).")
+      .def("__repr__", [](const amos::FrameResult& r) {
+        return fmt::format("FrameResult(frame={}, timestamp={:.6f}, state={}, T_wc={}, keypoints={}, removed={})",
+                           r.frame, r.timestamp, amos::toString(r.state), matrixRepr(r.T_wc), r.keypoints,
+                           r.keypoints_removed);
+      }, "A one-line summary.");
+
+  py::class_<amos::StampedPose>(m, "StampedPose", "A pose at a time: an entry of Slam.trajectory().")
+      .def_readonly("timestamp", &amos::StampedPose::timestamp, "Seconds, as given to track().")
+      .def_property_readonly("T_wc", [](const amos::StampedPose& p) { return Eigen::Matrix4d(p.T_wc); },
+                             "4 x 4 float64, camera to world.")
+      .def("__repr__", [](const amos::StampedPose& p) {
+        return fmt::format("StampedPose(timestamp={:.6f}, T_wc={})", p.timestamp, matrixRepr(p.T_wc));
+      }, "A one-line summary.");
+
+  py::class_<amos::KeyFrame>(m, "KeyFrame",
+                             "A keyframe of the map (Slam.keyframes() and Slam.take_keyframe_events()).")
+      .def_readonly("id", &amos::KeyFrame::id, "The map's id of the keyframe.")
+      .def_readonly("timestamp", &amos::KeyFrame::timestamp, "Time stamp of the frame it was made from.")
+      .def_property_readonly("T_wc", [](const amos::KeyFrame& k) { return Eigen::Matrix4d(k.T_wc); },
+                             "Its pose (4 x 4 float64, camera to world).")
+      .def("__repr__", [](const amos::KeyFrame& k) {
+        return fmt::format("KeyFrame(id={}, timestamp={:.6f}, T_wc={})", k.id, k.timestamp, matrixRepr(k.T_wc));
+      }, "A one-line summary.");
+
+  py::class_<amos::MapSummary>(m, "MapSummary", "Counts of the map and the frames (Slam.summary()).")
+      .def_readonly("keyframes", &amos::MapSummary::keyframes, "Keyframes in the map.")
+      .def_readonly("map_points", &amos::MapSummary::map_points, "Map points in the map.")
+      .def_readonly("loops_closed", &amos::MapSummary::loops_closed, "Loops closed.")
+      .def_readonly("frames", &amos::MapSummary::frames, "Frames tracked (of every state).")
+      .def_readonly("tracked", &amos::MapSummary::tracked, "Of them, with state OK.")
+      .def_readonly("lost", &amos::MapSummary::lost, "Of them, with state LOST.")
+      .def("__repr__", [](const amos::MapSummary& s) {
+        return fmt::format("MapSummary(keyframes={}, map_points={}, loops_closed={}, frames={}, tracked={}, lost={})",
+                           s.keyframes, s.map_points, s.loops_closed, s.frames, s.tracked, s.lost);
+      }, "A one-line summary.");
+
+  py::class_<Frame>(m, "Frame", "One frame of a SequenceFolder (what Slam.track_frames takes).")
+      .def_readonly("bgr", &Frame::bgr, "uint8 H x W x 3, BGR order.")
+      .def_readonly("depth", &Frame::depth, "uint16 H x W raw depth, as stored.")
+      .def_readonly("timestamp", &Frame::timestamp, "Time stamp of the colour image (seconds).")
+      .def_readonly("rgb_file", &Frame::rgb_file, "The colour image's file.")
+      .def_readonly("depth_file", &Frame::depth_file, "The depth image's file.")
+      .def("__repr__", [](const Frame& f) {
+        return fmt::format("Frame(timestamp={:.6f}, rgb_file='{}', {}x{})", f.timestamp, f.rgb_file,
+                           f.bgr.ndim() > 1 ? f.bgr.shape(1) : 0, f.bgr.ndim() > 1 ? f.bgr.shape(0) : 0);
+      }, "A one-line summary.");
 }
 
-}  // namespace
+void bindSlam(py::module_& m) {
+  py::class_<FrameStream>(m, "FrameStream", "The iterator of Slam.track_frames: one FrameResult per frame.")
+      .def("__iter__", [](py::object self) { return self; }, "Itself.")
+      .def("__next__", &FrameStream::next, "Tracks the next frame and returns its FrameResult.");
 
-PYBIND11_MODULE(amos_slam, m) {
-  m.doc() = "Amos-SLAM: RGB-D SLAM for dynamic scenes (see docs/api.md)";
-  m.attr("__version__") = amos::kVersion;
+  py::class_<amos::Slam, Holder<amos::Slam>>(m, "Slam", R"(The SLAM system, fed one RGB-D frame at a time.
 
-  py::enum_<amos::TrackingState>(m, "TrackingState")
-      .value("NOT_INITIALIZED", amos::TrackingState::kNotInitialized)
-      .value("OK", amos::TrackingState::kOk)
-      .value("LOST", amos::TrackingState::kLost);
+    with amos_slam.Slam("configs/tum2.yaml", mode=amos_slam.Mode.FULL) as slam:
+        for result in slam.track_frames(amos_slam.SequenceFolder("data/seq")):
+            print(result.state, result.T_wc)
+        slam.write_trajectory("trajectory.txt")
 
-  py::class_<amos::FrameResult>(m, "FrameResult")
-      .def_readonly("frame", &amos::FrameResult::frame)
-      .def_readonly("timestamp", &amos::FrameResult::timestamp)
-      .def_readonly("state", &amos::FrameResult::state)
-      .def_property_readonly("T_wc", [](const amos::FrameResult& r) { return Eigen::Matrix4d(r.T_wc); })
-      .def_readonly("new_keyframe", &amos::FrameResult::new_keyframe)
-      .def_readonly("relocalized", &amos::FrameResult::relocalized)
-      .def_property_readonly("dynamic_mask", [](const amos::FrameResult& r) { return arrayOf(r.dynamic_mask); })
-      .def_readonly("keypoints", &amos::FrameResult::keypoints)
-      .def_readonly("keypoints_removed", &amos::FrameResult::keypoints_removed);
+Calls on one Slam from several threads are serialised. Errors: RuntimeError naming the file, key or argument at
+fault (TypeError / ValueError for an argument of the wrong kind or shape).)")
+      .def(py::init(&makeSlam), py::arg("settings_file") = py::none(), py::arg("mode") = amos::Mode::kFromSettings,
+           py::arg("deterministic") = false, py::arg("models_dir") = py::none(), py::arg("map_file") = py::none(),
+           py::arg("localization_only") = false, py::arg("settings_yaml") = "",
+           py::arg("overrides") = py::none(),
+           R"(Reads the settings and loads the models, the vocabulary and the map.
 
-  py::class_<amos::Slam>(m, "Slam")
-      .def(py::init([](const std::string& settings_file, const std::string& mode, bool deterministic,
-                       const std::string& models_dir, const std::string& map_file, bool localization_only) {
-             amos::Options o;
-             o.settings_file = settings_file;
-             o.mode = mode;
-             o.deterministic = deterministic;
-             o.models_dir = models_dir;
-             o.map_file = map_file;
-             o.localization_only = localization_only;
-             py::gil_scoped_release release;
-             return std::make_unique<amos::Slam>(o);
-           }),
-           py::arg("settings_file"), py::arg("mode") = "", py::arg("deterministic") = false,
-           py::arg("models_dir") = "", py::arg("map_file") = "", py::arg("localization_only") = false,
-           "Reads the settings (YAML, as configs/*.yaml) and loads the models; mode '' = the settings' "
-           "Dynamic.mode; models_dir '' = the installed data folder, then ./models, ../shared/models")
+settings_file: the settings (YAML, as configs/*.yaml; str or pathlib.Path), or settings_yaml: their text.
+mode: an amos_slam.Mode or its name ('none', 'prior', 'geometry', 'full'); default: the settings' Dynamic.mode.
+deterministic: same input, same trajectory, bit for bit (what `amos-slam run --deterministic` does).
+models_dir: the folder of the models and vocabulary (default: Segmentation.modelsDir, $AMOS_MODELS, the installed
+data folder, ./models, ../shared/models). map_file: start from a saved map; localization_only: never extend it.
+overrides: settings keys over the file's values, e.g. {"ORBextractor.nFeatures": "1500"} (unknown keys are errors).)")
       .def(
           "track",
-          [](amos::Slam& slam, const py::array& bgr, const py::array& depth, double timestamp) {
-            const cv::Mat colour = matOf(bgr, "bgr"), depth_mat = matOf(depth, "depth");
-            py::gil_scoped_release release;  // the arrays stay referenced by the caller's frame meanwhile
-            return slam.track(colour, depth_mat, timestamp);
+          [](amos::Slam& slam, const py::object& bgr, const py::object& depth, double timestamp,
+             const py::object& prior_mask) {
+            const cv::Mat colour = matOf(bgr, kBgr), depth_mat = matOf(depth, kDepth);
+            const cv::Mat mask = prior_mask.is_none() ? cv::Mat() : matOf(prior_mask, kPriorMask);
+            py::gil_scoped_release release;  // the arrays stay referenced by the caller meanwhile
+            return slam.track(colour, depth_mat, timestamp, mask);
           },
-          py::arg("bgr"), py::arg("depth"), py::arg("timestamp"),
-          "Tracks one frame: bgr uint8 HxWx3 (BGR order), depth uint16 raw or float32 metres")
+          py::arg("bgr"), py::arg("depth"), py::arg("timestamp"), py::arg("prior_mask") = py::none(),
+          R"(Tracks one frame and returns its FrameResult.
+
+bgr: uint8 H x W x 3 in BGR order; depth: uint16 H x W raw (metres = value / DepthMapFactor) or float32 metres;
+both of the settings' camera size, C-contiguous. timestamp: seconds, finite, greater than the last frame's.
+prior_mask: optional uint8 H x W, non-zero where your own detector found something dynamic.)")
       .def(
-          "submit",
-          [](amos::Slam& slam, const py::array& bgr, const py::array& depth, double timestamp) {
-            const cv::Mat colour = matOf(bgr, "bgr"), depth_mat = matOf(depth, "depth");
-            py::gil_scoped_release release;
-            slam.submit(colour, depth_mat, timestamp);
-          },
-          py::arg("bgr"), py::arg("depth"), py::arg("timestamp"),
-          "Hands a frame over and returns at once (its features start in the library's threads); next() returns "
-          "its result")
+          "track_frames",
+          [](py::object self, const py::iterable& frames) { return FrameStream(std::move(self), frames); },
+          py::arg("frames"),
+          R"(Tracks every frame of an iterable and yields one FrameResult per frame, in order.
+
+Each frame is an amos_slam.Frame (a SequenceFolder yields them), an object with bgr, depth, timestamp (and
+prior_mask) attributes, or a tuple (bgr, depth, timestamp[, prior_mask]). The next frame is taken one ahead, so its
+per-frame work overlaps the current one's tracking: `amos-slam run`'s speed from a loop of your own.)")
+      .def("submit", &submit, py::arg("bgr"), py::arg("depth"), py::arg("timestamp"),
+           py::arg("prior_mask") = py::none(),
+           "Hands a frame over (the arguments as track's) and returns at once; next() returns its result.")
       .def("next", &amos::Slam::next, py::call_guard<py::gil_scoped_release>(),
-           "Finishes the oldest submitted frame and returns its FrameResult")
-      .def("pending", &amos::Slam::pending)
-      .def("load_map", &amos::Slam::loadMap, py::arg("path"), py::call_guard<py::gil_scoped_release>())
-      .def("finish", &amos::Slam::finish, py::call_guard<py::gil_scoped_release>())
-      .def("save_map", &amos::Slam::saveMap, py::arg("path"), py::call_guard<py::gil_scoped_release>())
-      .def("write_trajectory", &amos::Slam::writeTrajectory, py::arg("path"),
-           py::call_guard<py::gil_scoped_release>())
-      .def("trajectory",
-           [](const amos::Slam& slam) {
-             py::list out;
-             for (const amos::StampedPose& p : slam.trajectory())
-               out.append(py::make_tuple(p.timestamp, Eigen::Matrix4d(p.T_wc)));
-             return out;
-           },
-           "[(timestamp, T_wc 4x4)] of every tracked frame, with the map's corrections")
-      .def("keyframes",
-           [](const amos::Slam& slam) {
-             py::list out;
-             for (const amos::StampedPose& p : slam.keyFrames())
-               out.append(py::make_tuple(p.timestamp, Eigen::Matrix4d(p.T_wc)));
-             return out;
-           })
-      .def("take_keyframe_events",
-           [](amos::Slam& slam) {
-             py::list out;
-             for (const amos::KeyFrameEvent& e : slam.takeKeyFrameEvents()) out.append(keyFrameDict(e));
-             return out;
-           },
-           "The keyframes mapped since the last call: [{id, timestamp, T_wc}]")
+           "Finishes the oldest submitted frame and returns its FrameResult.")
+      .def("pending", &amos::Slam::pending, py::call_guard<py::gil_scoped_release>(),
+           "Frames submitted and not yet returned by next().")
+      .def("load_map", [](amos::Slam& s, const fs::path& path) {
+             py::gil_scoped_release release;
+             s.loadMap(path.string());
+           }, py::arg("path"), "Starts from a saved map (str or pathlib.Path); only before the first frame.")
+      .def("finish", &amos::Slam::finish, py::call_guard<py::gil_scoped_release>(),
+           "Tracks the frames still submitted, lets local mapping settle and stops it. Idempotent.")
+      .def_property_readonly("finished",
+                             py::cpp_function(&amos::Slam::finished, py::call_guard<py::gil_scoped_release>()),
+                             "Whether finish() was called.")
+      .def("save_map", [](const amos::Slam& s, const fs::path& path) {
+             py::gil_scoped_release release;
+             s.saveMap(path.string());
+           }, py::arg("path"), "Writes the map (after finish(): the settled map).")
+      .def("write_trajectory", [](const amos::Slam& s, const fs::path& path) {
+             py::gil_scoped_release release;
+             s.writeTrajectory(path.string());
+           }, py::arg("path"), "Writes trajectory() as a TUM file, as `amos-slam run` writes trajectory.txt.")
+      .def("trajectory", &amos::Slam::trajectory, py::call_guard<py::gil_scoped_release>(),
+           "A StampedPose per tracked frame, with the map's corrections (the final trajectory after finish()).")
+      .def("keyframes", &amos::Slam::keyFrames, py::call_guard<py::gil_scoped_release>(),
+           "The map's keyframes (KeyFrame: id, timestamp, T_wc), by id.")
+      .def("take_keyframe_events", &amos::Slam::takeKeyFrameEvents,
+           "The keyframes mapped since the last call (KeyFrame: id, timestamp, T_wc).")
       .def("map_points",
            [](const amos::Slam& slam) {
-             const std::vector<Eigen::Vector3d> points = slam.mapPoints();
+             std::vector<Eigen::Vector3d> points;
+             {
+               py::gil_scoped_release release;
+               points = slam.mapPoints();
+             }
              py::array_t<double> out(std::vector<py::ssize_t>{static_cast<py::ssize_t>(points.size()), 3});
              auto a = out.mutable_unchecked<2>();
              for (std::size_t i = 0; i < points.size(); ++i)
                for (int k = 0; k < 3; ++k) a(i, k) = points[i][k];
              return out;
-           })
-      .def("summary", [](const amos::Slam& slam) {
-        const amos::MapSummary s = slam.summary();
-        py::dict d;
-        d["keyframes"] = s.keyframes;
-        d["map_points"] = s.map_points;
-        d["loops_closed"] = s.loops_closed;
-        d["frames"] = s.frames;
-        d["tracked"] = s.tracked;
-        d["lost"] = s.lost;
-        return d;
-      });
+           },
+           "The good map points' world positions, an N x 3 float64 array.")
+      .def("summary", &amos::Slam::summary, py::call_guard<py::gil_scoped_release>(),
+           "A MapSummary: counts of the map and the frames.")
+      .def_property_readonly("image_size", [](const amos::Slam& s) {
+        const cv::Size size = s.imageSize();
+        return py::make_tuple(size.width, size.height);
+      }, "(width, height) every frame must have: the settings' camera size.")
+      .def("__enter__", [](py::object self) { return self; }, "Returns the Slam itself.")
+      .def("__exit__", [](amos::Slam& s, const py::object&, const py::object&, const py::object&) {
+             py::gil_scoped_release release;
+             s.finish();
+             return false;
+           }, "Finishes the Slam (finish()); exceptions propagate.")
+      .def("__repr__", [](const amos::Slam& s) {
+        py::gil_scoped_release release;
+        const amos::MapSummary m = s.summary();
+        return fmt::format("Slam(frames={}, keyframes={}, map_points={}, finished={})", m.frames, m.keyframes,
+                           m.map_points, s.finished() ? "True" : "False");
+      }, "A one-line summary.");
+}
 
-  py::class_<amos::SequenceFolder>(m, "SequenceFolder")
-      .def(py::init<const std::string&>(), py::arg("dir"))
-      .def("__len__", &amos::SequenceFolder::size)
+void bindSequenceFolder(py::module_& m) {
+  py::class_<amos::SequenceFolder, Holder<amos::SequenceFolder>>(m, "SequenceFolder",
+                                                                 R"(A recorded TUM/Bonn-layout folder.
+
+    for frame in amos_slam.SequenceFolder("data/seq"):   # Frame: bgr, depth, timestamp, ...
+        ...
+
+Iterating reads the frames in order, decoded ahead in a thread of the folder's own; a frame that cannot be read is
+skipped with a warning (logger "amos_slam") and counted in `skipped`, as `amos-slam run` does. One pass: a second
+loop goes on where the first stopped.)")
+      .def(py::init([](const fs::path& dir) {
+             py::gil_scoped_release release;
+             return Holder<amos::SequenceFolder>(new amos::SequenceFolder(dir.string()));
+           }),
+           py::arg("dir"), "Indexes the folder (str or pathlib.Path).")
+      .def("__len__", &amos::SequenceFolder::size, "The associated frames.")
       .def(
           "read",
           [](const amos::SequenceFolder& folder, std::size_t i) {
@@ -196,20 +402,43 @@ PYBIND11_MODULE(amos_slam, m) {
               py::gil_scoped_release release;
               f = folder.read(i);
             }
-            return frameDict(f);
+            return frameOf(std::move(f));
           },
-          py::arg("i"), "Frame i: {bgr uint8 HxWx3, depth uint16 raw, timestamp, rgb_file, depth_file}")
+          py::arg("i"), "Frame i (0-based) as a Frame; an unreadable frame is an error naming its file.")
+      .def("__iter__", [](py::object self) { return self; }, "The folder itself: its frames in order (one pass).")
       .def(
-          "next",
-          [](amos::SequenceFolder& folder) -> py::object {
+          "__next__",
+          [](amos::SequenceFolder& folder) {
             std::optional<amos::RgbdImages> f;
             {
               py::gil_scoped_release release;
               f = folder.next();
             }
-            if (!f) return py::none();
-            return frameDict(*f);
+            if (!f) throw py::stop_iteration();
+            return frameOf(std::move(*f));
           },
-          "The next frame in order (as read(i)), decoded ahead by the folder's own thread; None after the last")
-      .def("ground_truth_file", &amos::SequenceFolder::groundTruthFile);
+          "The next readable frame (bad frames skipped).")
+      .def_property_readonly("skipped",
+                             py::cpp_function(&amos::SequenceFolder::skipped,
+                                              py::call_guard<py::gil_scoped_release>()),
+                             "Frames skipped so far because they could not be read (or their files are missing).")
+      .def_property_readonly("ground_truth_file", &amos::SequenceFolder::groundTruthFile,
+                             "The sequence's ground truth file ('' when it has none).")
+      .def_property_readonly("dir", &amos::SequenceFolder::dir, "The folder, as given.")
+      .def("__repr__", [](const amos::SequenceFolder& f) {
+        py::gil_scoped_release release;
+        return fmt::format("SequenceFolder('{}', frames={}, skipped={})", f.dir(), f.size(), f.skipped());
+      }, "A one-line summary.");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(amos_slam, m) {
+  m.doc() = "Amos-SLAM: RGB-D SLAM for dynamic scenes (docs/api.md). The library logs through the `logging` logger "
+            "\"amos_slam\" (set_log_level).";
+  m.attr("__version__") = amos::kVersion;
+  amos::python::bindLogging(m);
+  bindValues(m);
+  bindSlam(m);
+  bindSequenceFolder(m);
 }

@@ -25,17 +25,16 @@ def main(argv):
         print(__doc__.strip().splitlines()[0], file=sys.stderr)
         return 2
     sequence, config, frame_index, out = argv[1], argv[2], int(argv[3]), argv[4]
-    slam = amos_slam.Slam(config, mode=argv[5] if len(argv) == 6 else "full")
     folder = amos_slam.SequenceFolder(sequence)
     if not 0 <= frame_index < len(folder):
         print(f"error: FRAME {frame_index}: the sequence has {len(folder)} frames", file=sys.stderr)
         return 2
-    for i in range(frame_index + 1):
-        frame = folder.read(i)
-        result = slam.track(frame["bgr"], frame["depth"], frame["timestamp"])
-    slam.finish()
+    with amos_slam.Slam(config, mode=argv[5] if len(argv) == 6 else "full") as slam:
+        for i in range(frame_index + 1):
+            frame = folder.read(i)
+            result = slam.track(frame.bgr, frame.depth, frame.timestamp)
     mask = result.dynamic_mask
-    if not cv2.imwrite(out, overlay(frame["bgr"], mask)):
+    if not cv2.imwrite(out, overlay(frame.bgr, mask)):
         print(f"error: cannot write {out}", file=sys.stderr)
         return 1
     print(f"frame {frame_index}: {result.state.name}, {np.count_nonzero(mask)} of {mask.size} pixels dynamic, "

@@ -21,33 +21,21 @@ def main():
     ap.add_argument("--not-deterministic", action="store_true",
                     help="local mapping in its own time, as a run without --deterministic")
     args = ap.parse_args()
-    slam = amos_slam.Slam(args.config, mode=args.mode, deterministic=not args.not_deterministic)
-    folder = amos_slam.SequenceFolder(args.sequence)
-    start = time.perf_counter()
-    tracked = 0
-    more = True
-
-    def submit_next():
-        nonlocal more
-        frame = folder.next()  # decoded ahead by the folder's own thread; None after the last
-        if frame is not None:
-            slam.submit(frame["bgr"], frame["depth"], frame["timestamp"])
-        more = frame is not None
-
-    # One frame of look-ahead: frame k+1 is submitted (its features are extracted in the library's threads) before
-    # frame k's result is taken. slam.track(bgr, depth, timestamp) alone would do too, a little slower.
-    submit_next()
-    while slam.pending() > 0:
-        if more:
-            submit_next()
-        result = slam.next()
-        tracked += result.state == amos_slam.TrackingState.OK
-    slam.finish()
-    seconds = time.perf_counter() - start
-    slam.write_trajectory(args.trajectory_out)
-    summary = slam.summary()
-    print(f"amos_slam {amos_slam.__version__}: {len(folder)} frames, {tracked} tracked, "
-          f"{summary['keyframes']} keyframes, {len(folder) / seconds:.1f} fps -> {args.trajectory_out}")
+    folder = amos_slam.SequenceFolder(args.sequence)  # frames decoded ahead; a bad frame is skipped and counted
+    with amos_slam.Slam(args.config, mode=args.mode, deterministic=not args.not_deterministic) as slam:
+        start = time.perf_counter()
+        tracked = 0
+        # track_frames takes the frames one ahead of the results: the next frame's features are extracted while
+        # the current one is tracked (slam.track(frame.bgr, frame.depth, frame.timestamp) would do, a little slower).
+        for result in slam.track_frames(folder):
+            tracked += result.T_wc is not None
+        slam.finish()
+        seconds = time.perf_counter() - start
+        slam.write_trajectory(args.trajectory_out)
+        summary = slam.summary()
+    frames = len(folder) - folder.skipped
+    print(f"amos_slam {amos_slam.__version__}: {frames} frames ({folder.skipped} skipped), {tracked} tracked, "
+          f"{summary.keyframes} keyframes, {frames / seconds:.1f} fps -> {args.trajectory_out}")
     return 0
 
 

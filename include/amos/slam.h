@@ -3,27 +3,32 @@
 //
 //   amos::Options options;
 //   options.settings_file = "configs/tum2.yaml";   // the camera, as for `amos-slam run --config`
-//   options.mode = "full";
+//   options.mode = amos::Mode::kFull;
 //   amos::Slam slam(options);
 //   for (each frame) {
 //     amos::FrameResult r = slam.track(bgr, depth, timestamp);
-//     if (r.state == amos::TrackingState::kOk) use(r.T_wc);
+//     if (r.T_wc) use(*r.T_wc);                    // empty when the frame was not tracked
 //   }
 //   slam.finish();
 //   slam.writeTrajectory("trajectory.txt");        // what `amos-slam run` writes as trajectory.txt
+//
+// A caller whose frames come from a loop of its own gets `amos-slam run`'s speed with trackFrames() (the next
+// frame's per-frame work overlaps the current one's tracking), or with submit() ahead of next().
 //
 // Pose convention (the one used throughout): T_wc is the 4x4 rigid transform (Eigen::Matrix4d, column-major as
 // Eigen stores it) that maps a point from the camera frame into the world frame, p_w = T_wc * p_c; the camera looks
 // along +z, x right, y down; the world frame is the first tracked camera's frame (or the loaded map's). Times are
 // seconds, as given to track().
 //
-// Errors: bad settings, a missing model, a frame of the wrong size or type, a map file that cannot be read, a call
-// out of order: std::runtime_error with a message naming the file, key or argument at fault. Nothing here exits.
+// Errors: bad settings or overrides, a missing model, a frame of the wrong size or type, a time stamp that is not
+// finite or does not increase, a map file that cannot be read, a call out of order, a moved-from Slam:
+// std::runtime_error with a message naming the file, key or argument at fault. Nothing here exits.
 //
-// Threads and lifetime: a Slam is used from one thread at a time (track, finish, saveMap, ... are not concurrent);
-// local mapping and segmentation run in threads of their own, which the Slam owns and joins in finish() or its
-// destructor. Everything a call returns is a value the caller owns (images are copies); the images given to
-// track() are copied, never written, and may be reused at once.
+// Threads and lifetime: every member function may be called from any thread; the calls on one Slam are serialised
+// by a mutex of its own (a second thread waits for the first's call to return). Local mapping and segmentation run
+// in threads of their own, which the Slam owns and joins in finish() or its destructor. Everything a call returns is
+// a value the caller owns (images are copies); the images given to track() are copied, never written, and may be
+// reused at once. The library's log: include/amos/logging.h.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
@@ -31,33 +36,55 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "amos/logging.h"
 #include "amos/version.h"
 
 namespace amos {
 
+// Whether a frame was tracked.
 enum class TrackingState {
   kNotInitialized,  // no map yet (the first frame with enough depth starts it)
-  kOk,              // tracked: T_wc is this frame's pose
-  kLost,            // not tracked: T_wc is the last pose known (the system relocalises when it can)
+  kOk,              // tracked: FrameResult::T_wc is this frame's pose
+  kLost,            // not tracked (the system relocalises when it can)
 };
-const char* toString(TrackingState state);  // "not_initialized" | "ok" | "lost"
+// "not_initialized" | "ok" | "lost".
+const char* toString(TrackingState state);
 
+// The dynamic front end: which of its stages judge what moves (docs/usage.md, "Modes").
+enum class Mode {
+  kNone,          // none: every keypoint is used (as ORB-SLAM2), apart from the caller's prior masks
+  kPrior,         // prior: the person segmentation network's masks
+  kGeometry,      // geometry: the geometric stage (motion against the camera's), no network
+  kFull,          // full: both
+  kFromSettings,  // the settings' Dynamic.mode
+};
+// "none" | "prior" | "geometry" | "full" | "from_settings".
+const char* toString(Mode mode);
+// The mode a name gives ("none", "prior", "geometry", "full"; "" = kFromSettings); std::runtime_error otherwise.
+Mode parseMode(const std::string& name);
+
+// A pose at a time: the trajectory's entries.
 struct StampedPose {
-  double timestamp = 0;
-  Eigen::Matrix4d T_wc = Eigen::Matrix4d::Identity();
+  double timestamp = 0;                                // seconds, as given to track()
+  Eigen::Matrix4d T_wc = Eigen::Matrix4d::Identity();  // camera to world
 };
 
-struct KeyFrameEvent {
-  std::uint64_t id = 0;
+// A keyframe of the map, as keyFrames() lists them and takeKeyFrameEvents() / Options::on_keyframe report new ones.
+struct KeyFrame {
+  std::uint64_t id = 0;  // the map's id of the keyframe (increasing)
   double timestamp = 0;  // of the frame it was made from
-  Eigen::Matrix4d T_wc = Eigen::Matrix4d::Identity();  // its pose when it had been mapped
+  Eigen::Matrix4d T_wc = Eigen::Matrix4d::Identity();  // its pose (when reported as new: when it had been mapped)
 };
+using KeyFrameEvent = KeyFrame;  // the name of earlier versions
 
 // The install's data folder (segmentation models, ORB vocabulary): given by the CMake package to the programs that
-// link AmosSlam::amos_slam, else "" (the library then looks for it itself).
+// link AmosSlam::amos_slam, else "" (the library then looks for it itself). Inline, so that the value is the one
+// the caller's program was compiled with.
 inline std::string installedModelsDir() {
 #ifdef AMOS_SLAM_MODELS_DIR
   return AMOS_SLAM_MODELS_DIR;
@@ -66,16 +93,22 @@ inline std::string installedModelsDir() {
 #endif
 }
 
+// How a Slam is made. Every member has a default; the settings (settings_file or settings_yaml) are required.
 struct Options {
   // The settings (YAML, as configs/*.yaml: camera, DepthMapFactor, ORB, ... see configs/README.md): a file, or,
   // when settings_file is "", the YAML text itself.
   std::string settings_file;
   std::string settings_yaml;
-  // The dynamic front end: "none" | "prior" | "geometry" | "full" ("" = the settings' Dynamic.mode).
-  std::string mode;
-  // The folder of the segmentation models and the ORB vocabulary. "" = the installed data folder (unless the
-  // settings' Segmentation.modelsDir or $AMOS_MODELS name one), then ./models and ../shared/models.
+  // Settings keys set over the settings' values, key and value as a settings file writes them, e.g.
+  // {{"ORBextractor.nFeatures", "1500"}}. A key the settings do not know is an error naming it.
+  std::vector<std::pair<std::string, std::string>> overrides;
+  // The dynamic front end.
+  Mode mode = Mode::kFromSettings;
+  // The folder of the segmentation models and the ORB vocabulary. "" = looked for: the settings'
+  // Segmentation.modelsDir, $AMOS_MODELS, the installed data folder (installed_models_dir), ./models,
+  // ../shared/models. Errors about a missing model name this option.
   std::string models_dir;
+  // The installed data folder, as the program was built against it (see installedModelsDir()).
   std::string installed_models_dir = installedModelsDir();
   // Same input, same trajectory, bit for bit: local mapping runs in lock-step with tracking (slower). Also what
   // `amos-slam run --deterministic` does, so the two give the same trajectory.
@@ -87,59 +120,99 @@ struct Options {
   bool localization_only = false;
   // Called in the mapping thread after each new keyframe has been mapped; must return quickly and not call this
   // Slam. (Or poll: Slam::takeKeyFrameEvents.)
-  std::function<void(const KeyFrameEvent&)> on_keyframe;
+  std::function<void(const KeyFrame&)> on_keyframe;
+  // Keep the per-frame buffers (megabytes each) in glibc's heap instead of mapping and unmapping them every frame,
+  // as `amos-slam` does: raises the process's mmap threshold to 32 MiB and its trim threshold to 512 MiB (mallopt)
+  // when the first Slam is made. Process-wide; false leaves the allocator as the program set it (about a tenth
+  // more CPU time per frame).
+  bool tune_allocator = true;
 };
 
+// What track() / next() return for one frame.
 struct FrameResult {
   std::size_t frame = 0;  // 0-based number of the frame in this Slam
-  double timestamp = 0;
+  double timestamp = 0;   // as given
   TrackingState state = TrackingState::kNotInitialized;
-  Eigen::Matrix4d T_wc = Eigen::Matrix4d::Identity();  // as tracked now (trajectory() has the later corrections)
+  // The frame's pose as tracked now (trajectory() has the later corrections); empty unless state is kOk.
+  std::optional<Eigen::Matrix4d> T_wc;
   bool new_keyframe = false;  // this frame became a keyframe
-  bool relocalized = false;
-  // CV_8U, the frame's size, 255 = judged dynamic (its keypoints were not used); all zero in mode "none".
+  bool relocalized = false;   // tracked again after being lost
+  // CV_8U, the frame's size, 255 = judged dynamic (its keypoints were not used): the front end's regions and the
+  // caller's prior mask; all zero in mode kNone without a prior mask.
   cv::Mat dynamic_mask;
   int keypoints = 0;          // ORB keypoints extracted
   int keypoints_removed = 0;  // of those, inside the dynamic mask
 };
 
-struct MapSummary {
-  std::size_t keyframes = 0, map_points = 0, loops_closed = 0;
-  std::size_t frames = 0, tracked = 0, lost = 0;
+// One frame handed to trackFrames() (the arguments of track()).
+struct InputFrame {
+  cv::Mat bgr;         // as track()'s
+  cv::Mat depth;       // as track()'s
+  double timestamp = 0;
+  cv::Mat prior_mask;  // as track()'s (empty = none)
 };
 
+// The map and the frames so far.
+struct MapSummary {
+  std::size_t keyframes = 0;     // keyframes in the map
+  std::size_t map_points = 0;    // map points in the map
+  std::size_t loops_closed = 0;  // loops closed
+  std::size_t frames = 0;        // frames tracked (of every state)
+  std::size_t tracked = 0;       // of them, with state kOk
+  std::size_t lost = 0;          // of them, with state kLost
+};
+
+// The SLAM system. Move-only; a moved-from Slam throws std::runtime_error from every member function.
 class Slam {
  public:
-  // Reads the settings and loads the models, the vocabulary and the map (Options::map_file).
+  // Reads the settings (with the overrides) and loads the models, the vocabulary and the map (Options::map_file).
   explicit Slam(const Options& options);
-  // Same as Options{settings_file} with these.
-  explicit Slam(const std::string& settings_file, const std::string& mode = "", bool deterministic = false);
-  ~Slam();  // finish()es when that was not done
-  Slam(Slam&&) noexcept;
-  Slam& operator=(Slam&&) noexcept;
+  // Slam(Options) with these (the models found as for Options' defaults).
+  explicit Slam(const std::string& settings_file, Mode mode = Mode::kFromSettings, bool deterministic = false)
+      : Slam(makeOptions(settings_file, mode, deterministic)) {}
+  // Finishes (finish()) when that was not done.
+  ~Slam();
+  Slam(Slam&&) noexcept;             // the other Slam is left moved-from
+  Slam& operator=(Slam&&) noexcept;  // finishes this one first
   Slam(const Slam&) = delete;
   Slam& operator=(const Slam&) = delete;
 
-  // Tracks one frame. bgr: CV_8UC3 in OpenCV's BGR order; depth: CV_16U raw sensor values (metres = value /
-  // DepthMapFactor of the settings) or CV_32F metres (0 or NaN = no depth); both of the settings' Camera.width x
-  // Camera.height. Time stamps should increase.
-  FrameResult track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
+  // Tracks one frame. bgr: CV_8UC3 in OpenCV's BGR order; depth: CV_16UC1 raw sensor values (metres = value /
+  // DepthMapFactor of the settings) or CV_32FC1 metres (0 or NaN = no depth); both of the settings' Camera.width x
+  // Camera.height. timestamp: seconds, finite, greater than the last frame's. prior_mask (optional): what the
+  // caller's own detector found, CV_8UC1 of the same size, non-zero = dynamic: its pixels' keypoints are left out
+  // and its regions join the front end's as the person network's do. Each argument is checked; a bad one is a
+  // std::runtime_error naming it.
+  FrameResult track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp, const cv::Mat& prior_mask = {});
 
-  // track() in two halves, for a caller that has the next frame before the current one's result is needed (a
-  // recorded sequence): submit() checks and copies the frame and returns at once, its per-frame work (features,
-  // segmentation) starting in the library's threads; next() finishes the oldest submitted frame in order and
-  // returns its result. Submitting frame k+1 before next() returns frame k lets the two overlap, as
-  // `amos-slam run` does over a folder; the results are the same as track()'s (bit-identical with
-  // `deterministic`). At most kMaxPending frames may wait; next() with none waiting is an error.
+  // Tracks every frame `source` gives, in order, until it gives nullopt, and hands each result to `on_result`, both
+  // called in the caller's thread (`source` one frame ahead of `on_result`). The next frame's
+  // per-frame work (features, superpixels, segmentation) runs in the library's threads while the current one is
+  // tracked, as `amos-slam run` reads a folder; the results are track()'s (bit-identical with `deterministic`).
+  // Returns the number of frames tracked. An exception from `source` or `on_result` ends it, the frames taken
+  // still tracked (their poses reach trajectory()), and is rethrown.
+  std::size_t trackFrames(const std::function<std::optional<InputFrame>()>& source,
+                          const std::function<void(const FrameResult&)>& on_result);
+
+  // track() in two halves, for a caller that has the next frame before the current one's result is needed:
+  // submit() checks and copies the frame and returns at once, its per-frame work starting in the library's
+  // threads; next() finishes the oldest submitted frame in order and returns its result. At most kMaxPending frames
+  // may wait; next() with none waiting is an error.
   static constexpr std::size_t kMaxPending = 4;
-  void submit(const cv::Mat& bgr, const cv::Mat& depth, double timestamp);
+  // Hands a frame over (the arguments as track()'s).
+  void submit(const cv::Mat& bgr, const cv::Mat& depth, double timestamp, const cv::Mat& prior_mask = {});
+  // The oldest submitted frame's result.
   FrameResult next();
-  std::size_t pending() const;  // submitted, not yet returned by next()
+  // Submitted, not yet returned by next().
+  std::size_t pending() const;
 
   // Starts from a saved map; only before the first frame.
   void loadMap(const std::string& path);
-  // Lets local mapping finish its queue and stops it; track() is refused after. Idempotent.
+  // Tracks the frames still pending (their results are not returned, their poses reach trajectory()), lets local
+  // mapping finish its queue and stops it; frames are refused after. Idempotent.
   void finish();
+  // Whether finish() was called.
+  bool finished() const;
   // Writes the map (after finish(): the map local mapping has settled).
   void saveMap(const std::string& path) const;
 
@@ -148,15 +221,25 @@ class Slam {
   std::vector<StampedPose> trajectory() const;
   // trajectory() as a TUM file ("timestamp tx ty tz qx qy qz qw"), as `amos-slam run` writes trajectory.txt.
   void writeTrajectory(const std::string& path) const;
-  // The keyframes' current poses.
-  std::vector<StampedPose> keyFrames() const;
+  // The keyframes and their current poses, by id.
+  std::vector<KeyFrame> keyFrames() const;
   // The keyframes mapped since the last call (polling instead of Options::on_keyframe).
-  std::vector<KeyFrameEvent> takeKeyFrameEvents();
+  std::vector<KeyFrame> takeKeyFrameEvents();
   // The good map points' world positions.
   std::vector<Eigen::Vector3d> mapPoints() const;
+  // Counts of the map and the frames.
   MapSummary summary() const;
+  // The settings' camera size (Camera.width x Camera.height), which every frame must have.
+  cv::Size imageSize() const;
 
  private:
+  static Options makeOptions(const std::string& settings_file, Mode mode, bool deterministic) {
+    Options o;
+    o.settings_file = settings_file;
+    o.mode = mode;
+    o.deterministic = deterministic;
+    return o;
+  }
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

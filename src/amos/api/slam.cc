@@ -1,17 +1,25 @@
 // amos::Slam (include/amos/slam.h): the public face of api::Engine, the SLAM system and front end that
-// `amos-slam run` drives too. Frames go through DynamicPipeline::process one at a time; internal errors
+// `amos-slam run` drives too. Frames go through the pipeline's push (stage A) and processNext (stage B); the
+// arguments are checked here first (frame_checks.h), so that an error names the caller's argument. Internal errors
 // (core::Error) are std::runtime_errors already, so they pass through unchanged.
 #include "amos/slam.h"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <deque>
+#include <fstream>
 #include <mutex>
 #include <optional>
 #include <shared_mutex>
+#include <sstream>
 #include <utility>
 
+#include "amos/api/allocator_tuning.h"
 #include "amos/api/engine.h"
+#include "amos/api/frame_checks.h"
+#include "amos/api/logging_default.h"
+#include "amos/api/settings_overrides.h"
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
 #include "amos/io/dataset.h"
@@ -37,17 +45,43 @@ std::vector<StampedPose> publicPoses(const std::vector<io::StampedPose>& poses) 
   return out;
 }
 
+std::string fileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  core::require(in.good(), fmt::format("amos::Options::settings_file: cannot read '{}'", path));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 config::Settings readSettings(const Options& options) {
-  if (!options.settings_file.empty()) return config::loadSettings(options.settings_file);
-  core::require(!options.settings_yaml.empty(), "amos::Options: set settings_file or settings_yaml");
-  return config::parseSettings(options.settings_yaml, "<Options::settings_yaml>");
+  if (options.overrides.empty() && !options.settings_file.empty()) return config::loadSettings(options.settings_file);
+  core::require(!options.settings_file.empty() || !options.settings_yaml.empty(),
+                "amos::Options: set settings_file or settings_yaml");
+  const bool file = !options.settings_file.empty();
+  const std::string text = file ? fileText(options.settings_file) : options.settings_yaml;
+  // Parsed under the file's own name, so that errors and relative paths are the file's.
+  return config::parseSettings(api::withOverrides(text, options.overrides, "amos::Options::overrides"),
+                               file ? options.settings_file : "<Options::settings_yaml>");
+}
+
+// The model search's messages name the command line's options; a library caller sets Options' members instead.
+std::string inApiWords(std::string message) {
+  const std::pair<const char*, const char*> words[] = {
+      {"Pass --models DIR", "Set amos::Options::models_dir (Python: models_dir=)"},
+      {"--mode geometry or --mode none", "Mode::kGeometry or Mode::kNone"},
+      {"--models", "Options::models_dir"}};
+  for (const auto& [cli, api] : words) {
+    for (std::size_t at = message.find(cli); at != std::string::npos; at = message.find(cli, at))
+      message.replace(at, std::string(cli).size(), api);
+  }
+  return message;
 }
 
 // The keyframes mapped and not yet taken, and the user's callback; shared with the mapping thread's hook.
 struct KeyFrameEvents {
-  std::function<void(const KeyFrameEvent&)> callback;
+  std::function<void(const KeyFrame&)> callback;
   std::mutex mutex;
-  std::deque<KeyFrameEvent> pending;  // guarded by mutex
+  std::deque<KeyFrame> pending;  // guarded by mutex
 };
 
 }  // namespace
@@ -61,36 +95,64 @@ const char* toString(TrackingState state) {
   return "?";
 }
 
+const char* toString(Mode mode) {
+  switch (mode) {
+    case Mode::kNone: return "none";
+    case Mode::kPrior: return "prior";
+    case Mode::kGeometry: return "geometry";
+    case Mode::kFull: return "full";
+    case Mode::kFromSettings: return "from_settings";
+  }
+  return "?";
+}
+
+Mode parseMode(const std::string& name) {
+  for (const Mode m : {Mode::kNone, Mode::kPrior, Mode::kGeometry, Mode::kFull})
+    if (name == toString(m)) return m;
+  core::require(name.empty() || name == toString(Mode::kFromSettings),
+                fmt::format("amos::parseMode: mode '{}' is not one of none, prior, geometry, full", name));
+  return Mode::kFromSettings;
+}
+
 struct Slam::Impl {
+  mutable std::mutex mutex;  // serialises the public calls
   config::Settings settings;
   io::ReaderOptions reader;
   bool localization_only = false;
   bool map_loaded = false;
   bool finished = false;
   std::size_t frames = 0;  // submitted
+  std::optional<double> last_timestamp;
   std::unique_ptr<KeyFrameEvents> events = std::make_unique<KeyFrameEvents>();
   std::unique_ptr<api::Engine> engine;  // last: its threads stop before the rest goes
 
   explicit Impl(const Options& options) : settings(readSettings(options)), reader(settings.readerOptions()) {
+    if (options.tune_allocator) api::tuneAllocatorOnce();
     localization_only = options.localization_only;
     events->callback = options.on_keyframe;
     api::EngineOptions o;
-    o.mode = options.mode;  // "" = Dynamic.mode
+    o.mode = options.mode == Mode::kFromSettings ? "" : toString(options.mode);
     o.models_dir = options.models_dir;
     o.installed_models_dir = options.installed_models_dir;
     o.deterministic = options.deterministic;
     o.load_map = options.map_file;
     o.localize = options.localization_only;
     o.after_keyframe = hook();
-    engine = std::make_unique<api::Engine>(settings, o);
+    try {
+      engine = std::make_unique<api::Engine>(settings, o);
+    } catch (const core::Error& e) {
+      throw core::Error(inApiWords(e.what()));
+    }
     map_loaded = !options.map_file.empty();
   }
+
+  cv::Size imageSize() const { return {reader.width, reader.height}; }
 
   // Runs in the mapping thread: the keyframe's pose read under the map's shared lock (the mapping thread holds no
   // lock of the map when it calls this).
   mapping::KeyFrameHook hook() {
     return [this](const map::KeyFramePtr& kf) {
-      KeyFrameEvent e;
+      KeyFrame e;
       e.id = kf->id();
       e.timestamp = kf->timestamp();
       {
@@ -114,94 +176,204 @@ struct Slam::Impl {
     f.arrival = std::chrono::steady_clock::now();
     return f;
   }
+
+  std::size_t pending() const { return finished ? 0 : engine->pipeline().waiting(); }
+
+  void submit(const cv::Mat& bgr, const cv::Mat& depth, double timestamp, const cv::Mat& prior_mask) {
+    core::require(!finished, "amos::Slam::submit: finish() was called; frames are no longer accepted");
+    core::require(!localization_only || map_loaded,
+                  "amos::Slam: localization_only needs a map (Options::map_file, or loadMap before the first frame)");
+    core::require(pending() < kMaxPending,
+                  fmt::format("amos::Slam::submit: {} frames already wait (at most {}): call next() first",
+                              pending(), kMaxPending));
+    api::checkFrame({bgr, depth, timestamp, prior_mask}, imageSize(), last_timestamp, "amos::Slam::track");
+    engine->pipeline().push(frame(bgr, depth, timestamp), prior_mask.empty() ? cv::Mat() : prior_mask.clone());
+    last_timestamp = timestamp;
+    ++frames;
+  }
+
+  FrameResult next() {
+    core::require(pending() > 0, "amos::Slam::next: no frame was submitted");
+    const system::ProcessedFrame out = engine->pipeline().processNext();
+    FrameResult r;
+    r.frame = out.frame.index;
+    r.timestamp = out.frame.timestamp;
+    r.state = publicState(out.slam.track.state);
+    if (r.state == TrackingState::kOk) r.T_wc = out.slam.track.T_cw.inverse().matrix();
+    r.new_keyframe = out.slam.track.new_keyframe;
+    r.relocalized = out.slam.track.relocalized;
+    r.dynamic_mask =
+        out.dynamic_mask.empty() ? cv::Mat::zeros(out.frame.bgr.size(), CV_8U) : out.dynamic_mask.clone();
+    r.keypoints = out.slam.keypoints + out.slam.removed_dynamic;  // the core counts the kept ones
+    r.keypoints_removed = out.slam.removed_dynamic;
+    return r;
+  }
+
+  void finish() {
+    if (finished) return;
+    while (pending() > 0) next();  // frames submitted and not taken: their poses belong in the trajectory
+    engine->pipeline().finish();
+    finished = true;
+  }
 };
 
-Slam::Slam(const Options& options) : impl_(std::make_unique<Impl>(options)) {}
+namespace {
 
-Slam::Slam(const std::string& settings_file, const std::string& mode, bool deterministic) {
-  Options o;
-  o.settings_file = settings_file;
-  o.mode = mode;
-  o.deterministic = deterministic;
-  impl_ = std::make_unique<Impl>(o);
+// The Slam's state, for the call `method`; a moved-from Slam is an error naming it. (A template: Slam::Impl is
+// private.)
+template <typename Pointer>
+auto& use(const Pointer& impl, const char* method) {
+  core::require(impl != nullptr, fmt::format("amos::Slam::{}: this Slam was moved from", method));
+  return *impl;
 }
+
+}  // namespace
+
+Slam::Slam(const Options& options) : impl_((api::useDefaultLoggingOnce(), std::make_unique<Impl>(options))) {}
 
 Slam::~Slam() {
-  if (impl_) finish();
+  if (!impl_) return;
+  try {
+    finish();
+  } catch (const std::exception& e) {
+    spdlog::error("amos::Slam: finishing in the destructor failed: {}", e.what());
+  }
 }
+
 Slam::Slam(Slam&&) noexcept = default;
-Slam& Slam::operator=(Slam&&) noexcept = default;
 
-FrameResult Slam::track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
-  submit(bgr, depth, timestamp);
-  return next();
+Slam& Slam::operator=(Slam&& other) noexcept {
+  if (this == &other) return *this;
+  if (impl_) {
+    try {
+      finish();
+    } catch (const std::exception& e) {
+      spdlog::error("amos::Slam: finishing the Slam assigned over failed: {}", e.what());
+    }
+  }
+  impl_ = std::move(other.impl_);
+  return *this;
 }
 
-void Slam::submit(const cv::Mat& bgr, const cv::Mat& depth, double timestamp) {
-  core::require(impl_ != nullptr, "amos::Slam: this Slam was moved from");
-  core::require(!impl_->finished, "amos::Slam::submit: finish() was called; frames are no longer accepted");
-  core::require(!impl_->localization_only || impl_->map_loaded,
-                "amos::Slam: localization_only needs a map (Options::map_file, or loadMap before the first frame)");
-  core::require(pending() < kMaxPending,
-                fmt::format("amos::Slam::submit: {} frames already wait (at most {}): call next() first", pending(),
-                            kMaxPending));
-  impl_->engine->pipeline().push(impl_->frame(bgr, depth, timestamp));
-  ++impl_->frames;
+FrameResult Slam::track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp, const cv::Mat& prior_mask) {
+  auto& impl = use(impl_, "track");
+  std::lock_guard lock(impl.mutex);
+  core::require(impl.pending() == 0, "amos::Slam::track: frames submitted with submit() wait: take them with next()");
+  impl.submit(bgr, depth, timestamp, prior_mask);
+  return impl.next();
+}
+
+std::size_t Slam::trackFrames(const std::function<std::optional<InputFrame>()>& source,
+                              const std::function<void(const FrameResult&)>& on_result) {
+  core::require(static_cast<bool>(source), "amos::Slam::trackFrames: argument 'source' is empty");
+  core::require(pending() == 0, "amos::Slam::trackFrames: frames submitted with submit() wait: take them first");
+  std::size_t done = 0;
+  bool more = true;
+  const auto feed = [&] {
+    std::optional<InputFrame> f = source();
+    if (f) submit(f->bgr, f->depth, f->timestamp, f->prior_mask);
+    more = f.has_value();
+  };
+  try {
+    feed();  // one frame of look-ahead: stage A of frame k+1 runs while frame k is tracked
+    while (pending() > 0) {
+      if (more && pending() < 2) feed();
+      const FrameResult result = next();
+      ++done;
+      if (on_result) on_result(result);
+    }
+  } catch (...) {
+    while (pending() > 0) next();  // the frames taken are tracked, their poses kept
+    throw;
+  }
+  return done;
+}
+
+void Slam::submit(const cv::Mat& bgr, const cv::Mat& depth, double timestamp, const cv::Mat& prior_mask) {
+  auto& impl = use(impl_, "submit");
+  std::lock_guard lock(impl.mutex);
+  impl.submit(bgr, depth, timestamp, prior_mask);
 }
 
 FrameResult Slam::next() {
-  core::require(impl_ != nullptr, "amos::Slam: this Slam was moved from");
-  core::require(pending() > 0, "amos::Slam::next: no frame was submitted");
-  const system::ProcessedFrame out = impl_->engine->pipeline().processNext();
-  FrameResult r;
-  r.frame = out.frame.index;
-  r.timestamp = out.frame.timestamp;
-  r.state = publicState(out.slam.track.state);
-  r.T_wc = out.slam.track.T_cw.inverse().matrix();
-  r.new_keyframe = out.slam.track.new_keyframe;
-  r.relocalized = out.slam.track.relocalized;
-  r.dynamic_mask =
-      out.dynamic_mask.empty() ? cv::Mat::zeros(out.frame.bgr.size(), CV_8U) : out.dynamic_mask.clone();
-  r.keypoints = out.slam.keypoints;
-  r.keypoints_removed = out.slam.removed_dynamic;
-  return r;
+  auto& impl = use(impl_, "next");
+  std::lock_guard lock(impl.mutex);
+  return impl.next();
 }
 
-std::size_t Slam::pending() const { return impl_->finished ? 0 : impl_->engine->pipeline().waiting(); }
+std::size_t Slam::pending() const {
+  const auto& impl = use(impl_, "pending");
+  std::lock_guard lock(impl.mutex);
+  return impl.pending();
+}
 
 void Slam::loadMap(const std::string& path) {
-  core::require(impl_->frames == 0, "amos::Slam::loadMap: only before the first frame");
-  impl_->engine->slam().loadMap(path);
-  impl_->map_loaded = true;
+  auto& impl = use(impl_, "loadMap");
+  std::lock_guard lock(impl.mutex);
+  core::require(impl.frames == 0, "amos::Slam::loadMap: only before the first frame");
+  impl.engine->slam().loadMap(path);
+  impl.map_loaded = true;
 }
 
 void Slam::finish() {
-  if (impl_->finished) return;
-  impl_->engine->pipeline().finish();
-  impl_->finished = true;
+  auto& impl = use(impl_, "finish");
+  std::lock_guard lock(impl.mutex);
+  impl.finish();
 }
 
-void Slam::saveMap(const std::string& path) const { impl_->engine->slam().saveMap(path); }
+bool Slam::finished() const {
+  const auto& impl = use(impl_, "finished");
+  std::lock_guard lock(impl.mutex);
+  return impl.finished;
+}
 
-std::vector<StampedPose> Slam::trajectory() const { return publicPoses(impl_->engine->slam().trajectory()); }
+void Slam::saveMap(const std::string& path) const {
+  const auto& impl = use(impl_, "saveMap");
+  std::lock_guard lock(impl.mutex);
+  impl.engine->slam().saveMap(path);
+}
+
+std::vector<StampedPose> Slam::trajectory() const {
+  const auto& impl = use(impl_, "trajectory");
+  std::lock_guard lock(impl.mutex);
+  return publicPoses(impl.engine->slam().trajectory());
+}
 
 void Slam::writeTrajectory(const std::string& path) const {
-  io::writeTumTrajectory(path, impl_->engine->slam().trajectory());
+  const auto& impl = use(impl_, "writeTrajectory");
+  std::lock_guard lock(impl.mutex);
+  io::writeTumTrajectory(path, impl.engine->slam().trajectory());
 }
 
-std::vector<StampedPose> Slam::keyFrames() const { return publicPoses(impl_->engine->slam().keyframeTrajectory()); }
-
-std::vector<KeyFrameEvent> Slam::takeKeyFrameEvents() {
-  std::lock_guard lock(impl_->events->mutex);
-  std::vector<KeyFrameEvent> out(impl_->events->pending.begin(), impl_->events->pending.end());
-  impl_->events->pending.clear();
+std::vector<KeyFrame> Slam::keyFrames() const {
+  const auto& impl = use(impl_, "keyFrames");
+  std::lock_guard lock(impl.mutex);
+  const map::Map& map = impl.engine->slam().map();
+  std::vector<KeyFrame> out;
+  std::shared_lock map_lock(map.mutex());
+  for (const map::KeyFramePtr& kf : map.keyFrames())
+    if (!kf->isBad()) out.push_back({kf->id(), kf->timestamp(), kf->T_wc().matrix()});
   return out;
 }
 
-std::vector<Eigen::Vector3d> Slam::mapPoints() const { return impl_->engine->slam().mapPointPositions(); }
+std::vector<KeyFrame> Slam::takeKeyFrameEvents() {
+  auto& impl = use(impl_, "takeKeyFrameEvents");
+  std::lock_guard lock(impl.events->mutex);
+  std::vector<KeyFrame> out(impl.events->pending.begin(), impl.events->pending.end());
+  impl.events->pending.clear();
+  return out;
+}
+
+std::vector<Eigen::Vector3d> Slam::mapPoints() const {
+  const auto& impl = use(impl_, "mapPoints");
+  std::lock_guard lock(impl.mutex);
+  return impl.engine->slam().mapPointPositions();
+}
 
 MapSummary Slam::summary() const {
-  const system::SlamStats s = impl_->engine->slam().stats();
+  const auto& impl = use(impl_, "summary");
+  std::lock_guard lock(impl.mutex);
+  const system::SlamStats s = impl.engine->slam().stats();
   MapSummary m;
   m.keyframes = s.keyframes;
   m.map_points = s.map_points;
@@ -211,5 +383,7 @@ MapSummary Slam::summary() const {
   m.lost = s.lost;
   return m;
 }
+
+cv::Size Slam::imageSize() const { return use(impl_, "imageSize").imageSize(); }
 
 }  // namespace amos

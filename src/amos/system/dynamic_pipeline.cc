@@ -37,6 +37,14 @@ PriorAudit auditPrediction(const PersonMaskCarrier::Masks& carried, const segmen
   return a;
 }
 
+// 255 where either mask is non-zero (CV_8U); `a` may be empty.
+cv::Mat mergedMask(const cv::Mat& a, const cv::Mat& b) {
+  cv::Mat merged;
+  cv::compare(b, 0, merged, cv::CMP_NE);
+  if (!a.empty()) cv::bitwise_or(merged, a, merged);
+  return merged;
+}
+
 }  // namespace
 
 DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions& options,
@@ -54,7 +62,24 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
 
 DynamicPipeline::~DynamicPipeline() = default;
 
-FrameNumber DynamicPipeline::push(io::RgbdFrame frame) { return scheduler_.push(std::move(frame), processed_.load()); }
+FrameNumber DynamicPipeline::push(io::RgbdFrame frame, cv::Mat caller_mask) {
+  if (!caller_mask.empty()) {
+    // Pushes come from one thread, so the frame's number is the count pushed so far; stored before the push, so
+    // stage B finds it however soon it takes the frame.
+    std::lock_guard lock(caller_masks_mutex_);
+    caller_masks_[scheduler_.pushed()] = std::move(caller_mask);
+  }
+  return scheduler_.push(std::move(frame), processed_.load());
+}
+
+cv::Mat DynamicPipeline::takeCallerMask(FrameNumber number) {
+  std::lock_guard lock(caller_masks_mutex_);
+  const auto it = caller_masks_.find(number);
+  if (it == caller_masks_.end()) return {};
+  cv::Mat mask = std::move(it->second);
+  caller_masks_.erase(it);
+  return mask;
+}
 
 ProcessedFrame DynamicPipeline::process(io::RgbdFrame frame) {
   push(std::move(frame));
@@ -229,6 +254,7 @@ ProcessedFrame DynamicPipeline::processNext() {
   out.frame = slot.frame;
   const StageATasks& tasks = scheduler_.tasks();
   if (!tasks.segmentation) slot.dilated_prior_mask.set_value(cv::Mat());
+  const cv::Mat caller_mask = takeCallerMask(slot.number);
 
   FrameMotionInput motion = takeMotion(slot);  // 1
   double stage_a_cpu = motion.cpu_ms;
@@ -276,6 +302,7 @@ ProcessedFrame DynamicPipeline::processNext() {
       input.prior_mask = std::move(masks.dilated);
       out.prior_mask = std::move(masks.mask);
     }
+    if (!caller_mask.empty()) input.prior_mask = mergedMask(input.prior_mask, caller_mask);
     if (tasks.geometry) {
       // After a lost frame (no last frame) the reference keyframe's model stands alone.
       std::optional<dynamic::PoseModel> model;
@@ -292,6 +319,12 @@ ProcessedFrame DynamicPipeline::processNext() {
       input.partition = &partition->partition;
     }
     track_input.dynamic_mask = judge(std::move(input));  // 5
+    out.dynamic_mask = track_input.dynamic_mask;
+  }
+  if (!caller_mask.empty()) {
+    // The front end's judgement keeps the prior regions in modes prior and full; in the other modes this is where
+    // the caller's mask comes in.
+    track_input.dynamic_mask = mergedMask(track_input.dynamic_mask, caller_mask);
     out.dynamic_mask = track_input.dynamic_mask;
   }
   core::Stopwatch wait;

@@ -58,6 +58,8 @@
 #include <atomic>
 #include <cstdint>
 #include <deque>
+#include <map>
+#include <mutex>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -101,7 +103,10 @@ class DynamicPipeline {
   ~DynamicPipeline();
 
   // Stage A: schedules the frame's per-frame work. At most FrameScheduler::kMaxAhead frames may wait.
-  FrameNumber push(io::RgbdFrame frame);
+  // `caller_mask` (CV_8U of the frame's size, non-zero = dynamic; empty = none): what the caller's own detector found
+  // (the library API's prior mask). Stage B merges it with the person network's mask into the front end's prior
+  // regions (modes prior and full) and into the final dynamic mask (every mode), so its keypoints are left out.
+  FrameNumber push(io::RgbdFrame frame, cv::Mat caller_mask = {});
   // Frames pushed and not processed yet.
   std::size_t waiting() const { return scheduler_.pushed() - processed_.load(); }
   // Stage B: processes the oldest waiting frame (core::Error when none waits).
@@ -162,6 +167,8 @@ class DynamicPipeline {
   cv::Mat judge(dynamic::FrontEndInput input);
   void track(const TrackInput& input, ProcessedFrame& out);
   void remember(const ProcessedFrame& out, FrameMotionInput motion);
+  // The caller's mask of frame `number` (empty when none was given), taken out of caller_masks_.
+  cv::Mat takeCallerMask(FrameNumber number);
 
   // The slots that stage B will still read from (the segmentation that serves the next frame, and on).
   FrameNumber firstSlotNeeded() const;
@@ -175,7 +182,10 @@ class DynamicPipeline {
   std::vector<PriorAudit> prior_audit_;
   bool wait_for_segmentation_ = true;
   std::size_t segmentation_late_frames_ = 0;
-  std::atomic<FrameNumber> processed_{0};  // state_.processed, for push() and waiting() from another thread
+  std::atomic<FrameNumber> processed_{0};
+  // The caller masks of pushed frames by frame number (push() may run in another thread than stage B).
+  std::mutex caller_masks_mutex_;
+  std::map<FrameNumber, cv::Mat> caller_masks_;  // state_.processed, for push() and waiting() from another thread
   // Last member: its lanes are stopped first, before anything their tasks use goes away.
   FrameScheduler scheduler_;
 };
