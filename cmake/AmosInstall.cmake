@@ -88,11 +88,22 @@ foreach(t amos_libdeflate amos_openni2)
       "  set_target_properties(${t} PROPERTIES INTERFACE_LINK_LIBRARIES \"${lib}\")\nendif()\n")
   endif()
 endforeach()
-# The dense map (Options::dense) links Open3D and OpenMP when the library was built with them.
-set(AMOS_PACKAGE_DENSE "")
-if(TARGET amos_dense)
-  set(AMOS_PACKAGE_DENSE "find_dependency(Open3D CONFIG)\nfind_dependency(OpenMP COMPONENTS CXX)")
-endif()
+# The packages only some builds' libraries link (the dense map's Open3D and OpenMP, the synthetic sequences' PNG):
+# found by the package when an installed library links their targets.
+set(AMOS_PACKAGE_OPTIONAL "")
+set(amos_optional_packages "Open3D::Open3D=Open3D CONFIG" "OpenMP::OpenMP_CXX=OpenMP COMPONENTS CXX" "PNG::PNG=PNG")
+foreach(entry IN LISTS amos_optional_packages)
+  string(REPLACE "=" ";" pair "${entry}")
+  list(GET pair 0 imported)
+  list(GET pair 1 arguments)
+  foreach(t IN LISTS AMOS_INSTALLED_LIBRARIES)
+    get_target_property(links ${t} LINK_LIBRARIES)
+    if(imported IN_LIST links)
+      string(APPEND AMOS_PACKAGE_OPTIONAL "find_dependency(${arguments})\n")
+      break()
+    endif()
+  endforeach()
+endforeach()
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/AmosSlamConfig.cmake.in
   ${PROJECT_BINARY_DIR}/AmosSlamConfig.cmake INSTALL_DESTINATION ${AMOS_CMAKE_DIR} PATH_VARS CMAKE_INSTALL_DATADIR)
 # 0.x: a minor version may change the API.
