@@ -1,6 +1,6 @@
 # The installed package (issue 44): `cmake --install build --prefix P` puts in P
 #   bin/amos-slam
-#   include/amos/{slam.h,sequence_folder.h,logging.h,version.h} the public API (nothing of src/amos/)
+#   include/amos/{slam.h,dense_map.h,sequence_folder.h,logging.h,version.h}  the public API (nothing of src/amos/)
 #   lib/libamos_*.a                                            amos_slam and the modules it links (static)
 #   lib/cmake/AmosSlam/                                        find_package(AmosSlam) -> AmosSlam::amos_slam
 #   lib/pkgconfig/amos-slam.pc
@@ -70,7 +70,7 @@ set(AMOS_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/AmosSlam)
 install(TARGETS ${AMOS_INSTALLED_LIBRARIES} EXPORT AmosSlamTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS amos-slam RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/include/amos/slam.h ${PROJECT_SOURCE_DIR}/include/amos/sequence_folder.h
-  ${PROJECT_SOURCE_DIR}/include/amos/logging.h
+  ${PROJECT_SOURCE_DIR}/include/amos/logging.h ${PROJECT_SOURCE_DIR}/include/amos/dense_map.h
   ${PROJECT_BINARY_DIR}/include/amos/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/amos)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/models/ DESTINATION ${CMAKE_INSTALL_DATADIR}/amos-slam/models)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/configs/ DESTINATION ${CMAKE_INSTALL_DATADIR}/amos-slam/configs
@@ -87,6 +87,22 @@ foreach(t amos_libdeflate amos_openni2)
       "if(NOT TARGET ${t})\n  add_library(${t} INTERFACE IMPORTED)\n"
       "  set_target_properties(${t} PROPERTIES INTERFACE_LINK_LIBRARIES \"${lib}\")\nendif()\n")
   endif()
+endforeach()
+# The packages only some builds' libraries link (the dense map's Open3D and OpenMP, the synthetic sequences' PNG):
+# found by the package when an installed library links their targets.
+set(AMOS_PACKAGE_OPTIONAL "")
+set(amos_optional_packages "Open3D::Open3D=Open3D CONFIG" "OpenMP::OpenMP_CXX=OpenMP COMPONENTS CXX" "PNG::PNG=PNG")
+foreach(entry IN LISTS amos_optional_packages)
+  string(REPLACE "=" ";" pair "${entry}")
+  list(GET pair 0 imported)
+  list(GET pair 1 arguments)
+  foreach(t IN LISTS AMOS_INSTALLED_LIBRARIES)
+    get_target_property(links ${t} LINK_LIBRARIES)
+    if(imported IN_LIST links)
+      string(APPEND AMOS_PACKAGE_OPTIONAL "find_dependency(${arguments})\n")
+      break()
+    endif()
+  endforeach()
 endforeach()
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/AmosSlamConfig.cmake.in
   ${PROJECT_BINARY_DIR}/AmosSlamConfig.cmake INSTALL_DESTINATION ${AMOS_CMAKE_DIR} PATH_VARS CMAKE_INSTALL_DATADIR)
@@ -106,6 +122,9 @@ foreach(t IN LISTS AMOS_INSTALLED_LIBRARIES)
 endforeach()
 if(TARGET amos_libdeflate)
   string(APPEND AMOS_PC_LIBS " -ldeflate")
+endif()
+if(TARGET amos_dense)
+  string(APPEND AMOS_PC_LIBS " -lOpen3D -lgomp")
 endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/amos-slam.pc.in ${PROJECT_BINARY_DIR}/amos-slam.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/amos-slam.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

@@ -12,6 +12,11 @@
 #                              (`amos-slam synth --preset objects_xyz`), run examples/python/with_my_detector.py on it
 #                              (the caller's masks: the sequence's own mover masks) and check that its masks removed
 #                              keypoints and that its trajectory is evaluated against the ground truth
+#   examples_test.sh dense     build examples/cpp out of tree, run its dense_map and examples/python/dense_map.py on
+#                              tum_fr2_desk_first50 (configs/tum2.yaml, mode none, deterministic) and check that
+#                              their mesh.ply (vertices, normals, colours, triangles) and floor plan equal the
+#                              installed `amos-slam run --dense --deterministic`'s byte for byte (skipped, 77,
+#                              without Open3D)
 # The data is looked for in $AMOS_DATA_DIR (else the build's AMOS_DATA_DIR); without it the test is skipped (77),
 # or fails with AMOS_REQUIRE_SHARED_DATA=1. Everything runs from a scratch folder outside both trees, with
 # AMOS_MODELS unset, so the programs find the models in the installed data folder.
@@ -52,21 +57,32 @@ compile_headers() {
   echo "pkg-config: a program links with amos-slam.pc's flags"
 }
 
-track() {
-  local data=${AMOS_DATA_DIR:-$AMOS_DEFAULT_DATA_DIR} sequence config
-  sequence=$data/tum_fr2_desk_first50
+# The real sequence both examples' tests use (sets $sequence; exits 77, or 1 with AMOS_REQUIRE_SHARED_DATA=1,
+# when it is missing).
+find_sequence() {
+  sequence=${AMOS_DATA_DIR:-$AMOS_DEFAULT_DATA_DIR}/tum_fr2_desk_first50
   if [[ ! -d "$sequence" ]]; then
     echo "real data missing: $sequence (set AMOS_DATA_DIR; scripts/fetch_data.sh)" >&2
     [[ "${AMOS_REQUIRE_SHARED_DATA:-0}" == 1 ]] && exit 1
     exit 77
   fi
-  config=$AMOS_SOURCE_DIR/configs/tum2.yaml
+}
+
+# examples/cpp built out of tree against the installed package, in a scratch folder (the current folder after).
+build_cpp_examples() {
   work=$(mktemp -d "${TMPDIR:-/tmp}/amos-examples.XXXXXX")
   trap 'rm -rf "$work"' EXIT
   cd "$work"
   cmake -S "$AMOS_SOURCE_DIR/examples/cpp" -B build -DCMAKE_PREFIX_PATH="$prefix" > cmake.log ||
     { cat cmake.log; exit 1; }
   cmake --build build > build.log || { cat build.log; exit 1; }
+}
+
+track() {
+  local sequence config
+  find_sequence
+  config=$AMOS_SOURCE_DIR/configs/tum2.yaml
+  build_cpp_examples
   "$prefix/bin/amos-slam" run --sequence "$sequence" --config "$config" --mode full --deterministic \
     --output run > run.log 2>&1 || { tail -20 run.log; exit 1; }
   build/track_folder "$sequence" "$config" cpp_trajectory.txt full
@@ -81,6 +97,36 @@ track() {
     PYTHONPATH=$site "$AMOS_PYTHON" "$AMOS_SOURCE_DIR/examples/python/show_mask.py" "$sequence" "$config" 30 \
       overlay.png full
     [[ -s overlay.png ]]
+  fi
+}
+
+# The same files, byte for byte, as the run's (named in the message).
+same_dense_files() {
+  local from=$1 name
+  for name in mesh.ply occupancy.pgm occupancy.yaml; do
+    if [[ -f "run/$name" || -f "$from/$name" ]]; then
+      cmp "run/$name" "$from/$name"
+    fi
+  done
+  echo "$from: mesh.ply identical to amos-slam run --dense's ($(sed -n 's/^element vertex //p' "$from/mesh.ply" |
+    head -1) vertices, sha256 $(sha256sum "$from/mesh.ply" | cut -c1-16)), floor plan" \
+    "$([[ -f "$from/occupancy.pgm" ]] && echo identical || echo "absent in both")"
+}
+
+dense() {
+  local sequence config
+  [[ "${AMOS_WITH_DENSE:-0}" == 1 ]] || { echo "the library is built without the dense map (Open3D)" >&2; exit 77; }
+  find_sequence
+  config=$AMOS_SOURCE_DIR/configs/tum2.yaml
+  build_cpp_examples
+  "$prefix/bin/amos-slam" run --sequence "$sequence" --config "$config" --mode none --deterministic --dense \
+    --output run > run.log 2>&1 || { tail -20 run.log; exit 1; }
+  build/dense_map "$sequence" "$config" cpp none
+  same_dense_files cpp
+  if [[ "${AMOS_WITH_PYTHON:-0}" == 1 ]]; then
+    PYTHONPATH=$prefix/lib/python3/dist-packages "$AMOS_PYTHON" "$AMOS_SOURCE_DIR/examples/python/dense_map.py" \
+      "$sequence" "$config" py --mode none
+    same_dense_files py
   fi
 }
 
@@ -103,5 +149,6 @@ case "${1:-}" in
   headers) compile_headers ;;
   track) track ;;
   detector) detector ;;
-  *) echo "usage: $0 install|headers|track|detector" >&2; exit 2 ;;
+  dense) dense ;;
+  *) echo "usage: $0 install|headers|track|detector|dense" >&2; exit 2 ;;
 esac

@@ -2,7 +2,8 @@
 //   colour images: uint8 H x W x 3 arrays in OpenCV's BGR order (cv2.imread's), as amos::Slam::track takes them;
 //   depth: uint16 H x W raw sensor values (metres = value / DepthMapFactor) or float32 H x W metres;
 //   poses: 4 x 4 float64 arrays T_wc (camera to world); masks: uint8 H x W arrays (255 = dynamic).
-// Results are small classes with attributes and a repr (FrameResult, Frame, StampedPose, KeyFrame, MapSummary).
+// Results are small classes with attributes and a repr (FrameResult, Frame, StampedPose, KeyFrame, MapSummary;
+// the dense map's: dense_bindings.h).
 // The arrays given are read, never kept or written; the arrays returned are the caller's. The GIL is released while
 // the library works (tracking, finishing, reading, and when a Slam or a folder is destroyed), so other Python
 // threads run meanwhile and the library's threads can log through `logging` (python_logging.h).
@@ -24,6 +25,7 @@
 #include "amos/sequence_folder.h"
 #include "amos/slam.h"
 #include "arrays.h"
+#include "dense_bindings.h"
 #include "python_logging.h"
 
 namespace py = pybind11;
@@ -174,7 +176,7 @@ std::vector<std::pair<std::string, std::string>> overridesOf(const py::object& o
 
 Holder<amos::Slam> makeSlam(const py::object& settings_file, const py::object& mode, bool deterministic,
                             const py::object& models_dir, const py::object& map_file, bool localization_only,
-                            const std::string& settings_yaml, const py::object& overrides) {
+                            const std::string& settings_yaml, const py::object& overrides, bool dense) {
   amos::Options o;
   if (!settings_file.is_none()) o.settings_file = settings_file.cast<fs::path>().string();
   o.settings_yaml = settings_yaml;
@@ -184,6 +186,7 @@ Holder<amos::Slam> makeSlam(const py::object& settings_file, const py::object& m
   if (!models_dir.is_none()) o.models_dir = models_dir.cast<fs::path>().string();
   if (!map_file.is_none()) o.map_file = map_file.cast<fs::path>().string();
   o.localization_only = localization_only;
+  o.dense = dense;
   py::gil_scoped_release release;
   return Holder<amos::Slam>(new amos::Slam(o));
 }
@@ -281,7 +284,7 @@ fault (TypeError / ValueError for an argument of the wrong kind or shape).)")
       .def(py::init(&makeSlam), py::arg("settings_file") = py::none(), py::arg("mode") = amos::Mode::kFromSettings,
            py::arg("deterministic") = false, py::arg("models_dir") = py::none(), py::arg("map_file") = py::none(),
            py::arg("localization_only") = false, py::arg("settings_yaml") = "",
-           py::arg("overrides") = py::none(),
+           py::arg("overrides") = py::none(), py::arg("dense") = false,
            R"(Reads the settings and loads the models, the vocabulary and the map.
 
 settings_file: the settings (YAML, as configs/*.yaml; str or pathlib.Path), or settings_yaml: their text.
@@ -289,7 +292,9 @@ mode: an amos_slam.Mode or its name ('none', 'prior', 'geometry', 'full'); defau
 deterministic: same input, same trajectory, bit for bit (what `amos-slam run --deterministic` does).
 models_dir: the folder of the models and vocabulary (default: Segmentation.modelsDir, $AMOS_MODELS, the installed
 data folder, ./models, ../shared/models). map_file: start from a saved map; localization_only: never extend it.
-overrides: settings keys over the file's values, e.g. {"ORBextractor.nFeatures": "1500"} (unknown keys are errors).)")
+overrides: settings keys over the file's values, e.g. {"ORBextractor.nFeatures": "1500"} (unknown keys are errors).
+dense: fuse the dense static map as `amos-slam run --dense` (Dense.* settings): dense_map() after finish(),
+dense_snapshot() while running. Only when amos_slam.dense_available (the library built with Open3D).)")
       .def(
           "track",
           [](amos::Slam& slam, const py::object& bgr, const py::object& depth, double timestamp,
@@ -360,6 +365,10 @@ per-frame work overlaps the current one's tracking: `amos-slam run`'s speed from
            "The good map points' world positions, an N x 3 float64 array.")
       .def("summary", &amos::Slam::summary, py::call_guard<py::gil_scoped_release>(),
            "A MapSummary: counts of the map and the frames.")
+      .def("dense_map", &amos::Slam::denseMap, py::call_guard<py::gil_scoped_release>(),
+           "The DenseMap fused with the final trajectory, as `amos-slam run --dense` (after finish(); dense=True).")
+      .def("dense_snapshot", &amos::Slam::denseSnapshot, py::call_guard<py::gil_scoped_release>(),
+           "The live volume's surface so far (DenseSnapshot), or None before the first (dense=True).")
       .def_property_readonly("image_size", [](const amos::Slam& s) {
         const cv::Size size = s.imageSize();
         return py::make_tuple(size.width, size.height);
@@ -439,6 +448,7 @@ PYBIND11_MODULE(amos_slam, m) {
   m.attr("__version__") = amos::kVersion;
   amos::python::bindLogging(m);
   bindValues(m);
+  amos::python::bindDense(m);
   bindSlam(m);
   bindSequenceFolder(m);
 }

@@ -41,6 +41,7 @@
 #include <utility>
 #include <vector>
 
+#include "amos/dense_map.h"
 #include "amos/logging.h"
 #include "amos/version.h"
 
@@ -126,6 +127,11 @@ struct Options {
   // when the first Slam is made. Process-wide; false leaves the allocator as the program set it (about a tenth
   // more CPU time per frame).
   bool tune_allocator = true;
+  // Fuse the dense static map beside tracking (include/amos/dense_map.h), as `amos-slam run --dense`: the tracked
+  // frames' static pixels (the dynamic mask, with the caller's prior masks, left out), with the settings' Dense.*
+  // keys (and the overrides). denseMap() after finish(), denseSnapshot() while running. Only in a library built
+  // with Open3D (denseMappingAvailable()): otherwise true is an error saying so.
+  bool dense = false;
 };
 
 // What track() / next() return for one frame.
@@ -229,6 +235,14 @@ class Slam {
   std::vector<Eigen::Vector3d> mapPoints() const;
   // Counts of the map and the frames.
   MapSummary summary() const;
+
+  // The dense map (Options::dense), fused with the final trajectory (trajectory() after finish()) from the frames
+  // kept: what `amos-slam run --dense` writes for the same frames and settings. After finish(); the fusion takes
+  // a while (it runs anew each call). An error without Options::dense or before finish().
+  DenseMap denseMap() const;
+  // The live volume's surface so far (tracking poses, every Dense.liveEveryth kept frame fused), or nullopt before
+  // the first one (or with Dense.liveEvery 0). An error without Options::dense.
+  std::optional<DenseSnapshot> denseSnapshot() const;
   // The settings' camera size (Camera.width x Camera.height), which every frame must have.
   cv::Size imageSize() const;
 

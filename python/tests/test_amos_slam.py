@@ -217,5 +217,53 @@ class Folders(unittest.TestCase):
         self.assertEqual(sum(1 for _ in folder), 0)
 
 
+@unittest.skipUnless(amos_slam.dense_available, "the library was built without Open3D")
+class Dense(unittest.TestCase):
+    def test_dense_map_arrays_files_and_reprs(self):
+        with geometry_slam(dense=True, overrides={"Dense.liveEvery": 1}) as slam:
+            for i, result in enumerate(slam.track_frames(amos_slam.SequenceFolder(SEQUENCE))):
+                if i == 10:
+                    with self.assertRaisesRegex(RuntimeError, "after finish"):
+                        slam.dense_map()
+            snapshot = slam.dense_snapshot()
+        m = slam.dense_map()
+        self.assertRegex(repr(m), r"DenseMap\(mesh_vertices=\d+, cloud_points=\d+, grid=")
+        n = m.mesh.vertices.shape[0]
+        self.assertGreater(n, 1000)
+        self.assertEqual(m.mesh.vertices.dtype, np.float64)
+        self.assertEqual(m.mesh.triangles.dtype, np.uint32)
+        self.assertEqual(m.mesh.triangles.shape[1], 3)
+        self.assertLess(m.mesh.triangles.max(), n)
+        self.assertEqual(m.mesh.colors.shape, (n, 3))
+        self.assertEqual(m.mesh.colors.dtype, np.uint8)
+        self.assertEqual(m.cloud.points.shape[1], 3)
+        self.assertEqual(m.cloud.colors.shape, m.cloud.points.shape)
+        self.assertIn("Mesh(vertices=", repr(m.mesh))
+        self.assertIn("Cloud(points=", repr(m.cloud))
+        if snapshot is not None:
+            self.assertIn("DenseSnapshot(points=", repr(snapshot))
+            self.assertGreater(snapshot.frames_fused, 0)
+        work = pathlib.Path(tempfile.mkdtemp())
+        m.write_mesh_ply(work / "mesh.ply")
+        m.write_cloud_ply(str(work / "cloud.ply"))
+        self.assertTrue((work / "mesh.ply").read_bytes().startswith(b"ply"))
+        if m.grid is None:
+            with self.assertRaisesRegex(RuntimeError, "no floor plan"):
+                m.write_floor_plan(work / "occupancy")
+        else:
+            self.assertEqual(m.grid.cells.ndim, 2)
+            self.assertEqual(m.grid.cells.dtype, np.uint8)
+            self.assertIn("OccupancyGrid(rows=", repr(m.grid))
+            m.write_floor_plan(work / "occupancy")
+            self.assertTrue((work / "occupancy.pgm").exists() and (work / "occupancy.yaml").exists())
+        shutil.rmtree(work)
+
+    def test_dense_calls_need_dense(self):
+        with geometry_slam() as slam:
+            pass
+        with self.assertRaisesRegex(RuntimeError, "Options::dense"):
+            slam.dense_map()
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "amos/api/settings_sections.h"
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
 
@@ -13,7 +14,7 @@ namespace {
 
 // The key's own name and its former ones, or nothing when the registry does not know it.
 std::vector<std::string> namesOf(const std::string& key) {
-  config::Settings defaults;
+  config::Settings defaults = config::defaultSettings(settingsSections());  // the Dense.* keys too
   for (const config::KeySection& section : config::settingsKeys(defaults)) {
     for (const config::SettingsKey& k : section.keys) {
       std::vector<std::string> names{k.name()};

@@ -1,6 +1,6 @@
 #pragma once
 // amos::Options::overrides: settings keys set over a settings file's values, checked against the key registry
-// (config::settingsKeys) first, so that a misspelt key is an error naming it rather than a value silently unused.
+// (config::settingsKeys, with the sections of settings_sections.h) first, so that a misspelt key is an error naming it rather than a value silently unused.
 #include <string>
 #include <utility>
 #include <vector>

@@ -16,10 +16,12 @@
 #include <utility>
 
 #include "amos/api/allocator_tuning.h"
+#include "amos/api/dense_feed.h"
 #include "amos/api/engine.h"
 #include "amos/api/frame_checks.h"
 #include "amos/api/logging_default.h"
 #include "amos/api/settings_overrides.h"
+#include "amos/api/settings_sections.h"
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
 #include "amos/io/dataset.h"
@@ -54,14 +56,15 @@ std::string fileText(const std::string& path) {
 }
 
 config::Settings readSettings(const Options& options) {
-  if (options.overrides.empty() && !options.settings_file.empty()) return config::loadSettings(options.settings_file);
+  if (options.overrides.empty() && !options.settings_file.empty())
+    return config::loadSettings(options.settings_file, api::settingsSections());
   core::require(!options.settings_file.empty() || !options.settings_yaml.empty(),
                 "amos::Options: set settings_file or settings_yaml");
   const bool file = !options.settings_file.empty();
   const std::string text = file ? fileText(options.settings_file) : options.settings_yaml;
   // Parsed under the file's own name, so that errors and relative paths are the file's.
   return config::parseSettings(api::withOverrides(text, options.overrides, "amos::Options::overrides"),
-                               file ? options.settings_file : "<Options::settings_yaml>");
+                               file ? options.settings_file : "<Options::settings_yaml>", api::settingsSections());
 }
 
 // The model search's messages name the command line's options; a library caller sets Options' members instead.
@@ -124,9 +127,12 @@ struct Slam::Impl {
   std::size_t frames = 0;  // submitted
   std::optional<double> last_timestamp;
   std::unique_ptr<KeyFrameEvents> events = std::make_unique<KeyFrameEvents>();
-  std::unique_ptr<api::Engine> engine;  // last: its threads stop before the rest goes
+  std::unique_ptr<api::DenseFeed> dense;  // Options::dense
+  std::unique_ptr<api::Engine> engine;    // last: its threads stop before the rest goes
 
   explicit Impl(const Options& options) : settings(readSettings(options)), reader(settings.readerOptions()) {
+    // First: without Open3D, Options::dense is refused before the models are loaded.
+    if (options.dense) dense = std::make_unique<api::DenseFeed>(settings);
     if (options.tune_allocator) api::tuneAllocatorOnce();
     localization_only = options.localization_only;
     events->callback = options.on_keyframe;
@@ -206,6 +212,7 @@ struct Slam::Impl {
         out.dynamic_mask.empty() ? cv::Mat::zeros(out.frame.bgr.size(), CV_8U) : out.dynamic_mask.clone();
     r.keypoints = out.slam.keypoints + out.slam.removed_dynamic;  // the core counts the kept ones
     r.keypoints_removed = out.slam.removed_dynamic;
+    if (dense) dense->push(out);
     return r;
   }
 
@@ -213,6 +220,7 @@ struct Slam::Impl {
     if (finished) return;
     while (pending() > 0) next();  // frames submitted and not taken: their poses belong in the trajectory
     engine->pipeline().finish();
+    if (dense) dense->finish();
     finished = true;
   }
 };
@@ -382,6 +390,22 @@ MapSummary Slam::summary() const {
   m.tracked = s.tracked;
   m.lost = s.lost;
   return m;
+}
+
+DenseMap Slam::denseMap() const {
+  const auto& impl = use(impl_, "denseMap");
+  std::lock_guard lock(impl.mutex);
+  core::require(impl.dense != nullptr, "amos::Slam::denseMap: the Slam was made without Options::dense");
+  core::require(impl.finished, "amos::Slam::denseMap: only after finish() (the map is fused with the final "
+                               "trajectory)");
+  return impl.dense->fuse(impl.engine->slam().trajectory());
+}
+
+std::optional<DenseSnapshot> Slam::denseSnapshot() const {
+  const auto& impl = use(impl_, "denseSnapshot");
+  std::lock_guard lock(impl.mutex);
+  core::require(impl.dense != nullptr, "amos::Slam::denseSnapshot: the Slam was made without Options::dense");
+  return impl.dense->snapshot();
 }
 
 cv::Size Slam::imageSize() const { return use(impl_, "imageSize").imageSize(); }
