@@ -3,25 +3,16 @@
 stream, and after each update fetches the frame image over one kept-alive connection, as the page does (it skips
 an image while the previous one loads). Ends when the run's process is gone; writes counts as JSON.
   viewer_client.py PORT RUN_PID OUT.json"""
-import http.client, json, os, sys, threading, time
+import viewer_wait
+import http.client, json, sys, threading, time
 
 port, run_pid, out = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
 
 def alive():
-    try:
-        os.kill(run_pid, 0)
-        return True
-    except OSError:
-        return False
+    return viewer_wait.alive(run_pid)
 
-while alive():
-    try:
-        c = http.client.HTTPConnection("127.0.0.1", port, timeout=2)
-        c.request("GET", "/api/state")
-        c.getresponse().read()
-        break
-    except OSError:
-        time.sleep(0.2)
+
+viewer_wait.wait_for_server(port, run_pid)
 
 updates = 0
 images = 0

@@ -4,7 +4,8 @@ the run's process ends or SECONDS pass. A tenth follow the event stream (/api/ev
 half fetch /api/state and half /api/frame.jpg, each over its own kept-alive connection, with PAUSE seconds between
 requests (a page polling). Writes per endpoint the requests, the statuses and the latency (median, p95, max ms).
   viewer_load.py PORT RUN_PID OUT.json [CLIENTS=50] [SECONDS=30] [PAUSE=0.1]"""
-import http.client, json, os, statistics, sys, threading, time
+import viewer_wait
+import http.client, json, statistics, sys, threading, time
 
 port, run_pid, out = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
 clients = int(sys.argv[4]) if len(sys.argv) > 4 else 50
@@ -13,21 +14,10 @@ pause = float(sys.argv[6]) if len(sys.argv) > 6 else 0.1
 
 
 def alive():
-    try:
-        os.kill(run_pid, 0)
-        return True
-    except OSError:
-        return False
+    return viewer_wait.alive(run_pid)
 
 
-while alive():  # the server answers
-    try:
-        c = http.client.HTTPConnection("127.0.0.1", port, timeout=2)
-        c.request("GET", "/api/state")
-        c.getresponse().read()
-        break
-    except OSError:
-        time.sleep(0.2)
+viewer_wait.wait_for_server(port, run_pid)
 
 end = time.monotonic() + seconds
 lock = threading.Lock()
