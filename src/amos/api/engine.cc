@@ -32,14 +32,10 @@ std::unique_ptr<system::SlamSystem> makeSlam(const config::Settings& settings, c
 // The segmenter (modes prior and full) is created, and its models loaded, before the first frame, so a missing or
 // corrupt model is a start-up error.
 std::unique_ptr<system::DynamicPipeline> makeDynamicPipeline(const config::Settings& used,
-                                                             const std::string& models_dir,
+                                                             const segmentation::ModelSources& sources,
                                                              system::SlamSystem& slam) {
   std::unique_ptr<segmentation::SegmentationWorker> worker;
   if (used.dynamic.mode == dynamic::DynamicMode::kPrior || used.dynamic.mode == dynamic::DynamicMode::kFull) {
-    segmentation::ModelSources sources;
-    sources.cli_dir = models_dir;
-    sources.settings_dir = used.segmentation.models_dir;
-    sources.environment = segmentation::processEnvironment();
     auto segmenter =
         segmentation::createSegmenter(used.segmentation, sources, segmentation::builtinSegmenterFactory());
     worker = std::make_unique<segmentation::SegmentationWorker>(std::move(segmenter), used.segmentation.dilation);
@@ -60,7 +56,12 @@ Engine::Engine(const config::Settings& settings, const EngineOptions& options) {
   models_dir_ = modelsFolder(options.models_dir, settings.segmentation.models_dir,
                              options.installed_models_dir.empty() ? installedModelsDir() : options.installed_models_dir);
   slam_ = makeSlam(used, options, models_dir_);
-  pipeline_ = makeDynamicPipeline(used, models_dir_, *slam_);
+  segmentation::ModelSources sources;
+  sources.cli_dir = models_dir_;
+  sources.settings_dir = used.segmentation.models_dir;
+  sources.environment = segmentation::processEnvironment();
+  sources.names = options.model_option_names;
+  pipeline_ = makeDynamicPipeline(used, sources, *slam_);
 }
 
 Engine::~Engine() = default;

@@ -9,6 +9,7 @@
 
 #include "amos/config/settings.h"
 #include "amos/mapping/local_mapper.h"
+#include "amos/segmentation/model_locator.h"
 #include "amos/system/dynamic_pipeline.h"
 #include "amos/system/slam_system.h"
 
@@ -22,6 +23,8 @@ struct EngineOptions {
   std::string load_map;       // start from this saved map ("" = an empty map)
   bool localize = false;      // only track against the loaded map (the callers require one)
   mapping::KeyFrameHook after_keyframe;  // in the mapping thread after each keyframe is mapped
+  // How the caller's user names models_dir and the modes in the model search's errors (default: the command line's).
+  segmentation::SourceNames model_option_names;
 };
 
 // `settings` with the options that are also settings keys applied (mode, when not "": Dynamic.mode).

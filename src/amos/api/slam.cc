@@ -67,19 +67,6 @@ config::Settings readSettings(const Options& options) {
                                file ? options.settings_file : "<Options::settings_yaml>", api::settingsSections());
 }
 
-// The model search's messages name the command line's options; a library caller sets Options' members instead.
-std::string inApiWords(std::string message) {
-  const std::pair<const char*, const char*> words[] = {
-      {"Pass --models DIR", "Set amos::Options::models_dir (Python: models_dir=)"},
-      {"--mode geometry or --mode none", "Mode::kGeometry or Mode::kNone"},
-      {"--models", "Options::models_dir"}};
-  for (const auto& [cli, api] : words) {
-    for (std::size_t at = message.find(cli); at != std::string::npos; at = message.find(cli, at))
-      message.replace(at, std::string(cli).size(), api);
-  }
-  return message;
-}
-
 // The keyframes mapped and not yet taken, and the user's callback; shared with the mapping thread's hook.
 struct KeyFrameEvents {
   std::function<void(const KeyFrame&)> callback;
@@ -144,11 +131,9 @@ struct Slam::Impl {
     o.load_map = options.map_file;
     o.localize = options.localization_only;
     o.after_keyframe = hook();
-    try {
-      engine = std::make_unique<api::Engine>(settings, o);
-    } catch (const core::Error& e) {
-      throw core::Error(inApiWords(e.what()));
-    }
+    o.model_option_names = {"Options::models_dir", "Set amos::Options::models_dir (Python: models_dir=)",
+                            "Mode::kGeometry or Mode::kNone"};
+    engine = std::make_unique<api::Engine>(settings, o);
     map_loaded = !options.map_file.empty();
   }
 

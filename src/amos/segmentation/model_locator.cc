@@ -19,12 +19,12 @@ std::vector<std::string> missingFiles(const std::string& dir, const std::vector<
   return missing;
 }
 
-std::string whatToDo(const std::vector<std::string>& files) {
+std::string whatToDo(const std::vector<std::string>& files, const SourceNames& names) {
   return fmt::format(
-      "Pass --models DIR, set Segmentation.modelsDir in the settings file or the environment variable AMOS_MODELS to "
+      "{}, set Segmentation.modelsDir in the settings file or the environment variable AMOS_MODELS to "
       "a folder holding {} (the shared models are in ../shared/models, see its README.md), or run without prior "
-      "dynamic object segmentation (--mode geometry or --mode none).",
-      fmt::join(files, ", "));
+      "dynamic object segmentation ({}).",
+      names.pass_dir, fmt::join(files, ", "), names.modes_without_models);
 }
 
 }  // namespace
@@ -41,7 +41,7 @@ ModelLocation locateModelDir(const ModelSources& sources, const std::vector<std:
   std::optional<std::string> env_dir;
   if (sources.environment) env_dir = sources.environment("AMOS_MODELS");
   const std::pair<std::string, std::string> explicit_sources[] = {
-      {"--models", sources.cli_dir},
+      {sources.names.dir_option, sources.cli_dir},
       {"Segmentation.modelsDir", sources.settings_dir},
       {"AMOS_MODELS", env_dir.value_or("")}};
   for (const auto& [source, dir] : explicit_sources) {
@@ -49,15 +49,16 @@ ModelLocation locateModelDir(const ModelSources& sources, const std::vector<std:
     const auto missing = missingFiles(dir, required_files, exists);
     if (!missing.empty())
       throw core::Error(fmt::format("segmentation models: {} = '{}' does not hold {}. {}", source, dir,
-                                    fmt::join(missing, ", "), whatToDo(required_files)));
+                                    fmt::join(missing, ", "), whatToDo(required_files, sources.names)));
     return {dir, source};
   }
   for (const auto& dir : sources.default_dirs)
     if (missingFiles(dir, required_files, exists).empty()) return {dir, "default " + dir};
   throw core::Error(fmt::format(
-      "segmentation models not found: --models, Segmentation.modelsDir and AMOS_MODELS are not set and none of {} "
+      "segmentation models not found: {}, Segmentation.modelsDir and AMOS_MODELS are not set and none of {} "
       "holds {}. {}",
-      fmt::join(sources.default_dirs, ", "), fmt::join(required_files, ", "), whatToDo(required_files)));
+      sources.names.dir_option, fmt::join(sources.default_dirs, ", "), fmt::join(required_files, ", "),
+      whatToDo(required_files, sources.names)));
 }
 
 ModelLocation locateModelDir(const ModelSources& sources, const std::vector<std::string>& required_files) {

@@ -16,11 +16,20 @@ namespace amos::segmentation {
 using EnvironmentLookup = std::function<std::optional<std::string>(const std::string& name)>;
 using FileExists = std::function<bool(const std::string& path)>;
 
+// How the caller's user gives these sources, in the error messages: the command line's words by default; the library
+// passes its own (amos::Options' members).
+struct SourceNames {
+  std::string dir_option = "--models";          // what sets ModelSources::cli_dir
+  std::string pass_dir = "Pass --models DIR";   // the advice to give a folder
+  std::string modes_without_models = "--mode geometry or --mode none";  // how to run without segmentation
+};
+
 struct ModelSources {
   std::string cli_dir;       // --models (empty = not given)
   std::string settings_dir;  // Segmentation.modelsDir from the settings file (empty = not given)
   EnvironmentLookup environment;  // e.g. processEnvironment(); may be empty (= no environment)
   std::vector<std::string> default_dirs = {"./models", "../shared/models"};
+  SourceNames names = {};
 };
 
 struct ModelLocation {
@@ -29,7 +38,7 @@ struct ModelLocation {
 };
 
 // Throws core::Error saying what was tried and what to do (pass --models DIR, set Segmentation.modelsDir or
-// AMOS_MODELS, or run without prior-object segmentation: --mode none | geometry).
+// AMOS_MODELS, or run without prior-object segmentation: --mode none | geometry), in sources.names' words.
 ModelLocation locateModelDir(const ModelSources& sources, const std::vector<std::string>& required_files,
                              const FileExists& exists);
 // Same with the real file system.

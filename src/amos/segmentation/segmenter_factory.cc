@@ -24,14 +24,14 @@ std::vector<std::string> SegmenterFactory::names() const {
   return out;
 }
 
-const SegmenterBackend& SegmenterFactory::backend(const std::string& name) const {
+const SegmenterBackend& SegmenterFactory::backend(const std::string& name, const SourceNames& source_names) const {
   const auto it = backends_.find(name);
   if (it != backends_.end()) return it->second;
   if (backends_.empty())
     throw core::Error(fmt::format(
         "Segmentation.backend '{}': this build has no segmentation backend (built with AMOS_WITH_DNN=OFF); rebuild "
-        "with -DAMOS_WITH_DNN=ON or run with --mode geometry or --mode none",
-        name));
+        "with -DAMOS_WITH_DNN=ON or run with {}",
+        name, source_names.modes_without_models));
   throw core::Error(fmt::format("Segmentation.backend '{}' is unknown; available: {}", name, fmt::join(names(), ", ")));
 }
 
@@ -52,7 +52,7 @@ SegmenterFactory builtinSegmenterFactory() {
 std::unique_ptr<Segmenter> createSegmenter(SegmenterOptions options, const ModelSources& sources,
                                            const SegmenterFactory& factory) {
   options.check();
-  const SegmenterBackend& backend = factory.backend(options.backend);
+  const SegmenterBackend& backend = factory.backend(options.backend, sources.names);
   ModelSources resolved_sources = sources;
   if (resolved_sources.settings_dir.empty()) resolved_sources.settings_dir = options.models_dir;
   const ModelLocation location = locateModelDir(resolved_sources, backend.model_files(options));

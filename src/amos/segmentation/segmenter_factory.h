@@ -29,8 +29,9 @@ class SegmenterFactory {
   void add(const std::string& name, SegmenterBackend backend);
   bool has(const std::string& name) const { return backends_.count(name) > 0; }
   std::vector<std::string> names() const;
-  // Throws core::Error naming Segmentation.backend and the available backends.
-  const SegmenterBackend& backend(const std::string& name) const;
+  // Throws core::Error naming Segmentation.backend and the available backends (or, when there are none, how to run
+  // without segmentation, in source_names' words).
+  const SegmenterBackend& backend(const std::string& name, const SourceNames& source_names = {}) const;
 
   // options.check(), then the backend's create(). options.models_dir must already be set.
   std::unique_ptr<Segmenter> create(const SegmenterOptions& options) const;
