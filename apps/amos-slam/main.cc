@@ -3,24 +3,17 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 #include <csignal>
 #include <exception>
 #include <iostream>
 
+#include "amos/api/allocator_tuning.h"
 #include "amos/core/error.h"
 #include "commands.h"
 
 int main(int argc, char** argv) {
-#if defined(__GLIBC__)
-  // Per-frame buffers (images, pyramids, network blobs) are megabytes: above glibc's default thresholds every one
-  // is mmap'ed and unmapped again, which cost ~6 ms CPU per frame in page faults (550k faults per Bonn run vs 35k
-  // with these settings). Keep them in the heap and do not hand freed memory back after every frame.
-  mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024);
-  mallopt(M_TRIM_THRESHOLD, 512 * 1024 * 1024);
-#endif
+  // The per-frame buffers kept in the heap (~6 ms CPU per frame of page faults otherwise): the library's setting.
+  amos::api::tuneAllocatorOnce();
   // A reader that goes away (`amos-slam run ... | head -1`) must not kill a run before it writes its outputs: writes
   // to a closed pipe fail with EPIPE instead of raising SIGPIPE.
   std::signal(SIGPIPE, SIG_IGN);
