@@ -11,29 +11,20 @@
 #include <vector>
 
 #include "amos/config/settings.h"
+#include "amos/config/test_settings.h"
 #include "amos/core/error.h"
-#include "amos/dense/dense_keys.h"
 
 namespace amos::config {
 namespace {
 
-SectionRegistry added() {
-  SectionRegistry sections;
-  sections.add<dense::DenseOptions>("Dense static map (run --dense)", &dense::listDenseKeys<KeySection>);
-  return sections;
-}
-
-const std::map<std::string, std::string> kRequired = {
-    {"Camera.fx", "500"}, {"Camera.fy", "500"}, {"Camera.cx", "320"}, {"Camera.cy", "240"}};
+using namespace test_settings;
 
 // The error parsing the required keys with `key` set to `value`, or nothing when the file is accepted.
 std::optional<std::string> errorWith(const std::string& key, const std::string& value) {
   std::map<std::string, std::string> file = kRequired;
   file[key] = value;
-  std::string text;
-  for (const auto& [name, v] : file) text += name + ": " + v + "\n";
   try {
-    parseSettings(text, "t.yaml", added());
+    parseSettings(yamlOf(file), "t.yaml", addedSections());
   } catch (const core::Error& e) {
     return std::string(e.what());
   }
@@ -49,7 +40,7 @@ struct NumericKey {
 
 // Every number key of the registry, with its declared bounds (at the default image, 640 x 480).
 std::vector<NumericKey> numericKeys() {
-  Settings s = defaultSettings(added());
+  Settings s = defaultSettings(addedSections());
   std::vector<NumericKey> out;
   for (const auto& section : settingsKeys(s)) {
     for (const auto& key : section.keys) {
@@ -109,7 +100,8 @@ TEST(KeyBounds, JustOutsideABoundIsRefusedByNameAndJustInsideIsNot) {
       EXPECT_NE(refused->find(key.name), std::string::npos) << *refused;
       const bool beyond_the_type = refused->find("must be a whole number") != std::string::npos;
       EXPECT_TRUE(beyond_the_type || refused->find(boundText(key)) != std::string::npos) << *refused;
-      const std::string inside = key.whole ? fmt::format("{}", static_cast<long long>(bound)) : fmt::format("{}", bound);
+      const std::string inside =
+          key.whole ? fmt::format("{}", static_cast<long long>(bound)) : fmt::format("{}", bound);
       const std::optional<std::string> accepted = errorWith(key.name, inside);
       EXPECT_TRUE(!accepted || accepted->find(boundText(key)) == std::string::npos) << *accepted;
       ++checked;

@@ -14,29 +14,14 @@
 #include <sstream>
 
 #include "amos/config/settings.h"
+#include "amos/config/test_settings.h"
 #include "amos/core/error.h"
 #include "amos/core/log_capture.h"
-#include "amos/dense/dense_keys.h"
 
 namespace amos::config {
 namespace {
 
-// The sections the program adds (run/settings_sections.cc): these tests hold every key, added ones too, to the
-// rules of the key lists.
-SectionRegistry added() {
-  SectionRegistry sections;
-  sections.add<dense::DenseOptions>("Dense static map (run --dense)", &dense::listDenseKeys<KeySection>);
-  return sections;
-}
-
-const std::map<std::string, std::string> kRequired = {
-    {"Camera.fx", "500"}, {"Camera.fy", "500"}, {"Camera.cx", "320"}, {"Camera.cy", "240"}};
-
-std::string yamlOf(const std::map<std::string, std::string>& keys) {
-  std::string text;
-  for (const auto& [key, value] : keys) text += key + ": " + value + "\n";
-  return text;
-}
+using namespace test_settings;
 
 // name -> value of every key of `s`.
 std::map<std::string, std::string> valuesOf(Settings& s) {
@@ -48,7 +33,7 @@ std::map<std::string, std::string> valuesOf(Settings& s) {
 }
 
 std::vector<std::string> listedNames() {
-  Settings s = defaultSettings(added());
+  Settings s = defaultSettings(addedSections());
   std::vector<std::string> out;
   for (const auto& section : settingsKeys(s)) {
     for (const auto& key : section.keys) out.push_back(key.name());
@@ -101,7 +86,7 @@ std::vector<std::string> otherValues(const SettingsKey& key, const std::string& 
 // (but for the keys whose default follows it: Tracking.maxFrames follows Camera.fps, Tracking.closeTrackedMax
 // ORBextractor.nFeatures).
 TEST(SettingsKeys, EveryListedKeyIsReadIntoItsOwnMember) {
-  Settings base = parseSettings(yamlOf(kRequired), "base.yaml", added());
+  Settings base = parseSettings(yamlOf(kRequired), "base.yaml", addedSections());
   const std::map<std::string, std::string> base_values = valuesOf(base);
   std::size_t checked = 0;
   for (const auto& section : settingsKeys(base)) {
@@ -112,7 +97,7 @@ TEST(SettingsKeys, EveryListedKeyIsReadIntoItsOwnMember) {
         std::map<std::string, std::string> file = kRequired;
         file[key.name()] = candidate;
         try {
-          changed = parseSettings(yamlOf(file), "t.yaml", added());
+          changed = parseSettings(yamlOf(file), "t.yaml", addedSections());
           value = candidate;
           break;
         } catch (const core::Error&) {
@@ -161,7 +146,7 @@ std::vector<std::string> badValues(const SettingsKey& key) {
 // Whatever a key's invalid value breaks (its type, its own rule or a rule relating it to another key), the error
 // names the file, the key's line and the key; related members are named by their keys too.
 TEST(SettingsKeys, EveryInvalidValueIsAnErrorNamingFileLineAndKey) {
-  Settings s = defaultSettings(added());
+  Settings s = defaultSettings(addedSections());
   std::size_t rejected = 0;
   for (const auto& section : settingsKeys(s)) {
     for (const SettingsKey& key : section.keys) {
@@ -170,7 +155,7 @@ TEST(SettingsKeys, EveryInvalidValueIsAnErrorNamingFileLineAndKey) {
         file[key.name()] = bad;
         const auto line = std::distance(file.begin(), file.find(key.name())) + 1;
         try {
-          parseSettings(yamlOf(file), "t.yaml", added());
+          parseSettings(yamlOf(file), "t.yaml", addedSections());
         } catch (const core::Error& e) {
           const std::string message = e.what();
           EXPECT_EQ(message.rfind(fmt::format("t.yaml:{}: ", line), 0), 0u)
@@ -196,7 +181,7 @@ TEST(SettingsKeys, ARuleRelatingTwoKeysNamesBoth) {
   };
   for (const auto& [line, expected] : cases) {
     try {
-      parseSettings(yamlOf(kRequired) + line, "t.yaml", added());
+      parseSettings(yamlOf(kRequired) + line, "t.yaml", addedSections());
       ADD_FAILURE() << line << " passed";
     } catch (const core::Error& e) {
       EXPECT_EQ(std::string(e.what()).rfind(expected, 0), 0u) << e.what();
@@ -205,7 +190,7 @@ TEST(SettingsKeys, ARuleRelatingTwoKeysNamesBoth) {
 }
 
 TEST(SettingsKeys, NamesAreUniqueMembersTooAndOfOneStyle) {
-  Settings s = defaultSettings(added());
+  Settings s = defaultSettings(addedSections());
   std::set<std::string> names;
   std::set<const void*> members;
   // Section(s).lowerCamelName; ORB-SLAM2's own keys keep their spelling, since users' files use them.
@@ -225,7 +210,7 @@ TEST(SettingsKeys, NamesAreUniqueMembersTooAndOfOneStyle) {
 
 TEST(SettingsKeys, RequiredKeysMustBeSet) {
   try {
-    parseSettings("Camera.fx: 500\nCamera.fy: 500\nCamera.cx: 320\n", "t.yaml", added());
+    parseSettings("Camera.fx: 500\nCamera.fy: 500\nCamera.cx: 320\n", "t.yaml", addedSections());
     FAIL() << "a file without Camera.cy passed";
   } catch (const core::Error& e) {
     EXPECT_STREQ(e.what(), "t.yaml: required key 'Camera.cy' is missing");
@@ -234,7 +219,7 @@ TEST(SettingsKeys, RequiredKeysMustBeSet) {
 
 TEST(SettingsKeys, ANegativeSeedIsAWrongType) {
   try {
-    parseSettings(yamlOf(kRequired) + "Dynamic.Cluster.seed: -1\n", "t.yaml", added());
+    parseSettings(yamlOf(kRequired) + "Dynamic.Cluster.seed: -1\n", "t.yaml", addedSections());
     FAIL() << "a negative seed passed";
   } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("t.yaml:5: key 'Dynamic.Cluster.seed' must be a whole number >= 0"),
@@ -246,7 +231,8 @@ TEST(SettingsKeys, ANegativeSeedIsAWrongType) {
 // Segmentation's keys were snake_case where every other section's are lowerCamelCase; the old names still work.
 TEST(SettingsKeys, AFormerNameIsReadWithAWarningGivingTheNewName) {
   core::LogCapture log;
-  const Settings s = parseSettings(yamlOf(kRequired) + "Segmentation.models_dir: /opt/models\n", "t.yaml", added());
+  const Settings s =
+      parseSettings(yamlOf(kRequired) + "Segmentation.models_dir: /opt/models\n", "t.yaml", addedSections());
   EXPECT_EQ(s.segmentation.models_dir, "/opt/models");
   const auto lines = log.lines();
   ASSERT_EQ(lines.size(), 1u);
@@ -255,7 +241,8 @@ TEST(SettingsKeys, AFormerNameIsReadWithAWarningGivingTheNewName) {
             std::string::npos)
       << lines[0];
   try {
-    parseSettings(yamlOf(kRequired) + "Segmentation.modelsDir: /a\nSegmentation.models_dir: /b\n", "t.yaml", added());
+    parseSettings(yamlOf(kRequired) + "Segmentation.modelsDir: /a\nSegmentation.models_dir: /b\n", "t.yaml",
+                  addedSections());
     FAIL() << "both names passed";
   } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("t.yaml:6: key 'Segmentation.models_dir' is the old name of "
@@ -270,7 +257,7 @@ TEST(SettingsKeys, EveryShippedConfigLoadsWithoutAWarning) {
   for (const auto& entry : std::filesystem::directory_iterator(std::string(AMOS_SOURCE_DIR) + "/configs")) {
     if (entry.path().extension() != ".yaml") continue;
     core::LogCapture log;
-    EXPECT_NO_THROW(loadSettings(entry.path().string(), added())) << entry.path();
+    EXPECT_NO_THROW(loadSettings(entry.path().string(), addedSections())) << entry.path();
     EXPECT_TRUE(log.lines().empty()) << entry.path() << ": " << log.lines().front();
     ++configs;
   }
@@ -280,7 +267,7 @@ TEST(SettingsKeys, EveryShippedConfigLoadsWithoutAWarning) {
 // An experiment stays only while a shipped config turns it on (sets it to a value other than its default); one that
 // no config uses is deleted, with a record in docs/experiments/ (the style guide's "options that end").
 TEST(SettingsKeys, EveryExperimentalKeyIsTurnedOnInAShippedConfig) {
-  Settings defaults = defaultSettings(added());
+  Settings defaults = defaultSettings(addedSections());
   const std::map<std::string, std::string> default_values = valuesOf(defaults);
   std::map<std::string, std::vector<std::string>> turned_on;  // experimental key -> the configs that turn it on
   for (const auto& section : settingsKeys(defaults)) {
@@ -290,7 +277,7 @@ TEST(SettingsKeys, EveryExperimentalKeyIsTurnedOnInAShippedConfig) {
   ASSERT_FALSE(turned_on.empty());
   for (const auto& entry : std::filesystem::directory_iterator(std::string(AMOS_SOURCE_DIR) + "/configs")) {
     if (entry.path().extension() != ".yaml") continue;
-    Settings loaded = loadSettings(entry.path().string(), added());
+    Settings loaded = loadSettings(entry.path().string(), addedSections());
     const std::map<std::string, std::string> values = valuesOf(loaded);
     for (auto& [name, configs] : turned_on)
       if (values.at(name) != default_values.at(name)) configs.push_back(entry.path().filename().string());
@@ -328,14 +315,14 @@ TEST(SettingsKeys, TheReadmeDocumentsExactlyTheListedKeys) {
 
 TEST(SettingsKeys, TheReadmeKeyTablesAreUpToDate) {
   const std::string readme = readmeText();
-  EXPECT_EQ(withKeyTables(readme, added()), readme)
+  EXPECT_EQ(withKeyTables(readme, addedSections()), readme)
       << "configs/README.md's key tables differ from the key lists: run amos-slam config --update-readme "
          "configs/README.md";
   EXPECT_THROW(withKeyTables("# no markers\n"), core::Error);
 }
 
 TEST(SettingsKeys, TheTablesShowDefaultsChoicesAndFormerNames) {
-  const std::string tables = keysMarkdown(added());
+  const std::string tables = keysMarkdown(addedSections());
   for (const char* row : {
            "| `Camera.fx` | required | focal length along x (px) |",
            "| `Tracking.maxFrames` | `Camera.fps` |",
