@@ -18,6 +18,7 @@
 #include "amos/sequence_folder.h"
 #include "amos/slam.h"
 #include "amos/synth/sequence.h"
+#include "amos/testing/error_of.h"
 #include "amos/testing/scratch_dir.h"
 
 namespace amos {
@@ -27,14 +28,7 @@ namespace fs = std::filesystem;
 
 const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
 
-std::string errorOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
-}
+using amos::testing::errorOf;
 
 TEST(SettingsOverrides, SetAKeyOverTheFileAndRefuseUnknownOnes) {
   const std::string yaml = "%YAML:1.0\nORBextractor.nFeatures: 1000\n  ORBextractor.nFeatures : 900\nCamera.fx: 1\n";

@@ -15,6 +15,7 @@
 #include "amos/sequence_folder.h"
 #include "amos/slam.h"
 #include "amos/synth/sequence.h"
+#include "amos/testing/error_of.h"
 #include "amos/testing/scratch_dir.h"
 
 #ifdef AMOS_HAVE_OPEN3D
@@ -65,14 +66,7 @@ void trackAll(Slam& slam, const std::string& dir) {
                                        << " bytes) differ";
 }
 
-std::string errorOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
-}
+using amos::testing::errorOf;
 
 #ifdef AMOS_HAVE_OPEN3D
 

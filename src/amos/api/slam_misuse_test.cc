@@ -17,6 +17,7 @@
 #include "amos/sequence_folder.h"
 #include "amos/slam.h"
 #include "amos/synth/sequence.h"
+#include "amos/testing/error_of.h"
 #include "amos/testing/scratch_dir.h"
 
 namespace amos {
@@ -37,15 +38,7 @@ Options geometryOptions() {
   return o;
 }
 
-// The message of the std::runtime_error `call` throws ("" when it throws none).
-std::string errorOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
-}
+using amos::testing::errorOf;
 
 #define EXPECT_ERROR_NAMES(call, words) \
   EXPECT_NE(errorOf([&] { call; }).find(words), std::string::npos) << "message: " << errorOf([&] { call; })
