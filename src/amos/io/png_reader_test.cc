@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "amos/testing/same_image.h"
 #include "amos/testing/scratch_dir.h"
 
 #include <algorithm>
@@ -26,21 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 using Bytes = std::vector<std::uint8_t>;
 
-// Same type, size and pixels (or both empty).
-::testing::AssertionResult sameImage(const cv::Mat& ours, const cv::Mat& opencv) {
-  if (ours.empty() || opencv.empty()) {
-    if (ours.empty() && opencv.empty()) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << (ours.empty() ? "ours is empty, OpenCV's is not"
-                                                          : "OpenCV's is empty, ours is not");
-  }
-  if (ours.type() != opencv.type() || ours.size() != opencv.size())
-    return ::testing::AssertionFailure() << "ours is " << ours.cols << "x" << ours.rows << " type " << ours.type()
-                                         << ", OpenCV's " << opencv.cols << "x" << opencv.rows << " type "
-                                         << opencv.type();
-  const double diff = cv::norm(ours, opencv, cv::NORM_INF);
-  if (diff != 0) return ::testing::AssertionFailure() << "pixels differ by up to " << diff;
-  return ::testing::AssertionSuccess();
-}
+using testing::sameImage;
 
 // The route a PNG this reader handles takes in this build.
 PngRoute handledRoute() { return pngFastPathAvailable() ? PngRoute::decoded : PngRoute::general; }
