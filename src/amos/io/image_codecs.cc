@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 
@@ -25,10 +27,13 @@ std::string lowerCaseWithoutDot(std::string extension) {
 }
 
 void writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "wb"), std::fclose);
-  core::require(file != nullptr, fmt::format("cannot write '{}': cannot open it", path));
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "wb"), std::fclose);
+  core::require(file != nullptr, fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
   const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file.get()) == bytes.size();
-  core::require(written && std::fflush(file.get()) == 0, fmt::format("cannot write '{}'", path));
+  const int write_errno = errno;
+  const bool closed = std::fclose(file.release()) == 0;  // its result says whether the bytes reached the file
+  core::require(written && closed,
+                fmt::format("cannot write '{}': {}", path, std::strerror(written ? errno : write_errno)));
 }
 
 }  // namespace
