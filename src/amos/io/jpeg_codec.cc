@@ -1,11 +1,14 @@
 #include "amos/io/jpeg_codec.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <csetjmp>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <string>
 // jpeglib.h needs FILE and size_t declared before it.
 #include <jpeglib.h>
 
@@ -50,6 +53,14 @@ int exifOrientationOf(const jpeg_decompress_struct& info) {
   return 1;
 }
 
+// Writes why an image of this size is not decoded into error.text; false when it is decoded. Its strings are gone
+// before it returns, so that it may be called between setjmp and longjmp.
+bool describeSizeProblem(JDIMENSION width, JDIMENSION height, ErrorJump& error) {
+  const std::optional<std::string> problem = sizeProblem(width, height);
+  if (problem) std::snprintf(error.text, sizeof error.text, "%s", problem->c_str());
+  return problem.has_value();
+}
+
 // libjpeg reports errors by longjmp: this function holds no objects with destructors; the image is allocated by
 // the caller's `allocate`. False on error.
 template <typename Allocate>
@@ -60,10 +71,7 @@ bool decode(jpeg_decompress_struct& info, ErrorJump& error, const std::uint8_t* 
   jpeg_mem_src(&info, data, static_cast<unsigned long>(size));
   jpeg_save_markers(&info, kApp1, 0xffff);
   jpeg_read_header(&info, TRUE);
-  if (const auto too_large = sizeProblem(info.image_width, info.image_height)) {
-    std::snprintf(error.text, sizeof error.text, "%s", too_large->c_str());
-    return false;
-  }
+  if (describeSizeProblem(info.image_width, info.image_height, error)) return false;
   if (info.num_components == 4) {
     std::snprintf(error.text, sizeof error.text, "CMYK JPEGs are not supported");
     return false;
