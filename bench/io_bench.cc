@@ -30,7 +30,7 @@ std::string bonnFile(const std::string& sub) {
 const char* routeName(io::PngRoute route) {
   switch (route) {
     case io::PngRoute::decoded: return "decoded";
-    case io::PngRoute::opencv: return "opencv";
+    case io::PngRoute::general: return "libpng";
     default: return "rejected";
   }
 }

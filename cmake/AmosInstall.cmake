@@ -91,7 +91,8 @@ endforeach()
 # The packages only some builds' libraries link (the dense map's Open3D and OpenMP, the synthetic sequences' PNG):
 # found by the package when an installed library links their targets.
 set(AMOS_PACKAGE_OPTIONAL "")
-set(amos_optional_packages "Open3D::Open3D=Open3D CONFIG" "OpenMP::OpenMP_CXX=OpenMP COMPONENTS CXX" "PNG::PNG=PNG")
+set(amos_optional_packages "Open3D::Open3D=Open3D CONFIG" "OpenMP::OpenMP_CXX=OpenMP COMPONENTS CXX" "PNG::PNG=PNG"
+    "JPEG::JPEG=JPEG")
 foreach(entry IN LISTS amos_optional_packages)
   string(REPLACE "=" ";" pair "${entry}")
   list(GET pair 0 imported)
@@ -120,6 +121,7 @@ foreach(t IN LISTS AMOS_INSTALLED_LIBRARIES)
   endif()
   string(APPEND AMOS_PC_LIBS " -l${name}")
 endforeach()
+string(APPEND AMOS_PC_LIBS " -lpng16 -ljpeg")  # io's image codecs
 if(TARGET amos_libdeflate)
   string(APPEND AMOS_PC_LIBS " -ldeflate")
 endif()

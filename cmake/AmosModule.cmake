@@ -29,7 +29,8 @@ function(amos_add_module name)
     endif()
     if(tests)
       add_executable(amos_${name}_tests ${tests})
-      target_link_libraries(amos_${name}_tests PRIVATE amos_${name} ${ARG_TEST_DEPS} GTest::gtest GTest::gtest_main)
+      target_link_libraries(amos_${name}_tests PRIVATE amos_${name} ${ARG_TEST_DEPS} ${OpenCV_LIBS} GTest::gtest
+        GTest::gtest_main)
       target_compile_definitions(amos_${name}_tests PRIVATE
         AMOS_DATA_DIR="${AMOS_DATA_DIR}" AMOS_MODELS_DIR="${AMOS_MODELS_DIR}" AMOS_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
         AMOS_BINARY_DIR="${PROJECT_BINARY_DIR}")

@@ -5,7 +5,7 @@ set -euo pipefail
 source "$(dirname "$0")/apt_install.sh"
 apt_install install_deps \
   build-essential cmake ninja-build pkg-config python3 universal-ctags \
-  libeigen3-dev libopencv-dev libopencv-contrib-dev libceres-dev libpng-dev libdeflate-dev \
+  libeigen3-dev libopencv-dev libopencv-contrib-dev libceres-dev libpng-dev libjpeg-dev libdeflate-dev \
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev \
   libgtest-dev libgmock-dev libbenchmark-dev ccache \
   libopenni2-dev \

@@ -11,7 +11,6 @@
 #include <future>
 #include <nlohmann/json.hpp>
 #include <opencv2/core/utility.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "amos/config/settings.h"
@@ -23,6 +22,7 @@
 #include "amos/segmentation/segmenter_classes.h"
 #include "amos/segmentation/segmenter_factory.h"
 #include "amos/io/dataset.h"
+#include "amos/io/image_codecs.h"
 #include "commands.h"
 
 namespace amos::app {
@@ -156,12 +156,11 @@ int runSegment(SegmentArgs args) {
     instances += r.instances.size();
     frames_with_objects += r.instances.empty() ? 0 : 1;
     const std::string name = maskName(frames[p.index].rgb_file);
-    core::require(cv::imwrite((out / "masks" / name).string(), r.mask),
-                  fmt::format("cannot write {}", (out / "masks" / name).string()));
+    io::writeImage((out / "masks" / name).string(), r.mask);
     const bool on_sheet = std::find(sheet_indices.begin(), sheet_indices.end(), p.index) != sheet_indices.end();
     if (args.overlays || on_sheet) {
       const cv::Mat overlay = segmentation::drawOverlay(p.bgr, r.instances);
-      if (args.overlays) cv::imwrite((out / "overlays" / name).string(), overlay);
+      if (args.overlays) io::writeImage((out / "overlays" / name).string(), overlay);
       if (on_sheet) {
         sheet_tiles.push_back(overlay);
         sheet_captions.push_back(fmt::format("#{} {}", p.index, fs::path(frames[p.index].rgb_file).filename().string()));
@@ -175,7 +174,7 @@ int runSegment(SegmentArgs args) {
   };
 
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    cv::Mat bgr = cv::imread(frames[i].rgb_file, cv::IMREAD_COLOR);
+    cv::Mat bgr = io::readImage(frames[i].rgb_file, io::kReadColor);
     core::require(!bgr.empty(), fmt::format("cannot read image '{}'", frames[i].rgb_file));
     cv::Mat depth;
     if (needs_depth && !frames[i].depth_file.empty()) {
@@ -192,7 +191,7 @@ int runSegment(SegmentArgs args) {
 
   if (!sheet_tiles.empty()) {
     const fs::path sheet = out / "contact_sheet.png";
-    cv::imwrite(sheet.string(), segmentation::contactSheet(sheet_tiles, sheet_captions, 4, 320));
+    io::writeImage(sheet.string(), segmentation::contactSheet(sheet_tiles, sheet_captions, 4, 320));
     spdlog::info("segment: contact sheet of {} frames in {}", sheet_tiles.size(), sheet.string());
   }
   const auto summary = times.summary()["segment"];

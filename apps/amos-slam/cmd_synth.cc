@@ -2,11 +2,11 @@
 #include <spdlog/spdlog.h>
 
 #include <iostream>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
 
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
+#include "amos/io/image_codecs.h"
 #include "amos/synth/contact_sheet.h"
 #include "amos/synth/presets.h"
 #include "amos/synth/sequence.h"
@@ -105,7 +105,7 @@ void addSynthCommand(CLI::App& app, int& exit_code) {
       synth::ContactSheetOptions sheet_options;
       sheet_options.columns = args->contact_columns;
       const cv::Mat sheet = synth::contactSheet(generator, sheet_options);
-      core::require(cv::imwrite(args->contact_sheet, sheet), "synth: cannot write " + args->contact_sheet);
+      io::writeImage(args->contact_sheet, sheet);
       spdlog::info("synth: contact sheet {} ({} frames) in {:.1f} s", args->contact_sheet, sheet_options.columns,
                    sw.elapsedMs() / 1000);
     }

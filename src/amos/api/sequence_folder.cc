@@ -5,7 +5,6 @@
 #include "amos/sequence_folder.h"
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 #include <spdlog/spdlog.h>
 
 #include <atomic>
@@ -35,8 +34,8 @@ cv::Mat readImage(const std::string& file, int flags, const char* what) {
 
 RgbdImages readFrame(const io::AssociatedFrame& entry) {
   RgbdImages f;
-  f.bgr = readImage(entry.rgb_file, cv::IMREAD_COLOR, "colour image");
-  f.depth = readImage(entry.depth_file, cv::IMREAD_UNCHANGED, "depth image");
+  f.bgr = readImage(entry.rgb_file, io::kReadColor, "colour image");
+  f.depth = readImage(entry.depth_file, io::kReadUnchanged, "depth image");
   core::require(f.depth.type() == CV_16UC1,
                 fmt::format("depth image '{}' is not 16-bit single-channel", entry.depth_file));
   core::require(f.depth.size() == f.bgr.size(),

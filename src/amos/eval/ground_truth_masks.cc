@@ -6,9 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 
 #include "amos/core/error.h"
+#include "amos/io/image_codecs.h"
 #include "amos/io/text_lines.h"
 
 namespace amos::eval {
@@ -71,7 +71,7 @@ std::optional<int> GroundTruthMasks::frameAt(double t, double max_dt) const {
 
 cv::Mat GroundTruthMasks::instanceMask(int frame) const {
   core::require(frame >= 0 && frame < static_cast<int>(files_.size()), "GroundTruthMasks: frame out of range");
-  cv::Mat m = cv::imread(files_[frame], cv::IMREAD_UNCHANGED);
+  cv::Mat m = io::readImage(files_[frame], io::kReadUnchanged);
   core::require(!m.empty(), "cannot read ground-truth mask " + files_[frame]);
   core::require(m.channels() == 1 && (m.depth() == CV_16U || m.depth() == CV_8U),
                 "ground-truth mask " + files_[frame] + " must be a single-channel 8- or 16-bit image");

@@ -7,10 +7,10 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 #include "amos/core/error.h"
+#include "amos/io/image_codecs.h"
 
 namespace amos::io {
 
@@ -41,14 +41,12 @@ void writeFileAtomically(const std::string& path, std::string_view bytes) {
 }
 
 void writeImageAtomically(const std::string& path, const cv::Mat& image) {
-  std::vector<uchar> encoded;
-  bool ok = false;
+  std::vector<std::uint8_t> encoded;
   try {
-    ok = cv::imencode(fs::path(path).extension().string(), image, encoded);
-  } catch (const cv::Exception& e) {
+    encoded = encodeImage(fs::path(path).extension().string(), image);
+  } catch (const core::Error& e) {
     throw core::Error(fmt::format("cannot encode '{}': {}", path, e.what()));
   }
-  core::require(ok, fmt::format("cannot encode '{}'", path));
   writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 

@@ -16,7 +16,7 @@ std::string partialPath(const std::string& path);
 // Writes `bytes` to `path` as described above. Throws core::Error naming the file when it cannot be written.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
 
-// Encodes `image` in the format its extension names (cv::imencode: .png, .jpg, ...) and writes it atomically.
+// Encodes `image` in the format its extension names (io::encodeImage: .png, .jpg, .pgm, ...) and writes it atomically.
 void writeImageAtomically(const std::string& path, const cv::Mat& image);
 
 }  // namespace amos::io

@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <vector>
 #include <sstream>
-#include <opencv2/imgcodecs.hpp>
 #include <thread>
 #include <variant>
 
@@ -272,9 +271,9 @@ RgbdFrame frameHeader(const AssociatedFrame& entry, std::size_t index) {
 
 RgbdFrame loadRgbdFrame(const AssociatedFrame& entry, const ReaderOptions& options, std::size_t index) {
   RgbdFrame frame = frameHeader(entry, index);
-  frame.bgr = readImage(entry.rgb_file, cv::IMREAD_COLOR, "colour image", options);
+  frame.bgr = readImage(entry.rgb_file, kReadColor, "colour image", options);
   checkColour(frame.bgr, entry, options);
-  setDepth(frame, readImage(entry.depth_file, cv::IMREAD_UNCHANGED, "depth image", options), entry, options);
+  setDepth(frame, readImage(entry.depth_file, kReadUnchanged, "depth image", options), entry, options);
   return frame;
 }
 

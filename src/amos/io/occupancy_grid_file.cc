@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -14,6 +13,7 @@
 
 #include "amos/core/error.h"
 #include "amos/io/atomic_file.h"
+#include "amos/io/image_codecs.h"
 
 namespace amos::io {
 namespace fs = std::filesystem;
@@ -125,7 +125,7 @@ OccupancyGridFile readOccupancyGridFile(const std::string& yaml_path) {
   fs::path image = g.image_file;
   if (image.is_relative()) image = fs::path(yaml_path).parent_path() / image;
   if (fs::is_regular_file(image)) requirePgmFitsItsFile(image);
-  const cv::Mat pixels = cv::imread(image.string(), cv::IMREAD_GRAYSCALE);
+  const cv::Mat pixels = readImage(image.string(), kReadGrayscale);
   core::require(!pixels.empty(),
                 fmt::format("{}: the image it names, {}, cannot be read", yaml_path, image.string()));
   g.width = pixels.cols;

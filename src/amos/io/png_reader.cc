@@ -1,7 +1,6 @@
 #include "amos/io/png_reader.h"
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 #include <spdlog/spdlog.h>
 
 #include <climits>
@@ -16,6 +15,9 @@
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+#include "amos/io/image_decoders.h"
+#include "amos/io/image_read_flags.h"
 
 #if AMOS_WITH_LIBDEFLATE
 #include <libdeflate.h>
@@ -83,18 +85,18 @@ Scratch& threadScratch() {
 enum class Mode { colour, unchanged };
 
 std::optional<Mode> modeOf(int imread_flags) {
-  if (imread_flags == cv::IMREAD_UNCHANGED) return Mode::unchanged;
-  if ((imread_flags & ~cv::IMREAD_IGNORE_ORIENTATION) == cv::IMREAD_COLOR) return Mode::colour;
+  if (imread_flags == kReadUnchanged) return Mode::unchanged;
+  if ((imread_flags & ~kReadIgnoreOrientation) == kReadColor) return Mode::colour;
   return std::nullopt;
 }
 
-// Thrown inside the fast path to leave it: route opencv or rejected, with the reason.
+// Thrown inside the fast path to leave it: route general or rejected, with the reason.
 struct Handoff {
   PngRoute route;
   std::string reason;
 };
 
-[[noreturn]] void handToOpenCv(std::string reason) { throw Handoff{PngRoute::opencv, std::move(reason)}; }
+[[noreturn]] void handOver(std::string reason) { throw Handoff{PngRoute::general, std::move(reason)}; }
 [[noreturn]] void reject(std::string reason) { throw Handoff{PngRoute::rejected, std::move(reason)}; }
 
 constexpr std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -122,7 +124,7 @@ std::string typeName(std::uint32_t type) {
 }
 
 // libpng's default user limit on width and height (png_set_user_limits); OpenCV's limit on pixels
-// (CV_IO_MAX_IMAGE_PIXELS). Larger images go to OpenCV, which decides.
+// (CV_IO_MAX_IMAGE_PIXELS), which the general decoders keep.
 constexpr std::uint32_t kMaxSide = 1000000;
 constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 30;
 // DEFLATE expands one compressed byte into at most 4 * 258 bytes: an image that needs more than this many bytes
@@ -136,13 +138,13 @@ struct PngLayout {
   bool interlaced = false;
   std::vector<std::pair<const std::uint8_t*, std::size_t>> idat;  // the IDAT chunks' data, in order
   std::size_t idat_bytes = 0;
-  // Why OpenCV decodes it, when it does (the first reason found); the chunks are still walked, so that a PNG handed
-  // over is checked as much as one decoded here (its CRCs, and its image data against its size).
-  std::optional<std::string> opencv_reason;
+  // Why the general decoders decode it, when they do (the first reason found); the chunks are still walked, so that
+  // a PNG handed over is checked as much as one decoded here (its CRCs, and its image data against its size).
+  std::optional<std::string> handover_reason;
 };
 
-void handToOpenCvLater(PngLayout& layout, std::string reason) {
-  if (!layout.opencv_reason) layout.opencv_reason = std::move(reason);
+void handOverLater(PngLayout& layout, std::string reason) {
+  if (!layout.handover_reason) layout.handover_reason = std::move(reason);
 }
 
 // Reads IHDR's fields into `layout`; rejects what libpng rejects (png_check_IHDR), hands over what is valid but not
@@ -171,9 +173,9 @@ void readHeader(const std::uint8_t* ihdr, PngLayout& layout) {
   layout.bit_depth = bit_depth;
   layout.channels = colour_type == 0 || colour_type == 3 ? 1 : colour_type == 4 ? 2 : colour_type == 2 ? 3 : 4;
   layout.interlaced = interlace != 0;
-  if (interlace != 0) handToOpenCvLater(layout, "interlaced");
-  if (colour_type == 3) handToOpenCvLater(layout, "palette colour type");
-  if (bit_depth < 8) handToOpenCvLater(layout, fmt::format("bit depth {}", bit_depth));
+  if (interlace != 0) handOverLater(layout, "interlaced");
+  if (colour_type == 3) handOverLater(layout, "palette colour type");
+  if (bit_depth < 8) handOverLater(layout, fmt::format("bit depth {}", bit_depth));
 }
 
 // The fewest bytes the inflated image data of `layout` can have: exact without interlacing (a filter byte and the
@@ -185,7 +187,7 @@ std::uint64_t minimumImageDataBytes(const PngLayout& layout) {
 }
 
 // Rejects a header that claims more pixels than its image data can inflate to, before anything of the image's
-// size is allocated (here or by OpenCV, which allocates the image from the header before libpng reads the data).
+// size is allocated (here or by libpng's decoder, which allocates the image from the header before it reads the data).
 void requireImageDataFor(const PngLayout& layout) {
   if (minimumImageDataBytes(layout) > kMaxInflateRatio * layout.idat_bytes)
     reject(fmt::format("the image data ({} bytes) is too short for {}x{}", layout.idat_bytes, layout.width,
@@ -201,7 +203,7 @@ void checkCrc(std::uint32_t type, const std::uint8_t* type_and_data, std::uint32
 // Walks the chunks from the signature to IEND.
 PngLayout readChunks(const std::uint8_t* data, std::size_t size, bool orientation_applies) {
   if (size < sizeof(kSignature) || std::memcmp(data, kSignature, sizeof(kSignature)) != 0)
-    handToOpenCv("no PNG signature");
+    handOver("no PNG signature");
   PngLayout layout;
   std::size_t pos = sizeof(kSignature);
   bool in_idat = false, after_idat = false;
@@ -222,7 +224,7 @@ PngLayout readChunks(const std::uint8_t* data, std::size_t size, bool orientatio
       continue;
     }
     if (type == kIDAT) {
-      if (after_idat) handToOpenCvLater(layout, "IDAT chunks that are not consecutive");
+      if (after_idat) handOverLater(layout, "IDAT chunks that are not consecutive");
       checkCrc(type, type_and_data, length);
       in_idat = true;
       layout.idat.emplace_back(body, length);
@@ -235,10 +237,10 @@ PngLayout readChunks(const std::uint8_t* data, std::size_t size, bool orientatio
       break;
     }
     const bool critical = (type & 0x20000000u) == 0;  // bit 5 of the first letter: lower case = ancillary
-    if (critical) handToOpenCvLater(layout, fmt::format("critical chunk {}", typeName(type)));
-    if (type == ktRNS) handToOpenCvLater(layout, "tRNS chunk");
+    if (critical) handOverLater(layout, fmt::format("critical chunk {}", typeName(type)));
+    if (type == ktRNS) handOverLater(layout, "tRNS chunk");
     if (type == keXIf && orientation_applies)
-      handToOpenCvLater(layout, "eXIf chunk (cv::imread applies its orientation)");
+      handOverLater(layout, "eXIf chunk (cv::imread applies its orientation)");
   }
   if (layout.idat.empty()) reject("no IDAT chunk");
   requireImageDataFor(layout);
@@ -360,7 +362,7 @@ libdeflate_decompressor* threadDecompressor() {
 // Inflates the IDAT stream into exactly `expected` bytes (in the thread's scratch memory).
 std::uint8_t* inflateImageData(const PngLayout& layout, std::size_t expected) {
   libdeflate_decompressor* decompressor = threadDecompressor();
-  if (decompressor == nullptr) handToOpenCv("libdeflate could not allocate a decompressor");
+  if (decompressor == nullptr) handOver("libdeflate could not allocate a decompressor");
   const std::uint8_t* stream = layout.idat.front().first;
   if (layout.idat.size() > 1) {
     std::uint8_t* joined = threadScratch().idat.reserve(layout.idat_bytes);
@@ -378,9 +380,9 @@ std::uint8_t* inflateImageData(const PngLayout& layout, std::size_t expected) {
     case LIBDEFLATE_SHORT_OUTPUT:
       reject(fmt::format("the image data is too short for {}x{}", layout.width, layout.height));
     case LIBDEFLATE_INSUFFICIENT_SPACE:  // libpng warns about data beyond the image and decodes it
-      handToOpenCv(fmt::format("more image data than {}x{} needs", layout.width, layout.height));
+      handOver(fmt::format("more image data than {}x{} needs", layout.width, layout.height));
     default:  // corrupt for libdeflate although the CRCs are right: zlib has the last word
-      handToOpenCv("a zlib stream libdeflate rejects");
+      handOver("a zlib stream libdeflate rejects");
   }
 }
 
@@ -407,14 +409,14 @@ cv::Mat decodeLayout(const PngLayout& layout, Mode mode) {
   return image;
 }
 
-// Decodes with `mode`, or only checks the PNG before it goes to OpenCV (no mode: flags not handled here).
+// Decodes with `mode`, or only checks the PNG before it goes to libpng (no mode: flags not handled here).
 Decoded decodeHere(const std::uint8_t* data, std::size_t size, std::optional<Mode> mode, int imread_flags) {
   const bool orientation_applies =
-      mode == Mode::colour && (imread_flags & cv::IMREAD_IGNORE_ORIENTATION) == 0;
+      mode == Mode::colour && (imread_flags & kReadIgnoreOrientation) == 0;
   try {
     const PngLayout layout = readChunks(data, size, orientation_applies);
-    if (!mode) handToOpenCv(fmt::format("imread flags {}", imread_flags));
-    if (layout.opencv_reason) handToOpenCv(*layout.opencv_reason);
+    if (!mode) handOver(fmt::format("imread flags {}", imread_flags));
+    if (layout.handover_reason) handOver(*layout.handover_reason);
     return {decodeLayout(layout, *mode), {PngRoute::decoded, {}}};
   } catch (const Handoff& handoff) {
     return {cv::Mat(), {handoff.route, handoff.reason}};
@@ -434,12 +436,12 @@ std::optional<std::string> notDecodedHere() {
 #endif
 }
 
-// The fast path's answer (notDecodedHere gave nullopt): decoded, rejected, or checked and handed to OpenCV.
+// The fast path's answer (notDecodedHere gave nullopt): decoded, rejected, or checked and handed over.
 Decoded tryDecode(const std::uint8_t* data, std::size_t size, int imread_flags) {
 #if AMOS_WITH_LIBDEFLATE
   return decodeHere(data, size, modeOf(imread_flags), imread_flags);
 #else
-  return {cv::Mat(), {PngRoute::opencv, "built without libdeflate"}};
+  return {cv::Mat(), {PngRoute::general, "built without libdeflate"}};
 #endif
 }
 
@@ -459,6 +461,21 @@ std::optional<std::size_t> readWholeFile(const std::string& path, ScratchBuffer&
   return static_cast<std::size_t>(size);
 }
 
+// The fast path's answer, or the general decoders' (image_decoders.h) for what it hands over.
+Decoded decodeBytes(const std::uint8_t* data, std::size_t size, int imread_flags) {
+  Decoded decoded;
+  if (const auto why = notDecodedHere()) {
+    decoded.info = {PngRoute::general, *why};
+  } else {
+    decoded = tryDecode(data, size, imread_flags);
+  }
+  if (decoded.info.route != PngRoute::general) return decoded;
+  std::string problem;
+  decoded.image = decodeBySignature(data, size, imread_flags, problem);
+  if (decoded.image.empty()) decoded.info = {PngRoute::rejected, problem};
+  return decoded;
+}
+
 }  // namespace
 
 bool pngFastPathAvailable() {
@@ -476,16 +493,10 @@ cv::Mat decodePng(const std::uint8_t* data, std::size_t size, int imread_flags, 
     out = {PngRoute::rejected, size == 0 ? "no bytes" : "more than 2 GiB"};
     return cv::Mat();
   }
-  Decoded decoded;
-  if (const auto why = notDecodedHere()) {
-    decoded.info = {PngRoute::opencv, *why};
-  } else {
-    decoded = tryDecode(data, size, imread_flags);
-    threadScratch().trim();
-  }
+  Decoded decoded = decodeBytes(data, size, imread_flags);
+  threadScratch().trim();
   out = std::move(decoded.info);
-  if (out.route != PngRoute::opencv) return decoded.image;
-  return cv::imdecode(cv::Mat(1, static_cast<int>(size), CV_8U, const_cast<std::uint8_t*>(data)), imread_flags);
+  return decoded.image;
 }
 
 cv::Mat readPng(const std::string& path, int imread_flags, PngReadInfo* info) {
@@ -494,19 +505,17 @@ cv::Mat readPng(const std::string& path, int imread_flags, PngReadInfo* info) {
   const bool caller_reports = info != nullptr;
   Decoded decoded;
   std::string problem;
-  if (const auto why = notDecodedHere()) {
-    decoded.info = {PngRoute::opencv, *why};
-  } else if (const auto size = readWholeFile(path, threadScratch().file, problem); !size) {
+  if (const auto size = readWholeFile(path, threadScratch().file, problem); !size) {
     decoded.info = {PngRoute::rejected, problem};
   } else if (*size == 0) {
     decoded.info = {PngRoute::rejected, "empty file"};
   } else {
-    decoded = tryDecode(threadScratch().file.reserve(*size), *size, imread_flags);
+    decoded = decodeBytes(threadScratch().file.reserve(*size), *size, imread_flags);
   }
   threadScratch().trim();
   out = std::move(decoded.info);
-  if (out.route == PngRoute::opencv) return cv::imread(path, imread_flags);
-  if (out.route == PngRoute::rejected && !caller_reports) spdlog::warn("cannot decode PNG '{}': {}", path, out.reason);
+  if (out.route == PngRoute::rejected && !caller_reports)
+    spdlog::warn("cannot decode image '{}': {}", path, out.reason);
   return decoded.image;
 }
 

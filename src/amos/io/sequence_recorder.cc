@@ -10,11 +10,11 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <opencv2/imgcodecs.hpp>
 #include <thread>
 
 #include "amos/core/bounded_queue.h"
 #include "amos/core/error.h"
+#include "amos/io/image_codecs.h"
 
 namespace amos::io {
 
@@ -90,10 +90,8 @@ struct SequenceRecorder::Impl {
     const fs::path root(dir);
     core::require(!frame.bgr.empty() && frame.bgr.type() == CV_8UC3,
                   fmt::format("recorder: frame {} has no 8-bit colour image", stamp));
-    core::require(cv::imwrite((root / rgb_name).string(), frame.bgr),
-                  fmt::format("cannot write {}", (root / rgb_name).string()));
-    core::require(cv::imwrite((root / depth_name).string(), rawDepth(frame.depth, depth_factor)),
-                  fmt::format("cannot write {}", (root / depth_name).string()));
+    writeImage((root / rgb_name).string(), frame.bgr);
+    writeImage((root / depth_name).string(), rawDepth(frame.depth, depth_factor));
     rgb_list << stamp << ' ' << rgb_name << '\n';
     depth_list << stamp << ' ' << depth_name << '\n';
     core::require(rgb_list.good() && depth_list.good(), fmt::format("cannot write the lists in {}", dir));

@@ -4,7 +4,6 @@
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <ostream>
 
@@ -17,6 +16,7 @@
 #include "amos/eval/ground_truth_masks.h"
 #include "amos/evidence/evidence_sources.h"
 #include "amos/io/dataset.h"
+#include "amos/io/image_codecs.h"
 #include "amos/io/trajectory.h"
 
 namespace amos::report {
@@ -125,8 +125,7 @@ MoverDiagnosisSummary diagnoseSequenceMovers(const config::Settings& settings, c
         const cv::Mat ids = masks->instanceMask(*mk);
         if (!options.images_dir.empty()) {
           const std::string file = fmt::format("{}/{:04d}.png", options.images_dir, k);
-          core::require(cv::imwrite(file, decisionPicture(frame->bgr, ids, result)),
-                        "diagnose-movers: cannot write " + file);
+          io::writeImage(file, decisionPicture(frame->bgr, ids, result));
         }
         for (const dynamic::MoverFrameDiagnosis& d :
              dynamic::diagnoseMovers(result, ids, masks->movingIds(*mk), dyn)) {

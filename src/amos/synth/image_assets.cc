@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "amos/core/error.h"
+#include "amos/io/image_codecs.h"
 
 namespace amos::synth {
 
@@ -78,8 +78,8 @@ std::vector<PersonCutout> loadPersonCutouts(const std::string& dir) {
       spdlog::warn("person cut-outs: no mask {} for {}, skipped", m.string(), f.string());
       continue;
     }
-    const cv::Mat bgr = cv::imread(f.string(), cv::IMREAD_COLOR);
-    const cv::Mat mask = cv::imread(m.string(), cv::IMREAD_GRAYSCALE);
+    const cv::Mat bgr = io::readImage(f.string(), io::kReadColor);
+    const cv::Mat mask = io::readImage(m.string(), io::kReadGrayscale);
     if (bgr.empty() || mask.empty() || bgr.size() != mask.size()) {
       spdlog::warn("person cut-outs: cannot use {} / {}, skipped", f.string(), m.string());
       continue;
@@ -110,7 +110,7 @@ std::vector<cv::Mat> loadPhotos(const std::string& dir, std::size_t max_count) {
   if (!files.empty() && max_count > 0) {
     const std::size_t step = std::max<std::size_t>(1, files.size() / max_count);
     for (std::size_t i = 0; i < files.size() && photos.size() < max_count; i += step) {
-      const cv::Mat raw = cv::imread(files[i].string(), cv::IMREAD_UNCHANGED);
+      const cv::Mat raw = io::readImage(files[i].string(), io::kReadUnchanged);
       if (raw.empty() || raw.depth() != CV_8U || raw.channels() < 3) continue;
       cv::Mat bgr;
       if (raw.channels() == 4)

@@ -1,5 +1,5 @@
 #pragma once
-// PNG files for the sequence writer, written with libpng directly so that the row filter can be fixed: libpng's
+// PNG files for the sequence writer, encoded by io::encodePng (libpng) with a fixed row filter: libpng's
 // adaptive choice (what cv::imwrite does) tries all five filters on every row and was a third of the time per
 // frame. Paeth for colour and Up for depth and masks, zlib level 1 with run-length matching: as small as the
 // adaptive choice on these noisy images, at about two thirds of the time.

@@ -1,6 +1,6 @@
 #include "amos/viewer/frame_image.h"
 
-#include <opencv2/imgcodecs.hpp>
+#include "amos/io/jpeg_codec.h"
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -35,9 +35,8 @@ cv::Mat renderFrameOverlay(const cv::Mat& bgr, const cv::Mat& dynamic_mask, cons
 }
 
 std::vector<unsigned char> encodeJpeg(const cv::Mat& bgr, int quality) {
-  std::vector<unsigned char> bytes;
-  if (!bgr.empty()) cv::imencode(".jpg", bgr, bytes, {cv::IMWRITE_JPEG_QUALITY, quality});
-  return bytes;
+  if (bgr.empty()) return {};
+  return io::encodeJpeg(bgr, quality);
 }
 
 }  // namespace amos::viewer

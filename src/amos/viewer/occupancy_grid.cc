@@ -1,10 +1,10 @@
 #include "amos/viewer/occupancy_grid.h"
 
-#include <opencv2/imgcodecs.hpp>
 
 #include <utility>
 #include <vector>
 
+#include "amos/io/image_codecs.h"
 #include "amos/io/occupancy_grid_file.h"
 #include "amos/viewer/base64.h"
 
@@ -24,8 +24,7 @@ OccupancyGrid readOccupancyGrid(const std::filesystem::path& yaml) {
 }
 
 nlohmann::json occupancyReportJson(const OccupancyGrid& g) {
-  std::vector<unsigned char> png;
-  cv::imencode(".png", g.image, png);
+  const std::vector<std::uint8_t> png = io::encodeImage(".png", g.image);
   // map_server's trinary reading: p = (255 - value) / 255 (value / 255 with negate), occupied above
   // occupied_thresh, free below free_thresh, unknown between.
   std::size_t free = 0, occupied = 0, unknown = 0;

@@ -11,7 +11,6 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <regex>
 #include <string>
@@ -21,6 +20,8 @@
 #include <open3d/geometry/TriangleMesh.h>
 #include <open3d/io/PointCloudIO.h>
 #include <open3d/io/TriangleMeshIO.h>
+
+#include "amos/io/image_codecs.h"
 
 namespace {
 
@@ -104,8 +105,8 @@ int main(int argc, char** argv) {
     removed_points.push_back(m);
   }
   const View top{0, 1, 2}, side{0, 2, 1};
-  cv::imwrite(prefix + "_top.png", draw(points, colours, top, pixel, box));
-  cv::imwrite(prefix + "_side.png", draw(points, colours, side, pixel, box));
+  amos::io::writeImage(prefix + "_top.png", draw(points, colours, top, pixel, box));
+  amos::io::writeImage(prefix + "_side.png", draw(points, colours, side, pixel, box));
   // The removed points in magenta over the grey mesh, drawn last: they are what the reader looks for.
   cv::Mat removed_top = draw(points, grey, top, pixel, box), removed_side = draw(points, grey, side, pixel, box);
   for (const auto& m : removed_points) {
@@ -113,13 +114,13 @@ int main(int argc, char** argv) {
     cv::circle(removed_top, {x, removed_top.rows - 2 - int((m.y() - box.min().y()) / pixel)}, 1, {255, 0, 255}, -1);
     cv::circle(removed_side, {x, removed_side.rows - 2 - int((m.z() - box.min().z()) / pixel)}, 1, {255, 0, 255}, -1);
   }
-  cv::imwrite(prefix + "_removed_top.png", removed_top);
-  cv::imwrite(prefix + "_removed_side.png", removed_side);
-  const cv::Mat grid = cv::imread(dir + "/occupancy.pgm", cv::IMREAD_GRAYSCALE);
+  amos::io::writeImage(prefix + "_removed_top.png", removed_top);
+  amos::io::writeImage(prefix + "_removed_side.png", removed_side);
+  const cv::Mat grid = amos::io::readImage(dir + "/occupancy.pgm", amos::io::kReadGrayscale);
   if (!grid.empty()) {
     cv::Mat big;
     cv::resize(grid, big, {}, 4, 4, cv::INTER_NEAREST);
-    cv::imwrite(prefix + "_occupancy.png", big);
+    amos::io::writeImage(prefix + "_occupancy.png", big);
   }
   std::cout << fmt::format("{} mesh vertices below {} m, {} removed points -> {}_*.png\n", points.size(), ceiling,
                            removed_points.size(), prefix);
