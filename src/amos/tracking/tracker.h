@@ -1,7 +1,15 @@
 #pragma once
-// Per-frame RGB-D camera tracking (ORB-SLAM2's Tracking, RGB-D mode): map initialisation from the first frame
-// with enough depth, constant-velocity tracking with projection matching, fall-back to the reference keyframe,
-// tracking of the local map, keyframe decision, relocalisation when lost.
+// Per-frame RGB-D camera tracking (ORB-SLAM2's Tracking, RGB-D mode), as a sequence of named steps, each in its
+// own file and tested alone (stella_vslam's tracking module has the same shape):
+//   predict            pose_prediction.h     constant-velocity and external poses; the recovery's extrapolation
+//   match              frame_matching.h      a first pose from the last frame (motion model) or the reference
+//                                            keyframe; when lost, recovery.h near the last pose, then relocalizer.h
+//   refine             local_map_refinement.h (local_map.h) the pose against the local map; then
+//                      photometric_refiner.h against the reference keyframe's pixels
+//   decide keyframe    keyframe_decision.h   the keyframe rules
+//   commit             frame_commit.h, keyframe_insertion.h  velocity, matches kept, the pose relative to the
+//                                            reference keyframe; the new keyframe and its points
+// The map is initialised from the first frame with enough depth.
 //
 // Hooks for the dynamic front end (paper Sec. III): keypoints inside the frame's dynamic mask are removed when the
 // frame is built (map::buildFrameFeatures) and map points that project into the mask are counted
@@ -20,13 +28,13 @@
 
 #include "amos/core/pose.h"
 #include "amos/core/stage_timer.h"
-#include "amos/geometry/pose_optimizer.h"
 #include "amos/map/frame.h"
 #include "amos/map/map.h"
-#include "amos/match/matching_options.h"
+#include "amos/tracking/keyframe_decision.h"
 #include "amos/tracking/keyframe_sink.h"
-#include "amos/tracking/matching.h"
+#include "amos/tracking/local_map.h"
 #include "amos/tracking/photometric_refiner.h"
+#include "amos/tracking/pose_prediction.h"
 #include "amos/tracking/relocalizer.h"
 #include "amos/tracking/tracker_options.h"
 
@@ -77,32 +85,54 @@ class Tracker {
   const map::Frame& lastFrame() const { return last_frame_; }
 
  private:
+  // What the steps found for one frame, handed from step to step.
+  struct FrameOutcome {
+    bool tracked = false;
+    bool relocalized = false;  // by the relocaliser or the recovery near the last pose
+    bool used_external_pose = false;
+    bool new_keyframe = false;
+    int inliers = 0;
+  };
+
+  // Checks the frame and sets up what its first use needs.
+  void prepare(map::Frame& frame);
+  // Before the first frame: true when the map is empty (the frame is to initialise it); a loaded map makes
+  // tracking lost, to localise in it (cold start).
+  bool startsNewMap();
   TrackResult initialize(map::Frame& frame);
+
+  // Predict and match: from the last frame while tracking is ok, else recovery or relocalisation.
+  FrameOutcome estimateInitialPose(map::Frame& frame, const std::optional<core::SE3>& external_T_cw);
+  FrameOutcome followLastFrame(map::Frame& frame, const std::optional<core::SE3>& external_T_cw);
+  FrameOutcome relocalize(map::Frame& frame, const std::optional<core::SE3>& external_T_cw);
+  // The last frame brought up to date: fused points followed, pose from its (maybe moved) reference keyframe,
+  // temporary points from its depth.
+  void refreshLastFrame();
   bool trackWithMotionModel(map::Frame& frame, const std::optional<core::SE3>& external, bool& used_external);
   bool trackReferenceKeyFrame(map::Frame& frame);
-  bool trackLocalMap(map::Frame& frame, int& inliers);
   // Recently lost: matches the last local map around the external pose, the last tracked pose carried on by its
   // velocity, and the last tracked pose (see recovery_frames).
   bool recoverNearLastPose(map::Frame& frame, const std::optional<core::SE3>& external_T_cw);
-  void updateLastFrame();
-  void updateLocalMap(map::Frame& frame);
-  void searchLocalPoints(map::Frame& frame);
-  // Drops outlier matches after pose optimisation; returns matches to points that are in the map.
-  int discardOutliers(map::Frame& frame) const;
+  void markRelocalized(map::FrameId frame, FrameOutcome& outcome);
+  bool relocalizedWithin(map::FrameId frame, map::FrameId frames) const;
+
+  // Refine.
+  bool trackLocalMap(map::Frame& frame, int& inliers);
+  void refinePhotometrically(map::Frame& frame);
+
+  // Decide keyframe. Called with the map's shared lock held.
   bool needNewKeyFrame(const map::Frame& frame, int inliers) const;
-  // How far the frame's camera is from its reference keyframe's: the turn (degrees) and the baseline as a share of
-  // the frame's median keypoint depth; nullopt without a reference keyframe or keypoint depths. Called with the
-  // map's shared lock held.
-  struct ViewChange {
-    double rotation_deg = 0;
-    double baseline_share = 0;
-  };
-  std::optional<ViewChange> viewChangeFromReference(const map::Frame& frame) const;
-  // Whether movers (the frame's dynamic mask) cover Tracking.keyFrameMoverShare of the image and the camera, `view`
-  // away from its reference keyframe (viewChangeFromReference), is within Tracking.keyFrameMinRotation /
-  // keyFrameMinBaseline of it.
-  bool stillBehindMovers(const map::Frame& frame, const std::optional<ViewChange>& view) const;
+  KeyFrameEvidence keyFrameEvidence(const map::Frame& frame, int inliers) const;
+  // Local mapping takes a keyframe now: it is idle (as the keyframe rules saw it), or its bundle adjustment is
+  // interrupted and its queue is short.
+  bool mappingTakesKeyFrame(bool idle) const;
+
+  // Commit.
+  void updateMotion(const map::Frame& frame, const FrameOutcome& outcome);
   void createNewKeyFrame(map::Frame& frame);
+  TrackResult commit(map::Frame frame, const FrameOutcome& outcome);
+
+  void recordTime(const char* stage, core::Stopwatch& watch) const;
 
   TrackerOptions options_;
   std::shared_ptr<map::Map> map_;
@@ -125,13 +155,9 @@ class Tracker {
   };
   std::optional<FramePoseLink> photometric_link_;
   map::FrameId last_keyframe_frame_ = 0;
-  map::FrameId last_reloc_frame_ = 0;
-  std::optional<core::SE3> last_tracked_T_cw_;  // pose of the last frame that was tracked (kept while lost)
-  map::FrameId last_tracked_frame_ = 0;
-  std::optional<core::SE3> last_tracked_velocity_;  // velocity at that frame (for the recovery's extrapolation)
-  bool relocalized_once_ = false;
-  std::vector<map::KeyFramePtr> local_keyframes_;
-  std::vector<map::MapPointPtr> local_points_;
+  std::optional<map::FrameId> last_relocalization_;  // the last frame relocalised or recovered
+  std::optional<LastTrackedPose> last_tracked_;      // the last frame that was tracked (kept while lost)
+  LocalMap local_map_;
   std::vector<map::MapPointPtr> temporary_points_;  // visual-odometry points of the last frame (not in the map)
 };
 
