@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Command (1) of the README: installs the dependencies, builds, renders a synthetic dynamic sequence (the default
-# input, made from nothing outside the repository) and runs SLAM on it with the full anti-dynamics front end,
-# printing its accuracy against the exact ground truth.
+# Command (1) of the README: installs the core dependencies, builds the program without its optional parts (those
+# whose packages are absent are switched off), renders a synthetic dynamic sequence (the default input, made from
+# nothing outside the repository) and runs SLAM on it with the full anti-dynamics front end, printing its accuracy
+# against the exact ground truth.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install_deps.sh
+bash scripts/install_deps.sh --core
 bash scripts/build.sh -DAMOS_BUILD_TESTS=OFF -DAMOS_BUILD_BENCH=OFF
 PRESET="${1:-walking_xyz}"
 OUT="${AMOS_DEMO_DIR:-out/demo}"
