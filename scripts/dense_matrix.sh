@@ -8,11 +8,12 @@
 # close to none in full, and the twin is the reference.
 #   bash scripts/dense_matrix.sh [--seeds "1 2 3 4 5"] [--presets "walking_xyz walking_halfsphere walking_static
 #                                objects_xyz"] [--modes "full none"] [--frames 150] [--tolerances "0.02 0.04"]
-#                                [--reuse-runs] [--bin build/bin/amos-slam] [--out out/dense]
+#                                [--reuse-runs] [--no-twins] [--bin build/bin/amos-slam] [--out out/dense]
 #                                [--config configs/tum3.yaml]
 # The tables (markdown, one per tolerance) go to stdout, progress to stderr. Sequences are cached in
 # OUT/sequences/, runs go to OUT/runs/ with their logs and OUT/runs/MODE/NAME/mesh_eval_TOLERANCE.json.
 # --reuse-runs keeps finished runs and scores of OUT (to score again, or to gather presets run one at a time).
+# --no-twins leaves the static twins out (half the runs, when only the dynamic sequences' figures are wanted).
 # Exit status 1 when any job failed.
 set -euo pipefail
 
@@ -23,17 +24,19 @@ modes="full none"
 frames=150
 tolerances="0.02 0.04"
 reuse=0
+twins=1
 bin="$root/build/bin/amos-slam"
 out="$root/out/dense"
 config="$root/configs/tum3.yaml"
 
 # shellcheck source=scripts/synth_lib.sh
 source "$root/scripts/synth_lib.sh"
-usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; }
 while (($#)); do
   case "$1" in
     --tolerances) tolerances=${2:?--tolerances needs a value}; shift 2 ;;
     --reuse-runs) reuse=1; shift ;;
+    --no-twins) twins=0; shift ;;
     -h | --help) usage; exit 0 ;;
     *) common_option "$1" "${2-}" || { echo "error: unknown argument '$1' (see --help)" >&2; exit 2; }; shift 2 ;;
   esac
@@ -89,7 +92,8 @@ for preset in "${preset_list[@]}"; do
       for mode in "${mode_list[@]}"; do cases+=("$mode|$seq|$mode|"); done
     else failures=$((failures + 1)); fi
     # The twin is scored against its moving sibling's swept volume (its own is empty).
-    if [[ -n "$seq" ]] && twin=$(render "$preset" "$seed" 1); then
+    if ((!twins)); then :
+    elif [[ -n "$seq" ]] && twin=$(render "$preset" "$seed" 1); then
       cases+=("twin none|$twin|none|$seq/swept_volume.ply")
     else failures=$((failures + 1)); fi
     for c in "${cases[@]}"; do
