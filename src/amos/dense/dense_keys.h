@@ -37,6 +37,8 @@ void listDenseKeys(DenseOptions& o, KeyList& s) {
         "depth noise at that range");
   s.add("Dense.carveMinVotes", &o.carve_min_votes,
         "frames that must see through a surface point (and more than see it) before it is carved");
+  s.add("Dense.carveRecentVotes", &o.carve_recent_votes,
+        "... or that saw through it in a row since it was last seen (a person who stood, then left; 0 = off)");
 }
 
 }  // namespace amos::dense

@@ -14,6 +14,7 @@ SeeThroughOptions seeThroughOptionsOf(const DenseOptions& options) {
   out.min_depth = options.min_depth;
   out.max_depth = options.max_depth;
   out.min_votes = options.carve_min_votes;
+  out.recent_votes = options.carve_recent_votes;
   return out;
 }
 

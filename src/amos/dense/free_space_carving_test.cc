@@ -173,6 +173,20 @@ TEST(SeeThroughVote, NeedsMinVotesAndMoreThanTheSupport) {
   EXPECT_FALSE(p.vote.seenThrough(0)) << "as often seen as seen through";
 }
 
+TEST(SeeThroughVote, EveryVoteSinceItWasLastSeenSeeingThroughItCarves) {
+  // Seen for 10 frames (a person standing), then seen through for 5: fewer than the support, but all since.
+  OnePoint p;
+  p.options.recent_votes = 5;
+  p.vote = SeeThroughVote({Eigen::Vector3d(0, 0, 2)}, p.options);
+  for (int i = 0; i < 10; ++i) p.add(2.0f);
+  for (int i = 0; i < 4; ++i) p.add(3.0f);
+  EXPECT_FALSE(p.vote.seenThrough(0));
+  p.add(3.0f);
+  EXPECT_TRUE(p.vote.seenThrough(0));
+  p.add(2.0f);  // seen again: the run starts anew, and 5 of 16 is no majority
+  EXPECT_FALSE(p.vote.seenThrough(0));
+}
+
 TEST(SeeThroughVote, ANeighbourWithinTheBandIsNoSeeThrough) {
   // At a grazing angle the nearest pixel's ray meets the surface far behind the point, a neighbour's within the
   // band: no vote.

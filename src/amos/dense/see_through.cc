@@ -37,7 +37,7 @@ double SeeThroughOptions::band(double z) const { return truncation + sigmas * De
 
 SeeThroughVote::SeeThroughVote(std::vector<Eigen::Vector3d> points, const SeeThroughOptions& options)
     : points_(std::move(points)), counts_(points_.size()), options_(options) {
-  core::require(options.truncation > 0 && options.sigmas >= 0 && options.min_votes >= 1 &&
+  core::require(options.truncation > 0 && options.sigmas >= 0 && options.min_votes >= 1 && options.recent_votes >= 0 &&
                     options.max_depth > options.min_depth,
                 "SeeThroughVote: truncation > 0, sigmas >= 0, min_votes >= 1 and max_depth > min_depth expected");
 }
@@ -56,8 +56,14 @@ void SeeThroughVote::addFrame(const cv::Mat& depth, const core::CameraIntrinsics
     const int v = static_cast<int>(std::lround(camera.fy * p.y() / z + camera.cy));
     if (u < 0 || v < 0 || u >= depth.cols || v >= depth.rows) continue;
     switch (voteAt(depth, u, v, z, options_)) {
-      case Vote::kSupport: ++counts_[i].support; break;
-      case Vote::kThrough: ++counts_[i].through; break;
+      case Vote::kSupport:
+        ++counts_[i].support;
+        counts_[i].through_since_support = 0;
+        break;
+      case Vote::kThrough:
+        ++counts_[i].through;
+        ++counts_[i].through_since_support;
+        break;
       case Vote::kNone: break;
     }
   }
@@ -65,7 +71,10 @@ void SeeThroughVote::addFrame(const cv::Mat& depth, const core::CameraIntrinsics
 
 bool SeeThroughVote::seenThrough(std::size_t i) const {
   const SeeThroughCounts& c = counts_[i];
-  return c.through >= static_cast<std::uint32_t>(options_.min_votes) && c.through > c.support;
+  if (c.through < static_cast<std::uint32_t>(options_.min_votes)) return false;
+  const bool recent = options_.recent_votes > 0 &&
+                      c.through_since_support >= static_cast<std::uint32_t>(options_.recent_votes);
+  return c.through > c.support || recent;
 }
 
 std::vector<std::size_t> SeeThroughVote::seenThroughIndices() const {

@@ -16,8 +16,10 @@
 // The truncation is in the band because the fused surface is a weighted mean of readings over the truncation band
 // and the poses carry their own errors; sigma grows with range as the sensor's noise does (a constant fitted to one
 // sequence would carve far walls or spare near ghosts). A point is seen through when the see-through votes reach
-// `min_votes` and outnumber the support votes: one noisy frame does not decide, and a surface seen many times
-// before it left needs as many frames that look through it.
+// `min_votes` and outnumber the support votes, or when its last `recent_votes` votes all saw through it (0 = not
+// this rule): one noisy frame does not decide, a surface seen many times before it left needs as many frames
+// that look through it, unless every frame since it was last seen looked through it: a person who stood for
+// seconds and then walked away.
 #include <cstdint>
 #include <vector>
 
@@ -35,12 +37,14 @@ struct SeeThroughOptions {
   double min_depth = 0.3;    // points nearer or farther than these (m) are not voted on in a frame
   double max_depth = 4.0;
   int min_votes = 3;         // Dense.carveMinVotes: see-through votes a point needs at least
+  int recent_votes = 0;      // Dense.carveRecentVotes: ... or this many in a row since its last support (0 = off)
 
   double band(double z) const;  // truncation + sigmas * sigma(z)
 };
 
 struct SeeThroughCounts {
   std::uint32_t support = 0, through = 0;
+  std::uint32_t through_since_support = 0;  // see-through votes since the last support vote
 };
 
 class SeeThroughVote {
