@@ -52,7 +52,7 @@ failures=0
 
 # dense_run SEQUENCE_DIR MODE NAME SWEPT -> runs (unless reused) and scores the mesh at every tolerance against
 # SWEPT ("" = the sequence's own swept volume); prints per tolerance "tolerance accuracy_median p90 completeness
-# ghost_share off_surface_share ghosts ate" (nothing on failure).
+# ghost_share off_surface_share ghosts ate seen_through_share" (nothing on failure).
 dense_run() {
   local seq=$1 mode=$2 dir="$out/runs/$2/$3" swept=$4 t0=$SECONDS tol json extra=()
   [[ -n "$swept" ]] && extra=(--swept "$swept")
@@ -79,12 +79,12 @@ dense_run() {
 import json, sys
 e = json.load(open(sys.argv[1]))
 print(sys.argv[2], e["accuracy_median_m"], e["accuracy_p90_m"], e["completeness"], e["ghost_share"],
-      e["off_surface_share"], e["ghosts"], e["ate_rmse_m"])
+      e["off_surface_share"], e["ghosts"], e["ate_rmse_m"], e.get("seen_through", {}).get("seen_through_share", "nan"))
 PY
   done
 }
 
-declare -A acc p90 comp ghost off ate rows
+declare -A acc p90 comp ghost off ate through rows
 for preset in "${preset_list[@]}"; do
   for seed in "${seed_list[@]}"; do
     cases=() seq=""
@@ -103,10 +103,11 @@ for preset in "${preset_list[@]}"; do
         for tol in "${tolerance_list[@]}"; do rows[$tol]+="| $preset | $label | $seed | fail | | | | | | |"$'\n'; done
         continue
       fi
-      while read -r tol a p c9 g o n e; do
+      while read -r tol a p c9 g o n e st; do
         k="$tol|$preset|$label"
         acc[$k]+="$a "; p90[$k]+="$p "; comp[$k]+="$c9 "; ghost[$k]+="$g "; off[$k]+="$o "; ate[$k]+="$e "
-        rows[$tol]+="| $preset | $label | $seed | $(mm "$a") | $(mm "$p") | $(dec "$c9") | $(pct "$g") | $n | $(pct "$o") | $(mm "$e") |"$'\n'
+        through[$k]+="$st "
+        rows[$tol]+="| $preset | $label | $seed | $(mm "$a") | $(mm "$p") | $(dec "$c9") | $(pct "$g") | $n | $(pct "$o") | $(pct "$st") | $(mm "$e") |"$'\n'
       done <<< "$r"
     done
   done
@@ -115,19 +116,19 @@ done
 for tol in "${tolerance_list[@]}"; do
   echo "## Dense static map on synthetic truth at $(cm "$tol") cm: seeds ${seed_list[*]}, $frames frames, $(basename "$config"), --deterministic"
   echo
-  echo "| preset | run | seed | accuracy median (mm) | accuracy p90 (mm) | completeness | ghosts in swept volume (%) | ghost vertices | off the static surface (%) | ATE (mm) |"
-  echo "|---|---|---|---|---|---|---|---|---|---|"
+  echo "| preset | run | seed | accuracy median (mm) | accuracy p90 (mm) | completeness | ghosts in swept volume (%) | ghost vertices | off the static surface (%) | seen through (%) | ATE (mm) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|"
   printf '%s' "${rows[$tol]:-}"
   echo
   echo "### Mean over the seeds, tolerance $(cm "$tol") cm"
   echo
-  echo "| preset | run | accuracy median (mm) | accuracy p90 (mm) | completeness | ghosts in swept volume (%) | off the static surface (%) | ATE (mm) |"
-  echo "|---|---|---|---|---|---|---|---|"
+  echo "| preset | run | accuracy median (mm) | accuracy p90 (mm) | completeness | ghosts in swept volume (%) | off the static surface (%) | seen through (%) | ATE (mm) |"
+  echo "|---|---|---|---|---|---|---|---|---|"
   for preset in "${preset_list[@]}"; do
     for label in "${mode_list[@]}" "twin none"; do
       k="$tol|$preset|$label"
       # shellcheck disable=SC2086
-      echo "| $preset | $label | $(mm "$(mean ${acc[$k]:-})") | $(mm "$(mean ${p90[$k]:-})") | $(dec "$(mean ${comp[$k]:-})") | $(pct "$(mean ${ghost[$k]:-})") | $(pct "$(mean ${off[$k]:-})") | $(mm "$(mean ${ate[$k]:-})") |"
+      echo "| $preset | $label | $(mm "$(mean ${acc[$k]:-})") | $(mm "$(mean ${p90[$k]:-})") | $(dec "$(mean ${comp[$k]:-})") | $(pct "$(mean ${ghost[$k]:-})") | $(pct "$(mean ${off[$k]:-})") | $(pct "$(mean ${through[$k]:-})") | $(mm "$(mean ${ate[$k]:-})") |"
     done
   done
   echo
