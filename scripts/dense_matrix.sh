@@ -8,11 +8,12 @@
 # close to none in full, and the twin is the reference.
 #   bash scripts/dense_matrix.sh [--seeds "1 2 3 4 5"] [--presets "walking_xyz walking_halfsphere walking_static
 #                                objects_xyz"] [--modes "full none"] [--frames 150] [--tolerances "0.02 0.04"]
-#                                [--reuse-runs] [--bin build/bin/amos-slam] [--out out/dense]
+#                                [--reuse-runs] [--no-twins] [--bin build/bin/amos-slam] [--out out/dense]
 #                                [--config configs/tum3.yaml]
 # The tables (markdown, one per tolerance) go to stdout, progress to stderr. Sequences are cached in
 # OUT/sequences/, runs go to OUT/runs/ with their logs and OUT/runs/MODE/NAME/mesh_eval_TOLERANCE.json.
 # --reuse-runs keeps finished runs and scores of OUT (to score again, or to gather presets run one at a time).
+# --no-twins leaves the static twins out (half the runs, when only the dynamic sequences' figures are wanted).
 # Exit status 1 when any job failed.
 set -euo pipefail
 
@@ -23,17 +24,19 @@ modes="full none"
 frames=150
 tolerances="0.02 0.04"
 reuse=0
+twins=1
 bin="$root/build/bin/amos-slam"
 out="$root/out/dense"
 config="$root/configs/tum3.yaml"
 
 # shellcheck source=scripts/synth_lib.sh
 source "$root/scripts/synth_lib.sh"
-usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; }
 while (($#)); do
   case "$1" in
     --tolerances) tolerances=${2:?--tolerances needs a value}; shift 2 ;;
     --reuse-runs) reuse=1; shift ;;
+    --no-twins) twins=0; shift ;;
     -h | --help) usage; exit 0 ;;
     *) common_option "$1" "${2-}" || { echo "error: unknown argument '$1' (see --help)" >&2; exit 2; }; shift 2 ;;
   esac
@@ -49,7 +52,7 @@ failures=0
 
 # dense_run SEQUENCE_DIR MODE NAME SWEPT -> runs (unless reused) and scores the mesh at every tolerance against
 # SWEPT ("" = the sequence's own swept volume); prints per tolerance "tolerance accuracy_median p90 completeness
-# ghost_share off_surface_share ghosts ate" (nothing on failure).
+# ghost_share off_surface_share ghosts ate seen_through_share" (nothing on failure).
 dense_run() {
   local seq=$1 mode=$2 dir="$out/runs/$2/$3" swept=$4 t0=$SECONDS tol json extra=()
   [[ -n "$swept" ]] && extra=(--swept "$swept")
@@ -76,12 +79,12 @@ dense_run() {
 import json, sys
 e = json.load(open(sys.argv[1]))
 print(sys.argv[2], e["accuracy_median_m"], e["accuracy_p90_m"], e["completeness"], e["ghost_share"],
-      e["off_surface_share"], e["ghosts"], e["ate_rmse_m"])
+      e["off_surface_share"], e["ghosts"], e["ate_rmse_m"], e.get("seen_through", {}).get("seen_through_share", "nan"))
 PY
   done
 }
 
-declare -A acc p90 comp ghost off ate rows
+declare -A acc p90 comp ghost off ate through rows
 for preset in "${preset_list[@]}"; do
   for seed in "${seed_list[@]}"; do
     cases=() seq=""
@@ -89,7 +92,8 @@ for preset in "${preset_list[@]}"; do
       for mode in "${mode_list[@]}"; do cases+=("$mode|$seq|$mode|"); done
     else failures=$((failures + 1)); fi
     # The twin is scored against its moving sibling's swept volume (its own is empty).
-    if [[ -n "$seq" ]] && twin=$(render "$preset" "$seed" 1); then
+    if ((!twins)); then :
+    elif [[ -n "$seq" ]] && twin=$(render "$preset" "$seed" 1); then
       cases+=("twin none|$twin|none|$seq/swept_volume.ply")
     else failures=$((failures + 1)); fi
     for c in "${cases[@]}"; do
@@ -99,10 +103,11 @@ for preset in "${preset_list[@]}"; do
         for tol in "${tolerance_list[@]}"; do rows[$tol]+="| $preset | $label | $seed | fail | | | | | | |"$'\n'; done
         continue
       fi
-      while read -r tol a p c9 g o n e; do
+      while read -r tol a p c9 g o n e st; do
         k="$tol|$preset|$label"
         acc[$k]+="$a "; p90[$k]+="$p "; comp[$k]+="$c9 "; ghost[$k]+="$g "; off[$k]+="$o "; ate[$k]+="$e "
-        rows[$tol]+="| $preset | $label | $seed | $(mm "$a") | $(mm "$p") | $(dec "$c9") | $(pct "$g") | $n | $(pct "$o") | $(mm "$e") |"$'\n'
+        through[$k]+="$st "
+        rows[$tol]+="| $preset | $label | $seed | $(mm "$a") | $(mm "$p") | $(dec "$c9") | $(pct "$g") | $n | $(pct "$o") | $(pct "$st") | $(mm "$e") |"$'\n'
       done <<< "$r"
     done
   done
@@ -111,19 +116,19 @@ done
 for tol in "${tolerance_list[@]}"; do
   echo "## Dense static map on synthetic truth at $(cm "$tol") cm: seeds ${seed_list[*]}, $frames frames, $(basename "$config"), --deterministic"
   echo
-  echo "| preset | run | seed | accuracy median (mm) | accuracy p90 (mm) | completeness | ghosts in swept volume (%) | ghost vertices | off the static surface (%) | ATE (mm) |"
-  echo "|---|---|---|---|---|---|---|---|---|---|"
+  echo "| preset | run | seed | accuracy median (mm) | accuracy p90 (mm) | completeness | ghosts in swept volume (%) | ghost vertices | off the static surface (%) | seen through (%) | ATE (mm) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|"
   printf '%s' "${rows[$tol]:-}"
   echo
   echo "### Mean over the seeds, tolerance $(cm "$tol") cm"
   echo
-  echo "| preset | run | accuracy median (mm) | accuracy p90 (mm) | completeness | ghosts in swept volume (%) | off the static surface (%) | ATE (mm) |"
-  echo "|---|---|---|---|---|---|---|---|"
+  echo "| preset | run | accuracy median (mm) | accuracy p90 (mm) | completeness | ghosts in swept volume (%) | off the static surface (%) | seen through (%) | ATE (mm) |"
+  echo "|---|---|---|---|---|---|---|---|---|"
   for preset in "${preset_list[@]}"; do
     for label in "${mode_list[@]}" "twin none"; do
       k="$tol|$preset|$label"
       # shellcheck disable=SC2086
-      echo "| $preset | $label | $(mm "$(mean ${acc[$k]:-})") | $(mm "$(mean ${p90[$k]:-})") | $(dec "$(mean ${comp[$k]:-})") | $(pct "$(mean ${ghost[$k]:-})") | $(pct "$(mean ${off[$k]:-})") | $(mm "$(mean ${ate[$k]:-})") |"
+      echo "| $preset | $label | $(mm "$(mean ${acc[$k]:-})") | $(mm "$(mean ${p90[$k]:-})") | $(dec "$(mean ${comp[$k]:-})") | $(pct "$(mean ${ghost[$k]:-})") | $(pct "$(mean ${off[$k]:-})") | $(pct "$(mean ${through[$k]:-})") | $(mm "$(mean ${ate[$k]:-})") |"
     done
   done
   echo

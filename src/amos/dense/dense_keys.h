@@ -30,6 +30,15 @@ void listDenseKeys(DenseOptions& o, KeyList& s) {
   s.add("Dense.gridMinHeight", &o.grid_min_height,
         "surface higher than this above the floor (m) marks a cell occupied ...");
   s.add("Dense.gridMaxHeight", &o.grid_max_height, "... up to this height (m)");
+  s.add("Dense.carve", &o.carve,
+        "free-space carving in the final fusion: surface that later frames see through is forgotten (0 = off)");
+  s.add("Dense.carveSigmas", &o.carve_sigmas,
+        "a reading sees through a surface point when it lies beyond it by more than truncation + carveSigmas x the "
+        "depth noise at that range");
+  s.add("Dense.carveMinVotes", &o.carve_min_votes,
+        "frames that must see through a surface point (and more than see it) before it is carved");
+  s.add("Dense.carveRecentVotes", &o.carve_recent_votes,
+        "... or that saw through it in a row since it was last seen (a person who stood, then left; 0 = off)");
 }
 
 }  // namespace amos::dense

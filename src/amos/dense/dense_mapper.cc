@@ -13,6 +13,7 @@
 #include "amos/core/error.h"
 #include "amos/core/stage_timer.h"
 #include "amos/core/thread_priority.h"
+#include "amos/dense/free_space_carving.h"
 #include "amos/dense/open3d_geometry.h"
 #include "amos/dense/tsdf_volume.h"
 
@@ -214,6 +215,24 @@ DenseMap DenseMapper::fuseFinal(const std::vector<io::StampedPose>& trajectory, 
   return map;
 }
 
+nlohmann::json DenseMapper::carveFreeSpace(TsdfVolume& volume,
+                                           const std::vector<std::pair<const StoredFrame*, core::SE3>>& fused,
+                                           const std::atomic<bool>* stop, open3d::geometry::PointCloud& removed) const {
+  auto carver = FreeSpaceCarver::ofSurface(volume, seeThroughOptionsOf(options_));
+  for (const auto& [stored, T_wc] : fused) {
+    stopIfAsked(stop);
+    carver.addFrame(decompressDepth(*stored), preparer_.intrinsics(), T_wc.inverse());
+  }
+  const CarveResult carved = carver.carve(volume);
+  // What was carved was left out of the map as the dynamic readings were: it joins the removed points.
+  removed.points_.insert(removed.points_.end(), carved.points.begin(), carved.points.end());
+  removed.colors_.insert(removed.colors_.end(), carved.colours.begin(), carved.colours.end());
+  return {{"vertices_voted", carved.vertices_voted},
+          {"vertices_carved", carved.points.size()},
+          {"voxels_forgotten", carved.voxels_forgotten},
+          {"frames", carved.frames}};
+}
+
 DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajectory,
                                     const std::atomic<bool>* stop) const {
   core::Stopwatch total;
@@ -224,10 +243,12 @@ DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajecto
   auto removed = std::make_shared<open3d::geometry::PointCloud>();
   std::vector<double> integrate_ms;
   std::vector<Eigen::Vector3d> centres, down_axes, forward_axes;
+  std::vector<std::pair<const StoredFrame*, core::SE3>> fused;  // with their final poses T_wc
   for (const StoredFrame& stored : kept_) {
     stopIfAsked(stop);
     const core::SE3* T_wc = poseAt(poses, stored.timestamp);
     if (T_wc == nullptr) continue;  // not in the final trajectory
+    fused.emplace_back(&stored, *T_wc);
     const PreparedFrame frame = decompressFrame(stored);
     core::Stopwatch watch;
     volume.integrate(frame.depth, frame.bgr, camera, T_wc->inverse());
@@ -238,9 +259,15 @@ DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajecto
     down_axes.push_back(T_wc->linear().col(1));
     forward_axes.push_back(T_wc->linear().col(2));
   }
+  core::Stopwatch watch;
+  nlohmann::json carve_stats = nullptr;
+  if (options_.carve) {
+    carve_stats = carveFreeSpace(volume, fused, stop, *removed);
+    carve_stats["ms"] = watch.elapsedMs();
+  }
   map.removed = plainCloud(*removed->VoxelDownSample(options_.voxel_size));
   stopIfAsked(stop);
-  core::Stopwatch watch;
+  watch.restart();
   map.mesh = plainMesh(*volume.extractMesh());  // colours clamped to bytes: the TSDF's averages can step past 1
   const double mesh_ms = watch.elapsedMs();
   stopIfAsked(stop);
@@ -275,6 +302,7 @@ DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajecto
                {"cloud", summary(live.live_cloud_ms)},
                {"volume_mb", live_ ? static_cast<double>(live_->bytes()) / 1e6 : 0.0}};
   s["fusion_per_frame"] = summary(integrate_ms);  // wall ms, one thread
+  s["carving"] = carve_stats;
   s["blocks"] = volume.blocks();
   s["voxels"] = volume.voxels();
   s["volume_mb"] = static_cast<double>(volume.bytes()) / 1e6;

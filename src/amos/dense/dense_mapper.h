@@ -38,7 +38,10 @@
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include <Eigen/Core>
 
@@ -51,6 +54,10 @@
 #include "amos/dense/frame_store.h"
 #include "amos/io/trajectory.h"
 
+
+namespace open3d::geometry {
+class PointCloud;
+}  // namespace open3d::geometry
 
 namespace amos::dense {
 
@@ -103,6 +110,11 @@ class DenseMapper {
   void process(const DenseFrame& frame);
   void publishLiveCloud();
   DenseMap fuseFinalHere(const std::vector<io::StampedPose>& trajectory, const std::atomic<bool>* stop) const;
+  // Free-space carving of the final volume with the frames as fused (free_space_carving.h); the carved vertices
+  // join `removed`. Returns its figures for stats.json.
+  nlohmann::json carveFreeSpace(TsdfVolume& volume,
+                                const std::vector<std::pair<const StoredFrame*, core::SE3>>& fused,
+                                const std::atomic<bool>* stop, open3d::geometry::PointCloud& removed) const;
 
   DenseOptions options_;
   FramePreparer preparer_;

@@ -99,7 +99,8 @@ TEST(DenseMapper, FindsTheFloorOfTheRoom) {
 }
 
 TEST(DenseMapper, AMaskedMoverLeavesNoSurfaceAndAnUnmaskedOneAGhost) {
-  const DenseOptions o = roomOptions();
+  DenseOptions o = roomOptions();
+  o.carve = false;  // the fusion alone; carving: the test below
   Sweep masked;
   masked.with_mover = true;
   Sweep unmasked = masked;
@@ -112,6 +113,65 @@ TEST(DenseMapper, AMaskedMoverLeavesNoSurfaceAndAnUnmaskedOneAGhost) {
   EXPECT_LT(ghosts_masked, ghosts_unmasked / 100 + 5);
   EXPECT_GT(clean.removed.points.size(), 100u);  // what was left out, back-projected
   EXPECT_TRUE(smeared.removed.points.empty());
+}
+
+// A person the mask misses while standing for the first 6 frames, then gone; the camera pans to and fro.
+DenseMap fuseAStandingGhost(const DenseOptions& options) {
+  const core::CameraIntrinsics k = testing::roomCamera();
+  DenseMapper mapper(options, k);
+  std::vector<io::StampedPose> trajectory;
+  const Box person{{0.6, -0.5, 0.0}, {0.9, -0.1, 1.8}, true};
+  for (int i = 0; i < 24; ++i) {
+    const core::SE3 T_wc = testing::cameraPose({-1.0, -0.2, 1.3}, 0.5 * std::sin(2 * M_PI * i / 12), -0.3);
+    const testing::RoomFrame f = testing::renderRoom(k, T_wc, i < 6 ? std::vector<Box>{person} : std::vector<Box>{});
+    const double stamp = 100 + i / 30.0;
+    EXPECT_TRUE(mapper.push({stamp, T_wc.inverse(), {f.depth, f.bgr, cv::Mat()}}));  // no mask: missed
+    trajectory.push_back({stamp, T_wc});
+  }
+  mapper.finish();
+  return mapper.fuseFinal(trajectory);
+}
+
+TEST(DenseMapper, CarvesTheGhostOfAMissedPersonThatLaterFramesSeeThrough) {
+  DenseOptions o = roomOptions();
+  o.carve = false;
+  const DenseMap kept = fuseAStandingGhost(o);
+  o.carve = true;
+  const DenseMap carved = fuseAStandingGhost(o);
+  const double tolerance = 2 * o.voxel_size;
+  const std::size_t ghosts_kept = ghosts(distancesToStatic(kept, {}), tolerance);
+  const std::size_t ghosts_carved = ghosts(distancesToStatic(carved, {}), tolerance);
+  EXPECT_GT(ghosts_kept, 150u);
+  EXPECT_LT(ghosts_carved, ghosts_kept / 20 + 5) << ghosts_carved << " of " << ghosts_kept << " ghost vertices remain";
+  EXPECT_GT(carved.stats["carving"]["vertices_carved"].get<int>(), 0);
+  EXPECT_GE(carved.removed.points.size(), 100u);  // the carved surface joins the removed points
+  EXPECT_TRUE(kept.removed.points.empty());
+  EXPECT_TRUE(kept.stats["carving"].is_null());
+  // The surface cloud and the floor plan follow: nothing stands where the person stood (x 0.6-0.9, y -0.5 to -0.1).
+  const auto atThePerson = [](const Eigen::Vector3d& p) {
+    return p.x() > 0.55 && p.x() < 0.95 && p.y() > -0.55 && p.y() < -0.05;
+  };
+  const auto surfaceAtThePerson = [&](const DenseMap& map) {
+    return std::count_if(map.cloud.points.begin(), map.cloud.points.end(),
+                         [&](const Eigen::Vector3d& p) { return atThePerson(p) && p.z() > 0.2; });
+  };
+  const auto occupiedAtThePerson = [&](const DenseMap& map) {
+    const OccupancyGrid& g = *map.grid;
+    int n = 0;
+    for (int row = 0; row < g.height; ++row) {
+      for (int column = 0; column < g.width; ++column) {
+        const Eigen::Vector3d centre_m(g.origin.x() + (column + 0.5) * g.resolution,
+                                       g.origin.y() + (g.height - row - 0.5) * g.resolution, 0.0);
+        n += g.at(row, column) == kOccupiedCell && atThePerson(g.T_mw.inverse() * centre_m) ? 1 : 0;
+      }
+    }
+    return n;
+  };
+  ASSERT_TRUE(kept.grid && carved.grid);
+  EXPECT_GT(surfaceAtThePerson(kept), 100);
+  EXPECT_EQ(surfaceAtThePerson(carved), 0);
+  EXPECT_GT(occupiedAtThePerson(kept), 5);
+  EXPECT_EQ(occupiedAtThePerson(carved), 0);
 }
 
 TEST(DenseMapper, UsesTheFinalTrajectoryNotTheTrackedPoses) {

@@ -45,6 +45,18 @@ struct DenseOptions {
   double grid_resolution = 0.05;   // Dense.gridResolution (m)
   double grid_min_height = 0.10;   // Dense.gridMinHeight (m above the floor)
   double grid_max_height = 1.80;   // Dense.gridMaxHeight (m above the floor)
+  // Free-space carving in the final fusion (free_space_carving.h, see_through.h): a surface point that later
+  // frames see through (their reading beyond it by more than truncation + carveSigmas x the depth noise at that
+  // range, in at least carveMinVotes frames and more often than a reading supports it, or in the last
+  // carveRecentVotes frames that voted) is forgotten.
+  bool carve = true;               // Dense.carve
+  // Dense.carveSigmas: 3 sigma leave a static surface's noise in the band (0.3 % of the readings beyond it).
+  double carve_sigmas = 3.0;
+  // Dense.carveMinVotes: a tenth of a second at 30 Hz; a single noisy frame or flying pixel never carves.
+  int carve_min_votes = 3;
+  // Dense.carveRecentVotes: half a second at 30 Hz of frames that all look through a point since it was last seen
+  // carve it even when it was seen more often before (a person who stood still, then left). 0 = majority alone.
+  int carve_recent_votes = 15;
 
   // The structured-light sensors' depth noise at `z` metres (above): 1.5 mm + 1.5e-3 (z - 0.4)^2.
   static double depthNoise(double z) { return 0.0015 + 0.0015 * (z - 0.4) * (z - 0.4); }
@@ -103,6 +115,9 @@ struct DenseOptions {
                                     "robot meets), got {}",
                                     grid_resolution));
     core::requireInRange(grid_min_height, "grid_min_height", 0.0, 10.0);
+    core::requireInRange(carve_sigmas, "carve_sigmas", 0.0, 20.0);
+    core::requireInRange(carve_min_votes, "carve_min_votes", 1, 100000);
+    core::requireInRange(carve_recent_votes, "carve_recent_votes", 0, 100000);
     core::requireOption(grid_max_height > grid_min_height && grid_max_height <= 10, option(grid_max_height, "grid_max_height"),
                         fmt::format("must be > grid_min_height ({}) and <= 10 m, got {}", grid_min_height,
                                     grid_max_height),

@@ -43,4 +43,6 @@ PreparedFrame decompressFrame(const StoredFrame& stored) {
   return out;
 }
 
+cv::Mat decompressDepth(const StoredFrame& stored) { return depthFromPng(stored.depth_png); }
+
 }  // namespace amos::dense

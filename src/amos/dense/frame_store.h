@@ -22,5 +22,7 @@ struct StoredFrame {
 StoredFrame compressFrame(const PreparedFrame& frame, double timestamp, const core::SE3& T_cw);
 // Throws core::Error when the bytes do not decode.
 PreparedFrame decompressFrame(const StoredFrame& stored);
+// The static depth alone (CV_32F metres): what free-space carving reads of each frame a second time.
+cv::Mat decompressDepth(const StoredFrame& stored);
 
 }  // namespace amos::dense

@@ -2,6 +2,8 @@
 
 #include <omp.h>
 
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <opencv2/imgproc.hpp>
 
@@ -66,6 +68,50 @@ std::shared_ptr<open3d::geometry::TriangleMesh> TsdfVolume::extractMesh() const 
 
 std::shared_ptr<open3d::geometry::PointCloud> TsdfVolume::extractCloud() const {
   return volume_->ExtractPointCloud();
+}
+
+namespace {
+
+int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// The two voxels (global indices; voxel g's centre is at (g + 0.5) voxel) of the edge a marching-cubes vertex lies
+// on: two of its coordinates are whole in voxel units, the third anywhere between two centres.
+std::array<Eigen::Vector3i, 2> edgeVoxels(const Eigen::Vector3d& vertex, double voxel) {
+  const Eigen::Vector3d c = vertex / voxel - Eigen::Vector3d::Constant(0.5);
+  int axis = 0;
+  double most = -1;
+  for (int i = 0; i < 3; ++i) {
+    const double off = std::abs(c[i] - std::round(c[i]));
+    if (off > most) most = off, axis = i;
+  }
+  Eigen::Vector3i low(static_cast<int>(std::lround(c.x())), static_cast<int>(std::lround(c.y())),
+                      static_cast<int>(std::lround(c.z())));
+  low[axis] = static_cast<int>(std::floor(c[axis]));
+  Eigen::Vector3i high = low;
+  ++high[axis];
+  return {low, high};
+}
+
+}  // namespace
+
+std::size_t TsdfVolume::forgetSurfaceAt(const std::vector<Eigen::Vector3d>& vertices) {
+  std::size_t forgotten = 0;
+  for (const Eigen::Vector3d& vertex : vertices) {
+    for (const Eigen::Vector3i& g : edgeVoxels(vertex, volume_->voxel_length_)) {
+      const Eigen::Vector3i unit(floorDiv(g.x(), kBlockResolution), floorDiv(g.y(), kBlockResolution),
+                                 floorDiv(g.z(), kBlockResolution));
+      const auto it = volume_->volume_units_.find(unit);
+      if (it == volume_->volume_units_.end() || !it->second.volume_) continue;
+      auto& block = *it->second.volume_;
+      open3d::geometry::TSDFVoxel& v = block.voxels_[block.IndexOf(g - unit * kBlockResolution)];
+      if (v.weight_ == 0) continue;
+      v.weight_ = 0;  // marching cubes and the cloud skip a cube with a corner of weight 0
+      v.tsdf_ = 0;
+      v.color_.setZero();
+      ++forgotten;
+    }
+  }
+  return forgotten;
 }
 
 std::size_t TsdfVolume::blocks() const { return volume_->volume_units_.size(); }

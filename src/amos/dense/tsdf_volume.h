@@ -9,6 +9,9 @@
 // the run uses every core.
 #include <cstddef>
 #include <memory>
+#include <vector>
+
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
 
 #include "amos/core/camera.h"
@@ -41,6 +44,13 @@ class TsdfVolume {
   std::shared_ptr<open3d::geometry::TriangleMesh> extractMesh() const;
   // The surface's points (zero crossings of the TSDF) with colours and normals.
   std::shared_ptr<open3d::geometry::PointCloud> extractCloud() const;
+
+  // Free-space carving (free_space_carving.h): forgets the voxels under each of `vertices`, points that
+  // extractMesh() or extractCloud() gave (each lies on the edge between two voxel centres; both lose their weight,
+  // so every cube of marching cubes that shares the edge, the vertex with its triangles and the cloud's point are
+  // gone from the next extraction).
+  // Returns the number of voxels forgotten.
+  std::size_t forgetSurfaceAt(const std::vector<Eigen::Vector3d>& vertices);
 
   std::size_t blocks() const;       // allocated voxel blocks
   std::size_t voxels() const;       // blocks x voxels per block

@@ -22,6 +22,15 @@ void WalkingPerson::addGeometry(double t, const Eigen::Vector3d& camera, SceneGe
   addPerson(look_, pose, camera, info().id, out);
 }
 
+DisguisedPerson::DisguisedPerson(InstanceInfo info, PersonLook look, PersonLook disguise, PingPongPath path,
+                                 double from_s, double to_s)
+    : Mover(info), plain_(info, std::move(look), path), disguised_(info, std::move(disguise), path), from_(from_s),
+      to_(to_s) {}
+
+void DisguisedPerson::addGeometry(double t, const Eigen::Vector3d& camera, SceneGeometry& out) const {
+  (t >= from_ && t < to_ ? disguised_ : plain_).addGeometry(t, camera, out);
+}
+
 SittingPerson::SittingPerson(InstanceInfo info, PersonLook look, Eigen::Vector2d seat, double heading,
                              double seat_height, std::uint32_t seed)
     : Mover(std::move(info)),

@@ -86,6 +86,19 @@ class SwingingDoor : public Mover {
   double closed_yaw_, open_angle_, period_, offset_;
 };
 
+// A person who looks like one except within [from_s, to_s), when the same walk is made in `disguise` (a plain suit
+// from head to foot, no face): a person detector misses them there (issue 55: a mask that fails for some frames).
+class DisguisedPerson : public Mover {
+ public:
+  DisguisedPerson(InstanceInfo info, PersonLook look, PersonLook disguise, PingPongPath path, double from_s,
+                  double to_s);
+  void addGeometry(double t, const Eigen::Vector3d& camera_position_w, SceneGeometry& out) const override;
+
+ private:
+  WalkingPerson plain_, disguised_;
+  double from_, to_;
+};
+
 // A mover that moves only within a time window [begin_s, end_s]: before it, it stands as the inner mover stands at
 // begin_s; after it, as at end_s. Movers that change state (issue 16): an object that rests and then is pushed
 // (start-moving), one that is pushed and then stays (stop-moving).

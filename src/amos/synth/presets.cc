@@ -118,6 +118,27 @@ const std::vector<Preset>& allPresets() {
        300,
        {M::kChairPush},
        "static_xyz"},
+      // Issue 55: the scenes where the dynamic masks fail, for free-space carving (docs/synthetic.md).
+      {"standing_leaves",
+       "a person standing still in the middle of the view for 1.5 s, then walking out of it at 1.2 m/s, camera "
+       "moving along x/y/z",
+       C::kXyz,
+       300,
+       {M::kStandingLeaves},
+       "static_xyz"},
+      {"disguised_walker",
+       "the walker across, in a plain suit without a face from 0.6 to 2.4 s (a person detector misses them), "
+       "camera moving along x/y/z",
+       C::kXyz,
+       300,
+       {M::kDisguisedWalker},
+       "static_xyz"},
+      {"border_walker",
+       "a person walking to and fro along the left edge of the view, half in it, camera moving along x/y/z",
+       C::kXyz,
+       300,
+       {M::kBorderWalker},
+       "static_xyz"},
   };
   return presets;
 }

@@ -6,6 +6,7 @@
 //   walking_rpy -> static_rpy           walking_halfsphere -> static_halfsphere      walking_loop -> static_loop
 //   objects_xyz -> objects_xyz with --no-movers (its door is a mover, so the static room has an open doorway)
 //   box_starts, box_stops, chair_push -> static_xyz
+//   standing_leaves, disguised_walker, border_walker -> static_xyz (issue 55: where the dynamic masks fail)
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ enum class MoverKind {
   kBoxStops,      // box pushed 2 m from the first frame, at rest from 4 s on (stop-moving)
   kChairPush,     // a person pushing an office chair 1.6 m from 3 s on (paper Fig. 4 (c)-(d)): two instances,
                   // the person ("person", a prior object) and the chair ("object", which no detector knows)
+  kStandingLeaves,   // a person standing still in the middle of the view for 1.5 s, then walking out of it
+  kDisguisedWalker,  // the walker across, in a plain suit without a face from 0.6 to 2.4 s (the detector misses)
+  kBorderWalker,     // a person walking along the left edge of the view, half in it
 };
 
 struct Preset {

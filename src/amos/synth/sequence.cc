@@ -14,6 +14,7 @@
 #include "amos/synth/camera_path.h"
 #include "amos/synth/furniture.h"
 #include "amos/synth/image_assets.h"
+#include "amos/synth/procedural_textures.h"
 #include "amos/synth/random.h"
 #include "amos/synth/room.h"
 #include "amos/synth/static_surface.h"
@@ -153,6 +154,34 @@ void SequenceGenerator::Impl::buildMovers(const std::vector<cv::Mat>& photos,
             begin, end));
         break;
       }
+      case MoverKind::kStandingLeaves: {
+        // Stands facing the camera (the forward leg's first waypoint) until 1.5 s, then walks 3 m to the right,
+        // out of the view (at 1.8 m from the camera the view is 2.2 m wide), and stays there.
+        info = {info.id, "person", "standing_leaves"};
+        const double begin = 1.5, speed = 1.2, end = begin + 3.0 / speed;
+        movers.push_back(std::make_unique<ScheduledMover>(
+            std::make_unique<WalkingPerson>(info, lookFor(false),
+                                            PingPongPath({{1.4, 0.35}, {1.4, -2.65}}, speed, 1.0, 0.3, -begin)),
+            begin, end));
+        break;
+      }
+      case MoverKind::kDisguisedWalker: {
+        info = {info.id, "person", "disguised_walker"};
+        PersonLook disguise = proceduralLook(ctx);
+        const Surface plain = ctx.add(textures::metal(cv::Size(32, 32), cv::Scalar(150, 158, 162), ctx.rng));
+        disguise.shirt = disguise.trousers = disguise.skin = disguise.head = disguise.shoes = plain;
+        movers.push_back(std::make_unique<DisguisedPerson>(
+            info, lookFor(false), std::move(disguise),
+            PingPongPath({{1.05, -1.1}, {1.05, 1.2}}, rng.uniform(0.8, 1.0), 1.2, 0.25, offset), 0.6, 2.4));
+        break;
+      }
+      case MoverKind::kBorderWalker:
+        // Along the left edge of the view (the camera at (-0.4, 0) looks along +x with 31 degrees to each side):
+        // the body's centre on the edge, half of it in view, as the camera's sway moves the edge.
+        info = {info.id, "person", "border_walker"};
+        movers.push_back(std::make_unique<WalkingPerson>(
+            info, lookFor(false), PingPongPath({{0.6, 0.6}, {2.6, 1.8}}, rng.uniform(0.8, 1.0), 0.8, 0.25, offset)));
+        break;
     }
     instances.push_back(info);
   }
