@@ -4,12 +4,13 @@
 
 #include <cmath>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 
 #include "amos/core/error.h"
 #include "amos/dense/free_space_carving.h"
 #include "amos/eval/mesh_eval.h"
 #include "amos/io/dataset.h"
+#include "amos/io/image_codecs.h"
+#include "amos/io/image_read_flags.h"
 #include "amos/io/trajectory.h"
 
 namespace amos::eval {
@@ -62,7 +63,9 @@ const core::SE3* poseAt(const std::map<double, core::SE3>& poses, double stamp) 
 }
 
 cv::Mat depthMetres(const std::string& file, double depth_factor) {
-  const cv::Mat raw = cv::imread(file, cv::IMREAD_UNCHANGED);
+  std::string problem;
+  const cv::Mat raw = io::readImage(file, io::kReadUnchanged, &problem);
+  core::require(!raw.empty(), fmt::format("{}: cannot read the depth image: {}", file, problem));
   core::require(raw.type() == CV_16U, fmt::format("{}: not a 16-bit depth image", file));
   cv::Mat metres;
   raw.convertTo(metres, CV_32F, 1.0 / depth_factor);
