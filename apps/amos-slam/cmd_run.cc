@@ -478,8 +478,9 @@ void runSlam(const RunArgs& args, int& exit_code) {
 void addRunCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RunArgs>();
   auto* cmd = app.add_subcommand("run", "Run RGB-D SLAM over a TUM/Bonn-layout sequence or a live camera");
-  auto* sequence = cmd->add_option("--sequence", args->sequence,
-                                   "Sequence folder (rgb/, depth/, rgb.txt, depth.txt) or ROS 1 bag (X.bag; docs/ros.md)")
+  auto* sequence =
+      cmd->add_option("--sequence", args->sequence,
+                      "Sequence folder (rgb/, depth/, rgb.txt, depth.txt) or ROS 1 bag (X.bag; docs/ros.md)")
                        ->check(CLI::ExistingPath);
   for (auto [flag, value, what] : {std::tuple{"--rgb-topic", &args->rgb_topic, "colour Image"},
                                    std::tuple{"--depth-topic", &args->depth_topic, "depth Image"},

@@ -71,17 +71,7 @@ std::optional<core::CameraIntrinsics> readCameraInfo(const std::string& bag, con
   openBag(reader, bag);
   std::optional<core::CameraIntrinsics> intrinsics;
   forEachMessage(reader, bag, topic, [&](const ::rosbag::MessageInstance& m, std::size_t) {
-    const auto info = instantiateOrThrow<sensor_msgs::CameraInfo>(m, bag);
-    core::CameraIntrinsics c;
-    c.fx = info->K[0];
-    c.fy = info->K[4];
-    c.cx = info->K[2];
-    c.cy = info->K[5];
-    double* lens[] = {&c.k1, &c.k2, &c.p1, &c.p2, &c.k3};
-    for (std::size_t i = 0; i < std::min<std::size_t>(5, info->D.size()); ++i) *lens[i] = info->D[i];
-    c.width = static_cast<int>(info->width);
-    c.height = static_cast<int>(info->height);
-    intrinsics = c;
+    intrinsics = cameraIntrinsics(*instantiateOrThrow<sensor_msgs::CameraInfo>(m, bag));
     return false;
   });
   return intrinsics;
@@ -93,7 +83,8 @@ BagIndex indexBag(const std::string& bag, const BagOptions& options) {
   BagIndex index;
   index.bag = bag;
   index.topics = chooseTopics(topicsOf(reader), options.topics, bag);
-  const TopicStamps rgb = readStamps(reader, bag, index.topics.rgb, isColourEncoding, "rgb8, bgr8, rgba8, bgra8 or mono8");
+  const TopicStamps rgb =
+      readStamps(reader, bag, index.topics.rgb, isColourEncoding, "rgb8, bgr8, rgba8, bgra8 or mono8");
   const TopicStamps depth = readStamps(reader, bag, index.topics.depth, isDepthEncoding, "16UC1, mono16 or 32FC1");
   index.image_size = rgb.first_size;
   index.messages = io::associateStamps(rgb.stamps, depth.stamps, options.max_dt);

@@ -29,7 +29,8 @@ TEST_P(BagReadsAsItsFolder, SameFramesAsTheFolderReader) {
   write.compression = compression;
   write.colour_encoding = colour;
   write.depth_encoding = depth;
-  const std::string bag = test::writeTestBag(sequence, testing::scratchDirForThisTest("amos_bag_"), "frames.bag", write);
+  const std::string bag =
+      test::writeTestBag(sequence, testing::scratchDirForThisTest("amos_bag_"), "frames.bag", write);
 
   const io::SequenceIndex folder = io::indexSequence(sequence);
   const BagIndex index = indexBag(bag);

@@ -46,13 +46,18 @@ void warnWhenTheyDiffer(const config::Settings& settings, const core::CameraIntr
 
 }  // namespace
 
-std::string settingsTextWithCamera(const std::string& path, const std::optional<core::CameraIntrinsics>& camera_info,
-                                   const std::string& camera_info_source) {
+bool settingsHaveCalibration(const std::string& path) {
   const config::YamlReader file = config::YamlReader::fromFile(path);
-  std::string text = fileText(path);
   bool any_focal = false;
   for (const char* key : kFocalKeys) any_focal = any_focal || file.has(key);
-  if (any_focal) return text;
+  return any_focal;
+}
+
+std::string settingsTextWithCamera(const std::string& path, const std::optional<core::CameraIntrinsics>& camera_info,
+                                   const std::string& camera_info_source) {
+  std::string text = fileText(path);
+  if (settingsHaveCalibration(path)) return text;
+  const config::YamlReader file = config::YamlReader::fromFile(path);
   core::require(camera_info.has_value(),
                 fmt::format("settings '{}' give no camera calibration (Camera.fx, fy, cx, cy) and {} has no "
                             "camera_info message: add the calibration to the settings or record camera_info",

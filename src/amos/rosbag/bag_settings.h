@@ -12,6 +12,10 @@
 
 namespace amos::rosbag {
 
+// Whether the settings file gives any of Camera.fx, fy, cx, cy (then its calibration is used, whatever camera_info
+// says). Throws core::Error naming a file that cannot be read.
+bool settingsHaveCalibration(const std::string& path);
+
 // The settings file's text, with the calibration keys it leaves out appended from `camera_info` when it gives none
 // of Camera.fx, fy, cx, cy (the node hands this to amos::Options::settings_yaml). `camera_info_source` names the
 // CameraInfo in messages ("bag 'x.bag', topic '/t'"). Throws core::Error when the file leaves the calibration out

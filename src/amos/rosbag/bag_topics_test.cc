@@ -17,7 +17,8 @@ TEST(BagTopics, TumNamesWithTheirCameraInfo) {
 }
 
 TEST(BagTopics, RealSenseAlignedDepthWithoutCameraInfo) {
-  const BagTopics t = chooseTopics({"/camera/aligned_depth_to_color/image_raw", "/camera/color/image_raw"}, {}, "x.bag");
+  const BagTopics t =
+      chooseTopics({"/camera/aligned_depth_to_color/image_raw", "/camera/color/image_raw"}, {}, "x.bag");
   EXPECT_EQ(t.rgb, "/camera/color/image_raw");
   EXPECT_EQ(t.depth, "/camera/aligned_depth_to_color/image_raw");
   EXPECT_EQ(t.camera_info, "");

@@ -4,7 +4,6 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <rosbag/bag.h>
-#include <sensor_msgs/CameraInfo.h>
 
 #include "amos/core/error.h"
 #include "amos/io/png_reader.h"
@@ -24,20 +23,6 @@ cv::Mat readImageFile(const std::string& file, int flags) {
   const cv::Mat image = io::readPng(file, flags);
   core::require(!image.empty(), fmt::format("writing a bag: cannot read '{}'", file));
   return image;
-}
-
-sensor_msgs::CameraInfo cameraInfo(const core::CameraIntrinsics& c, const ros::Time& stamp, const std::string& frame) {
-  sensor_msgs::CameraInfo info;
-  info.header.stamp = stamp;
-  info.header.frame_id = frame;
-  info.width = static_cast<std::uint32_t>(c.width);
-  info.height = static_cast<std::uint32_t>(c.height);
-  info.distortion_model = "plumb_bob";
-  info.D = {c.k1, c.k2, c.p1, c.p2, c.k3};
-  info.K = {c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1};
-  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  info.P = {c.fx, 0, c.cx, 0, 0, c.fy, c.cy, 0, 0, 0, 1, 0};
-  return info;
 }
 
 }  // namespace
@@ -71,7 +56,8 @@ void writeBag(const io::SequenceIndex& sequence, const std::string& bag, const B
       writer.write(options.topics.depth, depth_stamp,
                    imageMessage(depth, options.depth_encoding, depth_stamp, options.frame_id));
       if (options.camera && !options.topics.camera_info.empty())
-        writer.write(options.topics.camera_info, rgb_stamp, cameraInfo(*options.camera, rgb_stamp, options.frame_id));
+        writer.write(options.topics.camera_info, rgb_stamp,
+                     cameraInfoMessage(*options.camera, rgb_stamp, options.frame_id));
     }
     writer.close();
   } catch (const ::rosbag::BagException& e) {

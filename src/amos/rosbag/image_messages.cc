@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cstring>
 
 #include "amos/core/error.h"
@@ -93,6 +94,34 @@ sensor_msgs::Image imageMessage(const cv::Mat& image, const std::string& encodin
   msg.data.resize(static_cast<std::size_t>(msg.step) * image.rows);
   for (int r = 0; r < image.rows; ++r) std::memcpy(&msg.data[r * msg.step], image.ptr(r), msg.step);
   return msg;
+}
+
+core::CameraIntrinsics cameraIntrinsics(const sensor_msgs::CameraInfo& info) {
+  core::CameraIntrinsics c;
+  c.fx = info.K[0];
+  c.fy = info.K[4];
+  c.cx = info.K[2];
+  c.cy = info.K[5];
+  double* lens[] = {&c.k1, &c.k2, &c.p1, &c.p2, &c.k3};
+  for (std::size_t i = 0; i < std::min<std::size_t>(5, info.D.size()); ++i) *lens[i] = info.D[i];
+  c.width = static_cast<int>(info.width);
+  c.height = static_cast<int>(info.height);
+  return c;
+}
+
+sensor_msgs::CameraInfo cameraInfoMessage(const core::CameraIntrinsics& c, const ros::Time& stamp,
+                                          const std::string& frame_id) {
+  sensor_msgs::CameraInfo info;
+  info.header.stamp = stamp;
+  info.header.frame_id = frame_id;
+  info.width = static_cast<std::uint32_t>(c.width);
+  info.height = static_cast<std::uint32_t>(c.height);
+  info.distortion_model = "plumb_bob";
+  info.D = {c.k1, c.k2, c.p1, c.p2, c.k3};
+  info.K = {c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {c.fx, 0, c.cx, 0, 0, c.fy, c.cy, 0, 0, 0, 1, 0};
+  return info;
 }
 
 }  // namespace amos::rosbag

@@ -1,10 +1,14 @@
 #pragma once
 // sensor_msgs/Image <-> cv::Mat for the bag source and the node, without cv_bridge: the few encodings an RGB-D
-// camera gives. Errors name `where` (the bag or node, the topic and the message) and the encoding.
+// camera gives. Errors name `where` (the bag or node, the topic and the message) and the encoding. And
+// sensor_msgs/CameraInfo <-> core::CameraIntrinsics.
 #include <opencv2/core.hpp>
+#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 
 #include <string>
+
+#include "amos/core/camera.h"
 
 namespace amos::rosbag {
 
@@ -22,5 +26,12 @@ bool isDepthEncoding(const std::string& encoding);
 // another type with a matching encoding for tests of wrong encodings), with that header.
 sensor_msgs::Image imageMessage(const cv::Mat& image, const std::string& encoding, const ros::Time& stamp,
                                 const std::string& frame_id);
+
+// A CameraInfo's calibration: K's fx fy cx cy, D's first five (plumb_bob, rational_polynomial: k1 k2 p1 p2 k3), the
+// image size.
+core::CameraIntrinsics cameraIntrinsics(const sensor_msgs::CameraInfo& info);
+// The CameraInfo of a calibration (plumb_bob, no rectification).
+sensor_msgs::CameraInfo cameraInfoMessage(const core::CameraIntrinsics& camera, const ros::Time& stamp,
+                                          const std::string& frame_id);
 
 }  // namespace amos::rosbag
