@@ -20,7 +20,7 @@ foreach(header pluginlib/class_loader.hpp class_loader/class_loader.hpp rcpputil
   list(APPEND amos_ros_nested_dirs ${AMOS_ROS_${upper}_INCLUDE_DIR})
 endforeach()
 set(amos_ros_bag_libs rosbag_storage roscpp_serialization rostime cpp_common console_bridge boost_filesystem)
-set(amos_ros_node_libs roscpp rosconsole xmlrpcpp tf2_ros tf2 message_filters boost_system boost_chrono boost_thread)
+set(amos_ros_node_libs roscpp rosconsole xmlrpcpp tf2_ros tf2 boost_system boost_chrono boost_thread)
 foreach(dir AMOS_ROSBAG_INCLUDE_DIR AMOS_ROS_MSGS_INCLUDE_DIR)
   if(NOT ${dir})
     set(amos_ros_found OFF)
