@@ -47,7 +47,7 @@ std::string frameName(const std::string& bag, const std::string& topic, double s
 
 }  // namespace
 
-double stampSeconds(const ros::Time& stamp) { return std::stod(fmt::format("{}.{:09d}", stamp.sec, stamp.nsec)); }
+double stampSeconds(const ros::Time& stamp) { return stamp.toSec(); }
 
 void selectFrames(BagIndex& index, std::size_t first, std::size_t count) {
   auto& frames = index.sequence.frames;

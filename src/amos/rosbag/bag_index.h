@@ -52,8 +52,8 @@ BagTopics bagTopics(const std::string& bag, const BagTopics& requested = {});
 // nothing when the topic is empty or has no message.
 std::optional<core::CameraIntrinsics> readCameraInfo(const std::string& bag, const std::string& topic);
 
-// A header stamp as the folder reader's double: the decimal "sec.nsec" read as a number, so a stamp written from a
-// folder's time stamp reads back as the same double.
+// A header stamp in seconds (ros::Time::toSec). A folder's time stamp written with ros::Time::fromSec reads back as
+// the same double: bag_reader_test.cc and bag_run_test.cc check it bit for bit.
 double stampSeconds(const ros::Time& stamp);
 
 }  // namespace amos::rosbag
