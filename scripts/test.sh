@@ -5,6 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh --all
+bash scripts/install_ros_deps.sh  # the optional ROS 1 part (AMOS_WITH_ROS), tested too: docs/ros.md
 bash scripts/build.sh -DAMOS_BUILD_TESTS=ON -DAMOS_BUILD_VIEWER=ON -DAMOS_WITH_OPEN3D=ON -DAMOS_BUILD_PYTHON=ON \
-  -DAMOS_WITH_OPENNI2=ON
+  -DAMOS_WITH_OPENNI2=ON -DAMOS_WITH_ROS=ON
 ctest --test-dir build --output-on-failure -j "${AMOS_JOBS:-$(nproc)}"

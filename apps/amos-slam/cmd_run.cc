@@ -22,6 +22,7 @@
 #include <cerrno>
 #include <cmath>
 #include <csignal>
+#include <tuple>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -44,6 +45,7 @@
 #include "amos/core/stop_request.h"
 #include "amos/report/output_folder.h"
 #include "amos/report/run_report.h"
+#include "amos/run/bag_source.h"
 #include "amos/run/sequence_run.h"
 #include "commands.h"
 #include "run_watchers.h"
@@ -60,6 +62,7 @@ struct RunArgs {
   std::size_t first_frame = 0;
   std::string load_map, save_map;  // --load-map / --save-map
   bool localize = false;
+  std::string rgb_topic, depth_topic, camera_info_topic;  // --sequence X.bag
   ViewerArgs viewer;
 };
 
@@ -283,10 +286,16 @@ std::vector<std::string> outputNames(const RunArgs& args) {
 // The run's options from the command line (all but the observers, the progress display and the stop flag).
 run::SequenceRunOptions sequenceRunOptions(const RunArgs& args) {
   run::SequenceRunOptions options;
-  options.source = !args.camera.empty() ? run::FrameSourceKind::kCamera
-                   : args.realtime      ? run::FrameSourceKind::kRealtime
-                                        : run::FrameSourceKind::kFolder;
+  options.source = !args.camera.empty()          ? run::FrameSourceKind::kCamera
+                   : run::isBagFile(args.sequence) ? run::FrameSourceKind::kBag
+                   : args.realtime                 ? run::FrameSourceKind::kRealtime
+                                                   : run::FrameSourceKind::kFolder;
+  core::require(!(options.source == run::FrameSourceKind::kBag && args.realtime),
+                "run --realtime: a bag is read as fast as possible (play it into amos_slam_node for a paced run)");
   options.sequence_dir = args.sequence;
+  options.rgb_topic = args.rgb_topic;
+  options.depth_topic = args.depth_topic;
+  options.camera_info_topic = args.camera_info_topic;
   options.camera = args.camera;
   options.record_dir = args.record;
   options.config_label = args.config;
@@ -355,7 +364,10 @@ std::vector<std::string> optionalStageProblems(const report::RunInfo& info) {
 void runSlam(const RunArgs& args, int& exit_code) {
   core::require(!args.sequence.empty() || !args.camera.empty(),
                 "run: give --sequence DIR (a recorded sequence) or --camera openni2[:URI] (a live camera)");
-  const config::Settings settings = run::loadSettings(args.config);
+  const run::SequenceRunOptions source_options = sequenceRunOptions(args);
+  const config::Settings settings = source_options.source == run::FrameSourceKind::kBag
+                                        ? run::loadBagSettings(args.config, source_options)
+                                        : run::loadSettings(args.config);
   // Before anything else runs (models, the camera, the first frame): a wrong output path is found at once, the
   // input is never written, and the output folder is this run's until it ends.
   report::refuseInsideInput(args.record, "--record", args.sequence);
@@ -466,8 +478,18 @@ void runSlam(const RunArgs& args, int& exit_code) {
 void addRunCommand(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RunArgs>();
   auto* cmd = app.add_subcommand("run", "Run RGB-D SLAM over a TUM/Bonn-layout sequence or a live camera");
-  auto* sequence = cmd->add_option("--sequence", args->sequence, "Sequence folder (rgb/, depth/, rgb.txt, depth.txt)")
-                       ->check(CLI::ExistingDirectory);
+  auto* sequence =
+      cmd->add_option("--sequence", args->sequence,
+                      "Sequence folder (rgb/, depth/, rgb.txt, depth.txt) or ROS 1 bag (X.bag; docs/ros.md)")
+                       ->check(CLI::ExistingPath);
+  for (auto [flag, value, what] : {std::tuple{"--rgb-topic", &args->rgb_topic, "colour Image"},
+                                   std::tuple{"--depth-topic", &args->depth_topic, "depth Image"},
+                                   std::tuple{"--camera-info-topic", &args->camera_info_topic, "CameraInfo"}}) {
+    cmd->add_option(flag, *value,
+                    fmt::format("--sequence X.bag: the {} topic (default: the TUM, OpenNI2 or RealSense driver's)",
+                                what))
+        ->needs(sequence);
+  }
   auto* realtime = cmd->add_flag("--realtime", args->realtime,
                                  "Replay --sequence at its recorded time stamps: frames that arrive while SLAM is "
                                  "busy replace the waiting one and are counted as dropped (default: every frame, "

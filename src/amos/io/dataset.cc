@@ -289,6 +289,7 @@ RgbdFrame rgbdFrameFromImages(const AssociatedFrame& entry, cv::Mat bgr, const c
 struct SequenceReader::Impl {
   SequenceIndex index;
   ReaderOptions options;
+  FrameLoader loader;
   using Item = std::variant<RgbdFrame, std::exception_ptr>;
   core::BoundedQueue<Item> queue;
   std::atomic<std::size_t> delivered{0};
@@ -296,8 +297,8 @@ struct SequenceReader::Impl {
   SkippedFrames skipped;  // guarded by skipped_mutex
   std::thread worker;
 
-  Impl(SequenceIndex idx, ReaderOptions opts)
-      : index(std::move(idx)), options(opts), queue(std::max<std::size_t>(1, opts.prefetch)) {
+  Impl(SequenceIndex idx, ReaderOptions opts, FrameLoader load)
+      : index(std::move(idx)), options(opts), loader(std::move(load)), queue(std::max<std::size_t>(1, opts.prefetch)) {
     skipped.add(FrameProblem::kMissing, index.missing.size());
     worker = std::thread([this] { produce(); });
   }
@@ -308,7 +309,7 @@ struct SequenceReader::Impl {
   // The item for frame i: the frame, an error that ends the stream, or nothing (skipped).
   std::optional<Item> load(std::size_t i) {
     try {
-      RgbdFrame frame = loadRgbdFrame(index.frames[i], options, i);
+      RgbdFrame frame = loader(index.frames[i], options, i);
       if (frame.depth_dropout) {
         spdlog::warn("frame {}: depth dropout ('{}' has fewer than {:g} % valid pixels): tracked from its colour "
                      "image alone",
@@ -345,8 +346,8 @@ struct SequenceReader::Impl {
   }
 };
 
-SequenceReader::SequenceReader(SequenceIndex index, ReaderOptions options)
-    : impl_(std::make_unique<Impl>(std::move(index), options)) {}
+SequenceReader::SequenceReader(SequenceIndex index, ReaderOptions options, FrameLoader loader)
+    : impl_(std::make_unique<Impl>(std::move(index), options, std::move(loader))) {}
 
 SequenceReader::~SequenceReader() = default;
 

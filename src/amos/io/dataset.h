@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -107,7 +108,10 @@ RgbdFrame rgbdFrameFromImages(const AssociatedFrame& entry, cv::Mat bgr, const c
 // index left out as missing included); with ReaderOptions::strict the first one is an error instead.
 class SequenceReader : public FrameSource {
  public:
-  SequenceReader(SequenceIndex index, ReaderOptions options);
+  // How a listed frame is read, in the reader's thread: loadRgbdFrame (files), or a recording's own reader (a ROS
+  // bag's messages, src/amos/rosbag) that throws FrameLoadError as it does.
+  using FrameLoader = std::function<RgbdFrame(const AssociatedFrame&, const ReaderOptions&, std::size_t)>;
+  SequenceReader(SequenceIndex index, ReaderOptions options, FrameLoader loader = loadRgbdFrame);
   ~SequenceReader() override;
   SequenceReader(const SequenceReader&) = delete;
   SequenceReader& operator=(const SequenceReader&) = delete;

@@ -17,6 +17,7 @@
 #include "amos/io/frame_source.h"
 #include "amos/io/png_reader.h"
 #include "amos/io/realtime_replay.h"
+#include "amos/run/bag_source.h"
 #include "amos/run/live_log.h"
 #include "amos/run/mask_scoring.h"
 #include "amos/run/mask_writing.h"
@@ -43,6 +44,7 @@ std::string sourceKindName(FrameSourceKind kind, const std::string& camera) {
     case FrameSourceKind::kFolder: return "folder";
     case FrameSourceKind::kRealtime: return "realtime";
     case FrameSourceKind::kCamera: return parseCameraSpec(camera).driver;
+    case FrameSourceKind::kBag: return "bag";
   }
   return "?";
 }
@@ -143,13 +145,14 @@ std::unique_ptr<api::Engine> makeEngine(const config::Settings& settings, const 
 }
 
 std::unique_ptr<io::FrameSource> openSource(const config::Settings& settings, const SequenceRunOptions& options,
-                                            std::optional<io::SequenceIndex>& index) {
+                                            std::optional<io::SequenceIndex>& index, const BagInput& bag) {
   io::ReaderOptions reader_options = settings.readerOptions();
   reader_options.strict = options.strict;
   switch (options.source) {
     case FrameSourceKind::kFolder: return std::make_unique<io::SequenceReader>(std::move(*index), reader_options);
     case FrameSourceKind::kRealtime: return std::make_unique<io::RealtimeReplay>(std::move(*index), reader_options);
     case FrameSourceKind::kCamera: return openCamera(settings, options.camera);
+    case FrameSourceKind::kBag: return bag.open(reader_options);
   }
   return nullptr;
 }
@@ -282,15 +285,22 @@ void SequenceRunResult::rethrowFailure() const {
 
 SequenceRunResult runSequence(const config::Settings& settings, const SequenceRunOptions& options) {
   SequenceRunResult result;
-  std::optional<io::SequenceIndex> index = indexFrames(options);
-  if (index) checkSettingsFitTheInput(*index, settings, options);
+  BagInput bag;
+  std::optional<io::SequenceIndex> index;
+  if (options.source == FrameSourceKind::kBag) {
+    bag = indexBagInput(options, settings);
+    index = bag.index;
+  } else {
+    index = indexFrames(options);
+    if (index) checkSettingsFitTheInput(*index, settings, options);
+  }
   const std::string gt_file = index ? index->groundtruth_file : std::string();
   if (index && (!index->association.file.empty() || index->association.duplicate_rows > 0))
     result.info.association = index->association;
   result.engine = makeEngine(settings, options);
   OwnObservers own = makeOwnObservers(settings, options, gt_file);
   // Opened last, just before the loop: a paced or live source starts its clock at once.
-  std::unique_ptr<io::FrameSource> source = openSource(settings, options, index);
+  std::unique_ptr<io::FrameSource> source = openSource(settings, options, index, bag);
   const bool paced = options.source != FrameSourceKind::kFolder;
   // A paced or live source: a pose must not wait for a late person network (DynamicPipeline::setWaitForSegmentation).
   result.pipeline().setWaitForSegmentation(!paced || settings.dynamic.prior.live_wait);

@@ -34,9 +34,10 @@ enum class FrameSourceKind {
   kFolder,    // sequence_dir as fast as possible (io::SequenceReader)
   kRealtime,  // sequence_dir at its recorded time stamps (io::RealtimeReplay)
   kCamera,    // a live camera named by `camera` (sequence_dir unused; no evaluation)
+  kBag,       // sequence_dir is a ROS 1 bag, read as fast as possible (bag_source.h; AMOS_WITH_ROS builds)
 };
 
-// "folder" | "realtime" | the camera's driver name ("openni2").
+// "folder" | "realtime" | the camera's driver name ("openni2") | "bag".
 std::string sourceKindName(FrameSourceKind kind, const std::string& camera);
 
 struct CameraSpec {
@@ -51,6 +52,9 @@ struct SequenceRunOptions {
   FrameSourceKind source = FrameSourceKind::kFolder;
   std::string sequence_dir;
   std::string camera;          // --camera: "openni2" or "openni2:URI" (FrameSourceKind::kCamera)
+  // FrameSourceKind::kBag: --rgb-topic, --depth-topic, --camera-info-topic ("" = the known drivers' names,
+  // rosbag/bag_topics.h).
+  std::string rgb_topic, depth_topic, camera_info_topic;
   std::string record_dir;      // --record: write every processed frame there in TUM layout ("" = do not)
   std::string config_label;    // recorded in stats.json
   std::string mode = "none";   // dynamic front end: none | prior | geometry | full (the CLI defaults to full)
