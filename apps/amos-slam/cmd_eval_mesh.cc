@@ -2,7 +2,8 @@
 // synthetic sequence it was made from (static_surface.ply and swept_volume.ply, written by `amos-slam synth`):
 // accuracy, completeness, ghosts (off the static surface inside the movers' swept volume) and vertices off the
 // static surface anywhere (eval/mesh_eval.h). Prints one line and writes the figures as JSON (--output, default
-// mesh_eval.json beside the mesh). Without the dense module (AMOS_WITH_OPEN3D off) it is an error.
+// mesh_eval.json beside the mesh). The scoring is in the dense plugin (run/dense_plugin.h), loaded by this command
+// only; without the dense module (AMOS_WITH_OPEN3D off) it is an error.
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -12,8 +13,8 @@
 
 #include "amos/core/error.h"
 #include "amos/io/atomic_file.h"
-#ifdef AMOS_HAVE_MESH_EVAL
-#include "amos/eval/mesh_eval.h"
+#ifdef AMOS_HAVE_DENSE_PLUGIN
+#include "amos/run/dense_plugin_loader.h"
 #endif
 #include "commands.h"
 
@@ -27,7 +28,8 @@ struct EvalMeshArgs {
 };
 
 void evalMesh(const EvalMeshArgs& a) {
-#ifdef AMOS_HAVE_MESH_EVAL
+#ifdef AMOS_HAVE_DENSE_PLUGIN
+  const run::DensePlugin& dense = run::densePlugin();  // the scoring is in the dense plugin (Open3D)
   eval::MeshEvalRequest request;
   request.mesh = a.mesh;
   request.sequence = a.sequence;
@@ -36,7 +38,7 @@ void evalMesh(const EvalMeshArgs& a) {
   request.max_depth = a.max_depth;
   request.swept = a.swept;
   request.sweep_margin = a.sweep_margin;
-  const eval::MeshScore s = eval::evaluateMesh(request);
+  const eval::MeshScore s = dense.evaluateMesh(request);
   std::cout << fmt::format(
       "accuracy median {:.4f} m  p90 {:.4f} m;  completeness {:.3f};  ghosts {} of {} vertices ({:.2f} %), "
       "off the static surface {} ({:.2f} %);  tolerance {:.3f} m, sweep {:.3f} m^3 grown by {:.3f} m, {} truth "
@@ -46,8 +48,8 @@ void evalMesh(const EvalMeshArgs& a) {
       s.ate_rmse_m);
   const std::string output =
       a.output.empty() ? (std::filesystem::path(a.mesh).parent_path() / "mesh_eval.json").string() : a.output;
-  io::writeFileAtomically(output, eval::toJson(s).dump(2) + "\n");
-  if (!a.ghosts.empty()) eval::writePointsPly(a.ghosts, s.ghost_points);
+  io::writeFileAtomically(output, dense.meshScoreJson(s).dump(2) + "\n");
+  if (!a.ghosts.empty()) dense.writePointsPly(a.ghosts, s.ghost_points);
 #else
   (void)a;
   throw core::Error("eval-mesh: this build has no dense module (install libopen3d-dev and rebuild)");
