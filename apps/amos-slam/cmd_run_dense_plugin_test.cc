@@ -58,6 +58,7 @@ TEST(DensePlugin, WithoutTheModuleOnlyTheDenseCommandsFailAndSayWhereTheyLooked)
   fs::copy_file(AMOS_SLAM_EXE, program);
   const auto [version_status, version] = shell("'" + program.string() + "' --version");
   EXPECT_EQ(version_status, 0) << version;
+  std::ofstream(dir / "mesh.ply") << "ply\n";  // eval-mesh's arguments must exist; the module is looked for first
   const auto [status, text] = shell("'" + program.string() + "' eval-mesh --mesh '" + (dir / "mesh.ply").string() +
                                     "' --sequence '" + dir.string() + "'");
   EXPECT_EQ(status, 1) << text;
