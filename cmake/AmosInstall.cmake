@@ -1,5 +1,6 @@
 # The installed package (issue 44): `cmake --install build --prefix P` puts in P
 #   bin/amos-slam
+#   lib/amos/libamos_dense_plugin.so                           the dense map's module that amos-slam loads (Open3D)
 #   include/amos/{slam.h,dense_map.h,sequence_folder.h,logging.h,version.h}  the public API (nothing of src/amos/)
 #   lib/libamos_*.a                                            amos_slam and the modules it links (static)
 #   lib/cmake/AmosSlam/                                        find_package(AmosSlam) -> AmosSlam::amos_slam
@@ -69,6 +70,11 @@ amos_link_closure(amos_api AMOS_INSTALLED_LIBRARIES)
 set(AMOS_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/AmosSlam)
 install(TARGETS ${AMOS_INSTALLED_LIBRARIES} EXPORT AmosSlamTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS amos-slam RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The dense plugin, where amos-slam looks for it from its own folder (../lib/amos/: run/dense_plugin_loader.h),
+# whatever CMAKE_INSTALL_LIBDIR is.
+if(TARGET amos_dense_plugin)
+  install(TARGETS amos_dense_plugin LIBRARY DESTINATION lib/amos)
+endif()
 install(FILES ${PROJECT_SOURCE_DIR}/include/amos/slam.h ${PROJECT_SOURCE_DIR}/include/amos/sequence_folder.h
   ${PROJECT_SOURCE_DIR}/include/amos/logging.h ${PROJECT_SOURCE_DIR}/include/amos/dense_map.h
   ${PROJECT_BINARY_DIR}/include/amos/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/amos)

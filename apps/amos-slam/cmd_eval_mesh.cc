@@ -4,8 +4,9 @@
 // static surface anywhere (eval/mesh_eval.h); and, on any sequence (--no-truth: a real one), the share of the
 // mesh's vertices that the run's own frames see through (eval/see_through_share.h), with the camera, depth factor
 // and Dense.* band of the run's settings (--settings, default settings_used.yaml beside the mesh). Prints one line
-// per measure and writes the figures as JSON (--output, default mesh_eval.json beside the mesh). Without the dense
-// module (AMOS_WITH_OPEN3D off) it is an error.
+// per measure and writes the figures as JSON (--output, default mesh_eval.json beside the mesh). The scoring is in
+// the dense plugin (run/dense_plugin.h), loaded by this command only; without the dense module (AMOS_WITH_OPEN3D
+// off) it is an error.
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -15,10 +16,9 @@
 
 #include "amos/core/error.h"
 #include "amos/io/atomic_file.h"
-#ifdef AMOS_HAVE_MESH_EVAL
+#ifdef AMOS_HAVE_DENSE_PLUGIN
 #include "amos/dense/dense_options.h"
-#include "amos/eval/mesh_eval.h"
-#include "amos/eval/see_through_share.h"
+#include "amos/run/dense_plugin_loader.h"
 #include "amos/run/settings_sections.h"
 #endif
 #include "commands.h"
@@ -33,12 +33,12 @@ struct EvalMeshArgs {
   bool no_truth = false;
 };
 
-#ifdef AMOS_HAVE_MESH_EVAL
+#ifdef AMOS_HAVE_DENSE_PLUGIN
 std::string besideTheMesh(const EvalMeshArgs& a, const std::string& given, const char* name) {
   return given.empty() ? (std::filesystem::path(a.mesh).parent_path() / name).string() : given;
 }
 
-eval::SeeThroughScore seenThrough(const EvalMeshArgs& a) {
+eval::SeeThroughScore seenThrough(const EvalMeshArgs& a, const run::DensePlugin& dense) {
   const std::string settings_file = besideTheMesh(a, a.settings, "settings_used.yaml");
   core::require(std::filesystem::exists(settings_file),
                 fmt::format("{} is missing: give the run's settings (camera, DepthMapFactor, Dense.*) with --settings",
@@ -51,7 +51,7 @@ eval::SeeThroughScore seenThrough(const EvalMeshArgs& a) {
   request.camera = settings.camera;
   request.depth_factor = settings.depth_factor;
   request.dense = settings.section<dense::DenseOptions>();
-  const eval::SeeThroughScore s = eval::evaluateSeeThrough(request);
+  const eval::SeeThroughScore s = dense.evaluateSeeThrough(request);
   std::cout << fmt::format("seen through by the run's frames: {} of {} vertices ({:.2f} %; {} voted on), {} frames, "
                            "band {:.3f} m at 2 m\n",
                            s.seen_through, s.vertices, 100.0 * s.share, s.voted, s.frames, s.band_at_2m);
@@ -60,10 +60,11 @@ eval::SeeThroughScore seenThrough(const EvalMeshArgs& a) {
 #endif
 
 void evalMesh(const EvalMeshArgs& a) {
-#ifdef AMOS_HAVE_MESH_EVAL
-  const eval::SeeThroughScore through = seenThrough(a);
-  nlohmann::json json = {{"seen_through", eval::toJson(through)}};
-  if (!a.seen_through.empty()) eval::writePointsPly(a.seen_through, through.points);
+#ifdef AMOS_HAVE_DENSE_PLUGIN
+  const run::DensePlugin& dense = run::densePlugin();  // the scoring is in the dense plugin (Open3D)
+  const eval::SeeThroughScore through = seenThrough(a, dense);
+  nlohmann::json json = {{"seen_through", dense.seeThroughJson(through)}};
+  if (!a.seen_through.empty()) dense.writePointsPly(a.seen_through, through.points);
   const std::string output = besideTheMesh(a, a.output, "mesh_eval.json");
   if (a.no_truth) {
     io::writeFileAtomically(output, json.dump(2) + "\n");
@@ -77,7 +78,7 @@ void evalMesh(const EvalMeshArgs& a) {
   request.max_depth = a.max_depth;
   request.swept = a.swept;
   request.sweep_margin = a.sweep_margin;
-  const eval::MeshScore s = eval::evaluateMesh(request);
+  const eval::MeshScore s = dense.evaluateMesh(request);
   std::cout << fmt::format(
       "accuracy median {:.4f} m  p90 {:.4f} m;  completeness {:.3f};  ghosts {} of {} vertices ({:.2f} %), "
       "off the static surface {} ({:.2f} %);  tolerance {:.3f} m, sweep {:.3f} m^3 grown by {:.3f} m, {} truth "
@@ -85,9 +86,9 @@ void evalMesh(const EvalMeshArgs& a) {
       s.accuracy_median_m, s.accuracy_p90_m, s.completeness, s.ghosts, s.vertices, 100.0 * s.ghost_share,
       s.off_surface, 100.0 * s.off_surface_share, s.tolerance_m, s.swept_volume_m3, s.sweep_margin_m, s.truth_points,
       s.ate_rmse_m);
-  json.update(eval::toJson(s));
+  json.update(dense.meshScoreJson(s));
   io::writeFileAtomically(output, json.dump(2) + "\n");
-  if (!a.ghosts.empty()) eval::writePointsPly(a.ghosts, s.ghost_points);
+  if (!a.ghosts.empty()) dense.writePointsPly(a.ghosts, s.ghost_points);
 #else
   (void)a;
   throw core::Error("eval-mesh: this build has no dense module (install libopen3d-dev and rebuild)");

@@ -36,8 +36,8 @@
 #include "amos/config/settings.h"
 #include "amos/run/settings_sections.h"
 #include "amos/config/settings_writer.h"
-#ifdef AMOS_HAVE_OPEN3D
-#include "amos/run/dense_observer.h"
+#ifdef AMOS_HAVE_DENSE_PLUGIN
+#include "amos/run/dense_plugin_loader.h"
 #endif
 #include "amos/eval/jitter.h"
 #include "amos/core/error.h"
@@ -251,7 +251,7 @@ std::string saveMap(const system::SlamSystem& slam, const std::string& path) {
 }
 
 // What this run writes into --output (its manifest, report/output_folder.h).
-#ifdef AMOS_HAVE_OPEN3D
+#ifdef AMOS_HAVE_DENSE_PLUGIN
 // The dense map's live cloud, flattened for the viewer's publisher (nothing without --viewer).
 dense::LiveCloudCallback liveCloudToViewer(RunWatchers::DenseCloudSink sink) {
   if (!sink) return {};
@@ -274,9 +274,9 @@ std::vector<std::string> outputNames(const RunArgs& args) {
                                     "keyframes.txt",       "map.ply",        "stats.json",
                                     "settings_used.yaml"};
   if (args.save_masks) names.insert(names.end(), {"masks", "overlays"});
-#ifdef AMOS_HAVE_OPEN3D
+#ifdef AMOS_HAVE_DENSE_PLUGIN
   if (args.dense) {
-    for (const std::string& name : run::DenseObserver::outputNames()) names.push_back(name);
+    for (const std::string& name : run::densePlugin().denseOutputNames()) names.push_back(name);
   }
 #endif
   for (const std::string& name : RunWatchers::outputNames()) names.push_back(name);
@@ -319,11 +319,11 @@ std::string safeFiles(const RunArgs& args, bool map_saved) {
                      map_saved ? " and the map file " + args.save_map : "", args.output);
 }
 
-#ifdef AMOS_HAVE_OPEN3D
+#ifdef AMOS_HAVE_DENSE_PLUGIN
 // The dense map's final fusion and files, once the main outputs are on disk. A first signal during it is answered at
 // once on stderr and stops the fusion; after a run a signal ended (a live session's Ctrl-C) the frames so far are
 // fused, and a second signal ends the program at once.
-report::OptionalStage denseStage(run::DenseObserver& dense, run::SequenceRunResult& result, StopSignals& signals,
+report::OptionalStage denseStage(run::DenseRunMap& dense, run::SequenceRunResult& result, StopSignals& signals,
                                  const std::string& safe) {
   std::atomic<bool> stop{false};
   core::StopRequest::Subscription answer;
@@ -376,15 +376,15 @@ void runSlam(const RunArgs& args, int& exit_code) {
   const report::OutputFolderLock lock =
       report::prepareOutputFolder({args.output, args.overwrite, outputNames(args), args.sequence});
   RunWatchers watchers(args.viewer);
-#ifdef AMOS_HAVE_OPEN3D
-  std::unique_ptr<run::DenseObserver> dense_map;
+#ifdef AMOS_HAVE_DENSE_PLUGIN
+  std::unique_ptr<run::DenseRunMap> dense_map;
   if (args.dense) {
     // The live volume exists for the live view only; without --viewer the frames are kept and fused once, at the
     // end, with the final trajectory (the same final map), and tracking shares the cores with less.
     dense::DenseOptions dense_options = settings.section<dense::DenseOptions>();
     if (!args.viewer.enabled) dense_options.live_every = 0;
-    dense_map = std::make_unique<run::DenseObserver>(dense_options, args.output,
-                                                       liveCloudToViewer(watchers.denseCloudSink()));
+    dense_map = run::densePlugin().makeDenseRunMap(dense_options, args.output,
+                                                   liveCloudToViewer(watchers.denseCloudSink()));
   }
 #else
   core::require(!args.dense, "run --dense: this build has no dense map (install libopen3d-dev and rebuild)");
@@ -392,7 +392,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   const bool tty = isatty(fileno(stderr)) != 0;
   run::SequenceRunOptions options = sequenceRunOptions(args);
   options.observers = watchers.observers();
-#ifdef AMOS_HAVE_OPEN3D
+#ifdef AMOS_HAVE_DENSE_PLUGIN
   if (dense_map) options.observers.push_back(dense_map.get());
 #endif
   bool line_open = false;  // a progress line without its newline on the terminal
@@ -443,7 +443,7 @@ void runSlam(const RunArgs& args, int& exit_code) {
   const std::string safe = safeFiles(args, !map_saved.empty());
   setSecondSignalLine(fmt::format("amos-slam: second signal, ending at once; {} are written\n", safe));
   const int signal_before_stages = signals.received();
-#ifdef AMOS_HAVE_OPEN3D
+#ifdef AMOS_HAVE_DENSE_PLUGIN
   if (dense_map) {
     result.info.optional_stages["dense"] = denseStage(*dense_map, result, signals, safe);
     report::writeStatsJson(args.output, result.slam(), result.info);

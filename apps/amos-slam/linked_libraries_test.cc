@@ -1,6 +1,8 @@
 // The program does not load OpenCV's imgcodecs (whose Debian build brings GDAL, VTK and about 110 more shared
 // libraries: 0.4 s and 40 MB more for every process): its images go through io's codecs, and the libraries link
-// AMOS_OPENCV_RUNTIME_LIBS. ldd lists what the loader maps, transitive dependencies included.
+// AMOS_OPENCV_RUNTIME_LIBS. Nor Open3D (its ~80 libraries: VTK, filament...: 35 MB and 0.3 s more): the dense map
+// is a module the commands that use it load (src/amos/run/dense_plugin.h). ldd lists what the loader maps,
+// transitive dependencies included.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -24,6 +26,12 @@ TEST(LinkedLibraries, TheProgramDoesNotLoadOpenCvsImageCodecs) {
   ASSERT_NE(libraries.find("libopencv_core"), std::string::npos) << "ldd gave no list:\n" << libraries;
   EXPECT_EQ(libraries.find("libopencv_imgcodecs"), std::string::npos) << libraries;
   EXPECT_EQ(libraries.find("libopencv_ximgproc"), std::string::npos) << libraries;
+}
+
+TEST(LinkedLibraries, TheProgramDoesNotLoadOpen3D) {
+  const std::string libraries = lddOutput(AMOS_SLAM_EXE);
+  ASSERT_NE(libraries.find("libopencv_core"), std::string::npos) << "ldd gave no list:\n" << libraries;
+  EXPECT_EQ(libraries.find("libOpen3D"), std::string::npos) << libraries;
 }
 
 }  // namespace
