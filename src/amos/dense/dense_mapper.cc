@@ -5,7 +5,6 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
-#include <map>
 
 #include <open3d/geometry/PointCloud.h>
 #include <open3d/geometry/TriangleMesh.h>
@@ -16,6 +15,7 @@
 #include "amos/dense/free_space_carving.h"
 #include "amos/dense/open3d_geometry.h"
 #include "amos/dense/tsdf_volume.h"
+#include "amos/io/poses_by_stamp.h"
 
 namespace amos::dense {
 
@@ -51,19 +51,6 @@ void addRemovedPoints(const PreparedFrame& frame, const core::CameraIntrinsics& 
       out.colors_.emplace_back(bgr[2] / 255.0, bgr[1] / 255.0, bgr[0] / 255.0);
     }
   }
-}
-
-std::map<double, core::SE3> posesByStamp(const std::vector<io::StampedPose>& trajectory) {
-  std::map<double, core::SE3> out;
-  for (const auto& pose : trajectory) out.emplace(pose.timestamp, pose.T_wc);
-  return out;
-}
-
-// The pose of the trajectory at `stamp` (the same frame's: equal stamps up to rounding), or nullptr.
-const core::SE3* poseAt(const std::map<double, core::SE3>& poses, double stamp) {
-  auto it = poses.lower_bound(stamp - 1e-6);
-  if (it == poses.end() || std::abs(it->first - stamp) > 1e-6) return nullptr;
-  return &it->second;
 }
 
 LiveCloud downsampledLiveCloud(const open3d::geometry::PointCloud& surface, double voxel) {
@@ -236,7 +223,7 @@ nlohmann::json DenseMapper::carveFreeSpace(TsdfVolume& volume,
 DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajectory,
                                     const std::atomic<bool>* stop) const {
   core::Stopwatch total;
-  const std::map<double, core::SE3> poses = posesByStamp(trajectory);
+  const io::PosesByStamp poses = io::posesByStamp(trajectory);
   const core::CameraIntrinsics& camera = preparer_.intrinsics();
   TsdfVolume volume(options_);
   DenseMap map;
@@ -246,7 +233,8 @@ DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajecto
   std::vector<std::pair<const StoredFrame*, core::SE3>> fused;  // with their final poses T_wc
   for (const StoredFrame& stored : kept_) {
     stopIfAsked(stop);
-    const core::SE3* T_wc = poseAt(poses, stored.timestamp);
+    // In-memory stamps: the same frame's are equal up to floating-point rounding.
+    const core::SE3* T_wc = io::poseNear(poses, stored.timestamp, 1e-6);
     if (T_wc == nullptr) continue;  // not in the final trajectory
     fused.emplace_back(&stored, *T_wc);
     const PreparedFrame frame = decompressFrame(stored);

@@ -2,15 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-#include <map>
-
 #include "amos/core/error.h"
 #include "amos/dense/free_space_carving.h"
 #include "amos/eval/mesh_eval.h"
 #include "amos/io/dataset.h"
 #include "amos/io/image_codecs.h"
 #include "amos/io/image_read_flags.h"
+#include "amos/io/poses_by_stamp.h"
 #include "amos/io/trajectory.h"
 
 namespace amos::eval {
@@ -54,14 +52,6 @@ SeeThroughScore SeeThroughScorer::score() const {
 
 namespace {
 
-// The run's pose of the frame at `stamp` (the same frame's: equal up to the trajectory file's rounding), or
-// nullptr.
-const core::SE3* poseAt(const std::map<double, core::SE3>& poses, double stamp) {
-  auto it = poses.lower_bound(stamp - 1e-4);
-  if (it == poses.end() || std::abs(it->first - stamp) > 1e-4) return nullptr;
-  return &it->second;
-}
-
 cv::Mat depthMetres(const std::string& file, double depth_factor) {
   std::string problem;
   const cv::Mat raw = io::readImage(file, io::kReadUnchanged, &problem);
@@ -75,12 +65,12 @@ cv::Mat depthMetres(const std::string& file, double depth_factor) {
 }  // namespace
 
 SeeThroughScore evaluateSeeThrough(const SeeThroughRequest& request) {
-  std::map<double, core::SE3> poses;
-  for (const io::StampedPose& p : io::readTumTrajectoryWithPoses(request.trajectory, "trajectory"))
-    poses.emplace(p.timestamp, p.T_wc);
+  const io::PosesByStamp poses =
+      io::posesByStamp(io::readTumTrajectoryWithPoses(request.trajectory, "trajectory"));
   SeeThroughScorer scorer(readMeshVertices(request.mesh), request.camera, request.dense);
   for (const io::AssociatedFrame& frame : io::indexSequence(request.sequence).frames) {
-    const core::SE3* T_wc = poseAt(poses, frame.t_rgb);
+    // Stamps read back from trajectory.txt: equal to the frame's up to the file's rounding.
+    const core::SE3* T_wc = io::poseNear(poses, frame.t_rgb, 1e-4);
     if (T_wc != nullptr) scorer.addFrame(depthMetres(frame.depth_file, request.depth_factor), *T_wc);
   }
   SeeThroughScore score = scorer.score();
