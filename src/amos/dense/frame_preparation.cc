@@ -93,10 +93,13 @@ PreparedFrame FramePreparer::prepare(const FrameImages& frame) const {
   cv::Mat dynamic = cv::Mat::zeros(out, CV_8U);
   if (!frame.dynamic_mask.empty()) {
     // Any dynamic pixel under a scaled pixel makes it dynamic (max, not nearest: a thin mover is not lost).
+    // Into a Mat of its own: the caller's mask is shared with the run, which reads it after this (dilating into a
+    // header of it wrote the run's mask from this thread).
     cv::Mat mask = frame.dynamic_mask;
     if (mask.size() != out) {
-      cv::dilate(frame.dynamic_mask, mask, cv::Mat::ones(3, 3, CV_8U));
-      mask = resized(mask, out, cv::INTER_NEAREST);
+      cv::Mat grown;
+      cv::dilate(frame.dynamic_mask, grown, cv::Mat::ones(3, 3, CV_8U));
+      mask = resized(grown, out, cv::INTER_NEAREST);
     }
     dynamic = undistorted(mask, map_x_, map_y_, cv::INTER_NEAREST) > 0;
     const int margin = scaledMargin(options_.mask_margin_px);

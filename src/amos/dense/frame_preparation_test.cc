@@ -29,6 +29,23 @@ TEST(FramePreparation, LeavesOutTheDynamicPixelsWithTheirMargin) {
   EXPECT_EQ(p.removed.at<float>(50, 45), 0.0f);
 }
 
+// The images are the run's (shared, not copied): preparing a frame in the fusion thread must not write them. The
+// scaled path dilated the mask into a header of the caller's, which made `run --dense --deterministic` differ
+// from run to run.
+TEST(FramePreparation, LeavesTheCallersImagesUnchanged) {
+  const core::CameraIntrinsics k = testing::roomCamera();
+  DenseOptions o;
+  o.scale = 0.5;
+  FrameImages f = flatWall(k, 2.0f);
+  f.dynamic_mask = cv::Mat::zeros(k.height, k.width, CV_8U);
+  f.dynamic_mask(cv::Rect(50, 40, 20, 20)).setTo(255);
+  const cv::Mat mask = f.dynamic_mask.clone(), depth = f.depth.clone(), bgr = f.bgr.clone();
+  FramePreparer(k, o).prepare(f);
+  EXPECT_EQ(cv::countNonZero(f.dynamic_mask != mask), 0);
+  EXPECT_EQ(cv::countNonZero(f.depth != depth), 0);
+  EXPECT_EQ(cv::norm(f.bgr, bgr, cv::NORM_INF), 0);
+}
+
 TEST(FramePreparation, LeavesOutDepthDiscontinuitiesAndReadingsOutOfRange) {
   const core::CameraIntrinsics k = testing::roomCamera();
   DenseOptions o;
