@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "amos/core/error.h"
+
 namespace amos::dense {
 namespace {
 
@@ -22,6 +24,19 @@ TEST(FrameStore, KeepsDepthToAMillimetreAndColourClose) {
   EXPECT_EQ(back.removed.at<float>(0, 0), 0.0f);
   EXPECT_NEAR(back.bgr.at<cv::Vec3b>(30, 30)[2], 200, 3);
   EXPECT_EQ(stored.timestamp, 12.5);
+}
+
+TEST(FrameStore, ADamagedKeptFrameIsAnErrorNotAWrongImage) {
+  PreparedFrame f{cv::Mat(60, 80, CV_32F, cv::Scalar(2.0f)), cv::Mat::zeros(60, 80, CV_32F),
+                  cv::Mat(60, 80, CV_8UC3, cv::Scalar(1, 2, 3))};
+  StoredFrame stored = compressFrame(f, 1.0, core::SE3::Identity());
+  stored.depth_mm_zlib[stored.depth_mm_zlib.size() / 2] ^= 0x5a;
+  try {
+    decompressDepth(stored);
+    FAIL() << "a damaged depth stream decoded";
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("kept frame's depth does not decode"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
