@@ -15,6 +15,7 @@
 #include "amos/dense/free_space_carving.h"
 #include "amos/dense/open3d_geometry.h"
 #include "amos/dense/tsdf_volume.h"
+#include "amos/dense/voxel_mean_cloud.h"
 #include "amos/io/poses_by_stamp.h"
 
 namespace amos::dense {
@@ -40,15 +41,14 @@ nlohmann::json summary(const std::vector<double>& ms) {
 
 // The readings of `removed` (every `step`-th pixel) as world points with their colours.
 void addRemovedPoints(const PreparedFrame& frame, const core::CameraIntrinsics& camera, const core::SE3& T_wc,
-                      int step, open3d::geometry::PointCloud& out) {
+                      int step, VoxelMeanCloud& out) {
   for (int v = 0; v < frame.removed.rows; v += step) {
     for (int u = 0; u < frame.removed.cols; u += step) {
       const float z = frame.removed.at<float>(v, u);
       if (z <= 0) continue;
       const Eigen::Vector3d p_c((u - camera.cx) * z / camera.fx, (v - camera.cy) * z / camera.fy, z);
-      out.points_.push_back(T_wc * p_c);
       const cv::Vec3b bgr = frame.bgr.at<cv::Vec3b>(v, u);
-      out.colors_.emplace_back(bgr[2] / 255.0, bgr[1] / 255.0, bgr[0] / 255.0);
+      out.add(T_wc * p_c, Eigen::Vector3d(bgr[2] / 255.0, bgr[1] / 255.0, bgr[0] / 255.0));
     }
   }
 }
@@ -204,7 +204,7 @@ DenseMap DenseMapper::fuseFinal(const std::vector<io::StampedPose>& trajectory, 
 
 nlohmann::json DenseMapper::carveFreeSpace(TsdfVolume& volume,
                                            const std::vector<std::pair<const StoredFrame*, core::SE3>>& fused,
-                                           const std::atomic<bool>* stop, open3d::geometry::PointCloud& removed) const {
+                                           const std::atomic<bool>* stop, VoxelMeanCloud& removed) const {
   auto carver = FreeSpaceCarver::ofSurface(volume, seeThroughOptionsOf(options_));
   for (const auto& [stored, T_wc] : fused) {
     stopIfAsked(stop);
@@ -212,8 +212,7 @@ nlohmann::json DenseMapper::carveFreeSpace(TsdfVolume& volume,
   }
   const CarveResult carved = carver.carve(volume);
   // What was carved was left out of the map as the dynamic readings were: it joins the removed points.
-  removed.points_.insert(removed.points_.end(), carved.points.begin(), carved.points.end());
-  removed.colors_.insert(removed.colors_.end(), carved.colours.begin(), carved.colours.end());
+  for (std::size_t i = 0; i < carved.points.size(); ++i) removed.add(carved.points[i], carved.colours[i]);
   return {{"vertices_voted", carved.vertices_voted},
           {"vertices_carved", carved.points.size()},
           {"voxels_forgotten", carved.voxels_forgotten},
@@ -227,7 +226,7 @@ DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajecto
   const core::CameraIntrinsics& camera = preparer_.intrinsics();
   TsdfVolume volume(options_);
   DenseMap map;
-  auto removed = std::make_shared<open3d::geometry::PointCloud>();
+  VoxelMeanCloud removed(options_.voxel_size);
   std::vector<double> integrate_ms;
   std::vector<Eigen::Vector3d> centres, down_axes, forward_axes;
   std::vector<std::pair<const StoredFrame*, core::SE3>> fused;  // with their final poses T_wc
@@ -241,8 +240,7 @@ DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajecto
     core::Stopwatch watch;
     volume.integrate(frame.depth, frame.bgr, camera, T_wc->inverse());
     integrate_ms.push_back(watch.elapsedMs());
-    addRemovedPoints(frame, camera, *T_wc, 2, *removed);
-    if (removed->points_.size() > 2'000'000) removed = removed->VoxelDownSample(options_.voxel_size);
+    addRemovedPoints(frame, camera, *T_wc, 2, removed);
     centres.push_back(T_wc->translation());
     down_axes.push_back(T_wc->linear().col(1));
     forward_axes.push_back(T_wc->linear().col(2));
@@ -250,10 +248,10 @@ DenseMap DenseMapper::fuseFinalHere(const std::vector<io::StampedPose>& trajecto
   core::Stopwatch watch;
   nlohmann::json carve_stats = nullptr;
   if (options_.carve) {
-    carve_stats = carveFreeSpace(volume, fused, stop, *removed);
+    carve_stats = carveFreeSpace(volume, fused, stop, removed);
     carve_stats["ms"] = watch.elapsedMs();
   }
-  map.removed = plainCloud(*removed->VoxelDownSample(options_.voxel_size));
+  map.removed = removed.cloud();
   stopIfAsked(stop);
   watch.restart();
   map.mesh = plainMesh(*volume.extractMesh());  // colours clamped to bytes: the TSDF's averages can step past 1

@@ -54,14 +54,10 @@
 #include "amos/dense/frame_store.h"
 #include "amos/io/trajectory.h"
 
-
-namespace open3d::geometry {
-class PointCloud;
-}  // namespace open3d::geometry
-
 namespace amos::dense {
 
 class TsdfVolume;
+class VoxelMeanCloud;
 
 struct DenseFrame {
   double timestamp = 0;
@@ -114,7 +110,7 @@ class DenseMapper {
   // join `removed`. Returns its figures for stats.json.
   nlohmann::json carveFreeSpace(TsdfVolume& volume,
                                 const std::vector<std::pair<const StoredFrame*, core::SE3>>& fused,
-                                const std::atomic<bool>* stop, open3d::geometry::PointCloud& removed) const;
+                                const std::atomic<bool>* stop, VoxelMeanCloud& removed) const;
 
   DenseOptions options_;
   FramePreparer preparer_;
