@@ -86,7 +86,7 @@ install(EXPORT AmosSlamTargets NAMESPACE AmosSlam:: DESTINATION ${AMOS_CMAKE_DIR
 # The optional libraries are imported targets of this build (AmosOptionalLibrary.cmake): the package makes them
 # again from the same files.
 set(AMOS_PACKAGE_IMPORTED "")
-foreach(t amos_libdeflate amos_openni2)
+foreach(t amos_libdeflate amos_openni2 amos_ros_bag)
   if(TARGET ${t})
     get_target_property(lib ${t} INTERFACE_LINK_LIBRARIES)
     string(APPEND AMOS_PACKAGE_IMPORTED
@@ -133,6 +133,12 @@ if(TARGET amos_libdeflate)
 endif()
 if(TARGET amos_dense)
   string(APPEND AMOS_PC_LIBS " -lOpen3D -lgomp")
+endif()
+if(TARGET amos_ros_bag)  # amos::SequenceFolder's bags (src/amos/rosbag)
+  get_target_property(ros_bag_libs amos_ros_bag INTERFACE_LINK_LIBRARIES)
+  foreach(lib IN LISTS ros_bag_libs)
+    string(APPEND AMOS_PC_LIBS " ${lib}")
+  endforeach()
 endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/amos-slam.pc.in ${PROJECT_BINARY_DIR}/amos-slam.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/amos-slam.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

@@ -369,6 +369,8 @@ per-frame work overlaps the current one's tracking: `amos-slam run`'s speed from
            "The DenseMap fused with the final trajectory, as `amos-slam run --dense` (after finish(); dense=True).")
       .def("dense_snapshot", &amos::Slam::denseSnapshot, py::call_guard<py::gil_scoped_release>(),
            "The live volume's surface so far (DenseSnapshot), or None before the first (dense=True).")
+      .def("dense_live_grid", &amos::Slam::denseLiveGrid, py::call_guard<py::gil_scoped_release>(),
+           "The floor plan (OccupancyGrid) of the live surface so far, or None before a floor is found (dense=True).")
       .def_property_readonly("image_size", [](const amos::Slam& s) {
         const cv::Size size = s.imageSize();
         return py::make_tuple(size.width, size.height);
@@ -389,19 +391,41 @@ per-frame work overlaps the current one's tracking: `amos-slam run`'s speed from
 
 void bindSequenceFolder(py::module_& m) {
   py::class_<amos::SequenceFolder, Holder<amos::SequenceFolder>>(m, "SequenceFolder",
-                                                                 R"(A recorded TUM/Bonn-layout folder.
+                                                                 R"(A recorded TUM/Bonn-layout folder or ROS 1 bag.
 
     for frame in amos_slam.SequenceFolder("data/seq"):   # Frame: bgr, depth, timestamp, ...
         ...
+    with amos_slam.SequenceFolder("fr1_xyz.bag", groundtruth_topic="/tf") as bag:
+        poses = bag.ground_truth                            # [StampedPose], from /tf's /world -> /kinect
 
-Iterating reads the frames in order, decoded ahead in a thread of the folder's own; a frame that cannot be read is
-skipped with a warning (logger "amos_slam") and counted in `skipped`, as `amos-slam run` does. One pass: a second
-loop goes on where the first stopped.)")
-      .def(py::init([](const fs::path& dir) {
+A path ending in ".bag" is read as `amos-slam run --sequence X.bag` reads it (docs/ros.md); only by a module built
+with the ROS part (amos_slam.bags_available), else a RuntimeError naming the bag. The keyword arguments choose the
+bag's topics (None: the TUM, OpenNI2 or RealSense driver's names) and the ground truth's; for a folder they must be
+left out. Iterating reads the frames in order, decoded ahead in a thread of the sequence's own; a frame that cannot
+be read is skipped with a warning (logger "amos_slam") and counted in `skipped`, as `amos-slam run` does. One pass:
+a second loop goes on where the first stopped. As a context manager it stops that thread on leaving.)")
+      .def(py::init([](const fs::path& dir, const std::optional<std::string>& rgb_topic,
+                       const std::optional<std::string>& depth_topic,
+                       const std::optional<std::string>& camera_info_topic,
+                       const std::optional<std::string>& groundtruth_topic,
+                       const std::optional<std::string>& groundtruth_parent_frame,
+                       const std::optional<std::string>& groundtruth_child_frame) {
+             amos::SequenceOptions o;
+             for (const auto& [value, target] :
+                  {std::pair{&rgb_topic, &o.rgb_topic}, std::pair{&depth_topic, &o.depth_topic},
+                   std::pair{&camera_info_topic, &o.camera_info_topic},
+                   std::pair{&groundtruth_topic, &o.groundtruth_topic},
+                   std::pair{&groundtruth_parent_frame, &o.groundtruth_parent_frame},
+                   std::pair{&groundtruth_child_frame, &o.groundtruth_child_frame}}) {
+               if (*value) *target = **value;
+             }
              py::gil_scoped_release release;
-             return Holder<amos::SequenceFolder>(new amos::SequenceFolder(dir.string()));
+             return Holder<amos::SequenceFolder>(new amos::SequenceFolder(dir.string(), o));
            }),
-           py::arg("dir"), "Indexes the folder (str or pathlib.Path).")
+           py::arg("dir"), py::kw_only(), py::arg("rgb_topic") = py::none(), py::arg("depth_topic") = py::none(),
+           py::arg("camera_info_topic") = py::none(), py::arg("groundtruth_topic") = py::none(),
+           py::arg("groundtruth_parent_frame") = py::none(), py::arg("groundtruth_child_frame") = py::none(),
+           "Indexes the folder or bag (str or pathlib.Path); the topics and frames as keywords (bags only).")
       .def("__len__", &amos::SequenceFolder::size, "The associated frames.")
       .def(
           "read",
@@ -433,7 +457,19 @@ loop goes on where the first stopped.)")
                              "Frames skipped so far because they could not be read (or their files are missing).")
       .def_property_readonly("ground_truth_file", &amos::SequenceFolder::groundTruthFile,
                              "The sequence's ground truth file ('' when it has none).")
-      .def_property_readonly("dir", &amos::SequenceFolder::dir, "The folder, as given.")
+      .def_property_readonly("ground_truth", py::cpp_function(&amos::SequenceFolder::groundTruth,
+                                                              py::call_guard<py::gil_scoped_release>()),
+                             "The ground truth's poses ([StampedPose]) from the file or the bag's topic; [] if none.")
+      .def_property_readonly("is_bag", &amos::SequenceFolder::isBag, "Whether it is a ROS 1 bag.")
+      .def_property_readonly("dir", &amos::SequenceFolder::dir, "The folder or bag, as given.")
+      .def("__enter__", [](py::object self) { return self; }, "Returns the sequence itself.")
+      .def("__exit__",
+           [](amos::SequenceFolder& folder, const py::object&, const py::object&, const py::object&) {
+             // Its read-ahead thread ends with it: the object left behind is a moved-from one (each use an error).
+             py::gil_scoped_release release;
+             amos::SequenceFolder gone(std::move(folder));
+             return false;
+           }, "Stops reading ahead and closes the folder or bag; using it afterwards is an error.")
       .def("__repr__", [](const amos::SequenceFolder& f) {
         py::gil_scoped_release release;
         return fmt::format("SequenceFolder('{}', frames={}, skipped={})", f.dir(), f.size(), f.skipped());
@@ -451,4 +487,5 @@ PYBIND11_MODULE(amos_slam, m) {
   amos::python::bindDense(m);
   bindSlam(m);
   bindSequenceFolder(m);
+  m.attr("bags_available") = amos::bagReadingAvailable();
 }

@@ -6,5 +6,5 @@ set -euo pipefail
 source "$(dirname "$0")/apt_install.sh"
 apt_install install_ros_deps \
   ros-core-dev libroscpp-dev librosbag-dev libcv-bridge-dev libimage-transport-dev libtf2-ros-dev \
-  libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libstd-srvs-dev libmessage-filters-dev \
+  libsensor-msgs-dev libnav-msgs-dev libgeometry-msgs-dev libtf2-msgs-dev libstd-srvs-dev libmessage-filters-dev \
   python3-rosbag python3-roslaunch python3-rosmaster

@@ -63,6 +63,7 @@ struct RunArgs {
   std::string load_map, save_map;  // --load-map / --save-map
   bool localize = false;
   std::string rgb_topic, depth_topic, camera_info_topic;  // --sequence X.bag
+  std::string groundtruth_topic, groundtruth_parent_frame = "/world", groundtruth_child_frame = "/kinect";
   ViewerArgs viewer;
 };
 
@@ -292,8 +293,15 @@ run::SequenceRunOptions sequenceRunOptions(const RunArgs& args) {
                                                    : run::FrameSourceKind::kFolder;
   core::require(!(options.source == run::FrameSourceKind::kBag && args.realtime),
                 "run --realtime: a bag is read as fast as possible (play it into amos_slam_node for a paced run)");
+  core::require(args.groundtruth_topic.empty() || options.source == run::FrameSourceKind::kBag,
+                fmt::format("run --groundtruth-topic {}: only for --sequence X.bag (a folder's ground truth is its "
+                            "groundtruth.txt)",
+                            args.groundtruth_topic));
   options.sequence_dir = args.sequence;
   options.rgb_topic = args.rgb_topic;
+  options.groundtruth_topic = args.groundtruth_topic;
+  options.groundtruth_parent_frame = args.groundtruth_parent_frame;
+  options.groundtruth_child_frame = args.groundtruth_child_frame;
   options.depth_topic = args.depth_topic;
   options.camera_info_topic = args.camera_info_topic;
   options.camera = args.camera;
@@ -490,6 +498,16 @@ void addRunCommand(CLI::App& app, int& exit_code) {
                                 what))
         ->needs(sequence);
   }
+  cmd->add_option("--groundtruth-topic", args->groundtruth_topic,
+                  "--sequence X.bag: the ground truth from this topic (geometry_msgs/PoseStamped, TransformStamped, "
+                  "nav_msgs/Odometry or tf2_msgs/TFMessage), over a groundtruth.txt beside the bag")
+      ->needs(sequence);
+  cmd->add_option("--groundtruth-parent-frame", args->groundtruth_parent_frame,
+                  "--groundtruth-topic /tf: the world's frame (default /world, as the TUM RGB-D bags)")
+      ->capture_default_str();
+  cmd->add_option("--groundtruth-child-frame", args->groundtruth_child_frame,
+                  "--groundtruth-topic /tf: the camera's frame (default /kinect, as the TUM RGB-D bags)")
+      ->capture_default_str();
   auto* realtime = cmd->add_flag("--realtime", args->realtime,
                                  "Replay --sequence at its recorded time stamps: frames that arrive while SLAM is "
                                  "busy replace the waiting one and are counted as dropped (default: every frame, "

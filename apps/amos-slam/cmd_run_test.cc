@@ -210,6 +210,19 @@ TEST(RunCommand, NegativeOrOutOfRangeNumbersAreRefusedByTheParser) {
   }
 }
 
+// A folder's ground truth is its groundtruth.txt: --groundtruth-topic (bags only, docs/ros.md) is refused before
+// the run.
+TEST(RunCommand, AGroundTruthTopicOnAFolderIsRefused) {
+  const fs::path out = outputDir("groundtruth_topic");
+  std::vector<std::string> args = runArgs(out / "run");
+  args.insert(args.end(), {"--groundtruth-topic", "/tf"});
+  const Finished f = runChild(args, out / "stdout");
+  ASSERT_TRUE(WIFEXITED(f.status));
+  EXPECT_NE(WEXITSTATUS(f.status), 0);
+  EXPECT_TRUE(contains(f.err, "run --groundtruth-topic /tf: only for --sequence X.bag")) << f.err;
+  EXPECT_FALSE(fs::exists(out / "run" / "trajectory.txt"));
+}
+
 TEST(RunCommand, BadOutputIsRefusedBeforeTheRun) {
   const fs::path root = outputDir("bad_output");
   fs::create_directories(root);

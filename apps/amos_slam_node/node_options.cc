@@ -15,6 +15,8 @@ void NodeOptions::check() const {
   core::require(max_pair_dt > 0 && max_pair_dt < 1, fmt::format("~max_pair_dt {}: expected (0, 1) s", max_pair_dt));
   core::require(cloud_rate >= 0 && cloud_rate <= 30, fmt::format("~cloud_rate {}: expected 0 (never) to 30 Hz",
                                                                  cloud_rate));
+  core::require(dense_rate >= 0 && dense_rate <= 30, fmt::format("~dense_rate {}: expected 0 (never) to 30 Hz",
+                                                                 dense_rate));
 }
 
 NodeOptions readNodeOptions(const ros::NodeHandle& p) {
@@ -33,6 +35,7 @@ NodeOptions readNodeOptions(const ros::NodeHandle& p) {
   p.param("sync_queue", o.sync_queue, o.sync_queue);
   p.param("max_pair_dt", o.max_pair_dt, o.max_pair_dt);
   p.param("cloud_rate", o.cloud_rate, o.cloud_rate);
+  p.param("dense_rate", o.dense_rate, o.dense_rate);
   p.param("output_dir", o.output_dir, o.output_dir);
   o.check();
   return o;

@@ -25,7 +25,10 @@ struct NodeOptions {
   std::string camera_info_topic = "camera/rgb/camera_info";  // ~camera_info_topic
   int sync_queue = 10;            // ~sync_queue: colour / depth messages waiting to be paired by time stamp
   double max_pair_dt = 0.02;      // ~max_pair_dt (s): colour and depth further apart than this are not a pair
-  double cloud_rate = 1.0;        // ~cloud_rate (Hz): how often the sparse map and the dense cloud are published
+  double cloud_rate = 1.0;        // ~cloud_rate (Hz): how often the path and the sparse map are published
+  // ~dense_rate (Hz): with ~dense, how often the live dense cloud and the occupancy grid built from it are published
+  // while the node runs (0 = only the final ones at shutdown).
+  double dense_rate = 0.5;
   std::string output_dir;         // ~output_dir: written at shutdown and by ~save_map ("" = nothing written)
   void check() const;             // throws core::Error naming the parameter
 };

@@ -1,6 +1,7 @@
 #include "slam_node.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
@@ -56,6 +57,8 @@ SlamNode::SlamNode(ros::NodeHandle node, ros::NodeHandle private_node, NodeOptio
   subscriptions_->camera_info = node_.subscribe(options_.camera_info_topic, 1, &SlamNode::onCameraInfo, this);
   if (options_.cloud_rate > 0)
     cloud_timer_ = node_.createWallTimer(ros::WallDuration(1.0 / options_.cloud_rate), &SlamNode::onCloudTimer, this);
+  if (options_.dense && options_.dense_rate > 0)
+    dense_timer_ = node_.createWallTimer(ros::WallDuration(1.0 / options_.dense_rate), &SlamNode::onDenseTimer, this);
   tracker_ = std::thread([this] { trackLoop(); });
 }
 
@@ -164,35 +167,53 @@ void SlamNode::onCloudTimer(const ros::WallTimerEvent&) {
   const ros::Time now = ros::Time::now();
   path_.publish(pathMessage(slam_->trajectory(), options_.map_frame));
   map_points_.publish(cloudMessage(slam_->mapPoints(), {}, now, options_.map_frame));
-  if (options_.dense) {
-    if (const std::optional<DenseSnapshot> snapshot = slam_->denseSnapshot())
-      dense_cloud_.publish(cloudMessage(snapshot->cloud.points, snapshot->cloud.colours, now, options_.map_frame));
-  }
+}
+
+void SlamNode::onDenseTimer(const ros::WallTimerEvent&) {
+  if (!slam_ready_.load(std::memory_order_acquire) || slam_->finished()) return;
+  const ros::Time now = ros::Time::now();
+  if (const std::optional<DenseSnapshot> snapshot = slam_->denseSnapshot())
+    dense_cloud_.publish(cloudMessage(snapshot->cloud.points, snapshot->cloud.colours, now, options_.map_frame));
+  if (const std::optional<OccupancyGrid> grid = slam_->denseLiveGrid())
+    grid_.publish(gridMessage(*grid, now, options_.map_frame));
 }
 
 std::string SlamNode::writeOutputs(bool final) {
-  if (options_.output_dir.empty() || !slam_ready_.load(std::memory_order_acquire)) return "nothing to write";
-  fs::create_directories(options_.output_dir);
+  if (options_.output_dir.empty() || !slam_ready_.load(std::memory_order_acquire)) return "nothing (no ~output_dir)";
   const fs::path dir(options_.output_dir);
-  slam_->writeTrajectory((dir / "trajectory.txt").string());
-  writeNodeStats((dir / "node_stats.json").string(), stats(), slam_->summary());
-  std::string written = "trajectory.txt, node_stats.json";
+  const NodeStats node_stats = stats();
+  // What `amos-slam run` writes, by the library's code (amos::Slam::writeOutputs), with the node's frames.
+  RunDescription run;
+  run.sequence = fmt::format("topics {} + {}", node_.resolveName(options_.rgb_topic),
+                             node_.resolveName(options_.depth_topic));
+  run.config = options_.settings_file;
+  run.source_kind = "ros";
+  run.delivered = node_stats.received;
+  run.dropped = node_stats.dropped;
+  run.latency_ms = node_stats.latency_ms;
+  slam_->writeOutputs(options_.output_dir, run);
+  writeNodeStats((dir / "node_stats.json").string(), node_stats, slam_->summary());
+  std::vector<std::string> written = Slam::outputNames();
+  written.push_back("node_stats.json");
   if (final) {  // the map and the dense files need the settled map (Slam::finish)
     slam_->saveMap((dir / "map.amosmap").string());
-    written += ", map.amosmap";
+    written.push_back("map.amosmap");
     if (options_.dense) {
       const DenseMap map = slam_->denseMap();
       writeMeshPly(map, (dir / "mesh.ply").string());
       writeCloudPly(map, (dir / "cloud.ply").string());
-      written += ", mesh.ply, cloud.ply";
+      DenseMap removed;  // the dynamic readings left out, as run --dense's removed_points.ply
+      removed.cloud = map.removed;
+      writeCloudPly(removed, (dir / "removed_points.ply").string());
+      written.insert(written.end(), {"mesh.ply", "cloud.ply", "removed_points.ply"});
       if (map.grid) {
         writeFloorPlan(map, (dir / "occupancy").string());
         grid_.publish(gridMessage(*map.grid, ros::Time::now(), options_.map_frame));
-        written += ", occupancy.pgm, occupancy.yaml";
+        written.insert(written.end(), {"occupancy.pgm", "occupancy.yaml"});
       }
     }
   }
-  return fmt::format("{} in {}", written, options_.output_dir);
+  return fmt::format("{} in {}", fmt::join(written, ", "), options_.output_dir);
 }
 
 bool SlamNode::onSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
@@ -209,6 +230,7 @@ bool SlamNode::onSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Respons
 void SlamNode::stop() {
   std::call_once(stopped_, [this] {
     cloud_timer_.stop();
+    dense_timer_.stop();
     slot_.close();
     if (tracker_.joinable()) tracker_.join();
     subscriptions_->rgb.shutdown();  // waits for a callback under way

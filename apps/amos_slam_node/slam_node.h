@@ -4,8 +4,9 @@
 // tracking thread through a one-frame slot (LatestFrame: a frame the tracking has no time for is dropped and
 // counted); each tracked frame's pose published as geometry_msgs/PoseStamped (~pose) and as the transform map ->
 // camera (or map -> odom), its dynamic mask as sensor_msgs/Image (~dynamic_mask); at ~cloud_rate the corrected
-// path (~path), the sparse map (~map_points) and, with ~dense, the dense static cloud (~dense_cloud); at the end
-// (stop()) the floor plan (~occupancy_grid, latched) and the outputs in ~output_dir. The service ~save_map writes
+// path (~path) and the sparse map (~map_points); with ~dense at ~dense_rate the live dense static cloud
+// (~dense_cloud) and the floor plan built from it (~occupancy_grid); at the end (stop()) the final floor plan and
+// the outputs in ~output_dir. The service ~save_map writes
 // the outputs at any time. The amos::Slam is made at once when the settings have the calibration, else on the first
 // frame after a camera_info.
 #include <ros/ros.h>
@@ -61,6 +62,7 @@ class SlamNode {
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& info);
   bool onSaveMap(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response);
   void onCloudTimer(const ros::WallTimerEvent&);
+  void onDenseTimer(const ros::WallTimerEvent&);
   void trackLoop();
   bool makeSlam(bool warn);  // false while the calibration waits for camera_info (`warn`: say so, throttled)
   void publish(const FrameResult& result, const StampedFrame& frame);
@@ -72,7 +74,7 @@ class SlamNode {
   std::unique_ptr<Subscriptions> subscriptions_;
   ros::Publisher pose_, mask_, path_, map_points_, dense_cloud_, grid_;
   ros::ServiceServer save_map_;
-  ros::WallTimer cloud_timer_;
+  ros::WallTimer cloud_timer_, dense_timer_;
   std::mutex camera_mutex_;
   std::optional<core::CameraIntrinsics> camera_info_;  // guarded by camera_mutex_
   LatestFrame slot_;

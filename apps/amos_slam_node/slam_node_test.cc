@@ -8,13 +8,15 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 
+#include <fmt/format.h>
+
 #include <condition_variable>
+#include <cstdlib>
 #include <fstream>
 #include <mutex>
 #include <sstream>
 
 #include "amos/io/trajectory.h"
-#include "amos/report/run_report.h"
 #include "amos/rosbag/bag_index.h"
 #include "amos/rosbag/test_bags.h"
 #include "amos/run/sequence_run.h"
@@ -74,40 +76,13 @@ void waitForSubscribers(const ros::Publisher& publisher, std::size_t count) {
   }
 }
 
-TEST(SlamNode, PlayedBagGivesRunsTrajectory) {
-  constexpr int kFrames = 20;
-  const std::string sequence = rosbag::test::syntheticSequence("node", kFrames);
-  const fs::path scratch = testing::scratchDirForThisTest("amos_node_");
-  const std::string bag = rosbag::test::writeTestBag(sequence, scratch, "played.bag");
-
-  run::SequenceRunOptions reference;
-  reference.sequence_dir = sequence;
-  reference.mode = "geometry";
-  reference.deterministic = true;
-  const run::SequenceRunResult expected = run::runSequence(config::loadSettings(rosbag::test::kTum3), reference);
-  report::writeRunOutputs((scratch / "run").string(), expected.slam(), expected.info);  // as `run` writes them
-  const std::string expected_text = fileText(scratch / "run" / "trajectory.txt");
-  ASSERT_FALSE(expected_text.empty());
-
-  NodeOptions options;
-  options.settings_file = rosbag::test::kTum3;
-  options.mode = "geometry";
-  options.deterministic = true;
-  options.rgb_topic = "/camera/rgb/image_color";
-  options.depth_topic = "/camera/depth/image";
-  options.camera_info_topic = "/camera/rgb/camera_info";
-  options.output_dir = (scratch / "out").string();
-  options.cloud_rate = 5;
-  ros::NodeHandle node, private_node("~");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  SlamNode slam_node(node, private_node, options);
-  PoseListener listener(node, private_node.resolveName("pose"));
-  ros::Publisher rgb = node.advertise<sensor_msgs::Image>(options.rgb_topic, kFrames);
-  ros::Publisher depth = node.advertise<sensor_msgs::Image>(options.depth_topic, kFrames);
+// Plays the bag's colour / depth pairs into the node's topics, the next once the last one's pose is out.
+void playFrameByFrame(const std::string& bag, const NodeOptions& options, ros::NodeHandle& node,
+                      PoseListener& listener) {
+  ros::Publisher rgb = node.advertise<sensor_msgs::Image>(options.rgb_topic, 100);
+  ros::Publisher depth = node.advertise<sensor_msgs::Image>(options.depth_topic, 100);
   waitForSubscribers(rgb, 1);
   waitForSubscribers(depth, 1);
-
   const rosbag::BagIndex index = rosbag::indexBag(bag);
   ::rosbag::Bag reader(bag);
   std::vector<sensor_msgs::ImageConstPtr> colour, depths;
@@ -120,6 +95,71 @@ TEST(SlamNode, PlayedBagGivesRunsTrajectory) {
     depth.publish(depths[index.messages[i].second]);
     ASSERT_TRUE(listener.waitFor(i + 1)) << "no pose for frame " << i;
   }
+}
+
+// `amos-slam run --mode geometry --deterministic` (and `extra` arguments) on `bag`, writing into `output`.
+void runAmosSlam(const std::string& bag, const fs::path& output, const std::string& extra) {
+  const fs::path log = output.string() + ".log";
+  const std::string command =
+      fmt::format("'{}' run --sequence '{}' --config '{}' --mode geometry --deterministic --models '{}' --output '{}' "
+                  "{} > '{}' 2>&1",
+                  AMOS_SLAM_EXE, bag, rosbag::test::kTum3, AMOS_MODELS_DIR, output.string(), extra, log.string());
+  ASSERT_EQ(std::system(command.c_str()), 0) << fileText(log);
+}
+
+// Every file `run` wrote into `run_dir` is in `node_dir` too, but its per-frame log (trajectory_live.txt,
+// frames.tsv: written by the run's own frame loop), its output folder's manifest and report.html (recorded by the
+// run's observers, which the node does not have).
+void expectRunsFiles(const fs::path& run_dir, const fs::path& node_dir) {
+  std::size_t compared = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(run_dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name == "trajectory_live.txt" || name == "frames.tsv" || name == "run_manifest.json" || name == "report.html")
+      continue;
+    EXPECT_TRUE(fs::exists(node_dir / name)) << "the node did not write " << name;
+    ++compared;
+  }
+  EXPECT_GE(compared, 5u);
+}
+
+NodeOptions syntheticBagOptions() {
+  NodeOptions options;
+  options.settings_file = rosbag::test::kTum3;
+  options.mode = "geometry";
+  options.deterministic = true;
+  options.rgb_topic = "/camera/rgb/image_color";
+  options.depth_topic = "/camera/depth/image";
+  options.camera_info_topic = "/camera/rgb/camera_info";
+  return options;
+}
+
+TEST(SlamNode, PlayedBagGivesRunsTrajectory) {
+  constexpr int kFrames = 20;
+  const std::string sequence = rosbag::test::syntheticSequence("node", kFrames);
+  const fs::path scratch = testing::scratchDirForThisTest("amos_node_");
+  const std::string bag = rosbag::test::writeTestBag(sequence, scratch, "played.bag");
+
+  run::SequenceRunOptions reference;
+  reference.sequence_dir = sequence;
+  reference.mode = "geometry";
+  reference.deterministic = true;
+  const run::SequenceRunResult expected = run::runSequence(config::loadSettings(rosbag::test::kTum3), reference);
+  // `amos-slam run` itself on the same bag: the files the node must write too.
+  const fs::path run_dir = scratch / "run";
+  runAmosSlam(bag, run_dir, "");
+  const std::string expected_text = fileText(run_dir / "trajectory.txt");
+  ASSERT_FALSE(expected_text.empty());
+
+  NodeOptions options = syntheticBagOptions();
+  options.output_dir = (scratch / "out").string();
+  options.cloud_rate = 5;
+  ros::NodeHandle node, private_node("~");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  SlamNode slam_node(node, private_node, options);
+  PoseListener listener(node, private_node.resolveName("pose"));
+
+  playFrameByFrame(bag, options, node, listener);
   slam_node.stop();
   spinner.stop();
 
@@ -128,7 +168,9 @@ TEST(SlamNode, PlayedBagGivesRunsTrajectory) {
   EXPECT_EQ(stats.dropped, 0u);
   EXPECT_EQ(stats.processed, static_cast<std::size_t>(kFrames));
   EXPECT_EQ(fileText(fs::path(options.output_dir) / "trajectory.txt"), expected_text);
+  EXPECT_EQ(fileText(fs::path(options.output_dir) / "keyframes.txt"), fileText(run_dir / "keyframes.txt"));
   EXPECT_TRUE(fs::exists(fs::path(options.output_dir) / "node_stats.json"));
+  expectRunsFiles(run_dir, options.output_dir);
 
   const std::vector<geometry_msgs::PoseStamped> published = listener.poses();
   ASSERT_EQ(published.size(), expected.trajectory.size());
@@ -138,6 +180,44 @@ TEST(SlamNode, PlayedBagGivesRunsTrajectory) {
     // Tracking-time against final poses: local bundle adjustment moves a keyframe's pose by well under 5 mm here.
     EXPECT_LT((T.block<3, 1>(0, 3) - expected.trajectory[i].T_wc.translation()).norm(), 0.005) << "frame " << i;
   }
+}
+
+// With ~dense the live dense cloud and the floor plan built from it are published at ~dense_rate while the node
+// runs, not only at shutdown: both arrive before stop(); at shutdown it writes `run --dense`'s files.
+TEST(SlamNode, DenseCloudAndGridArriveWhileRunning) {
+  if (!denseMappingAvailable()) GTEST_SKIP() << "a build without the dense map (Open3D)";
+  const std::string sequence = rosbag::test::syntheticSequence("node", 20);
+  const fs::path scratch = testing::scratchDirForThisTest("amos_node_");
+  const std::string bag = rosbag::test::writeTestBag(sequence, scratch, "played.bag");
+  NodeOptions options = syntheticBagOptions();
+  options.dense = true;
+  options.dense_rate = 10;
+  options.output_dir = (scratch / "out").string();
+  ros::NodeHandle node, private_node("~");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  SlamNode slam_node(node, private_node, options);
+  PoseListener listener(node, private_node.resolveName("pose"));
+  playFrameByFrame(bag, options, node, listener);
+  // Latched: the latest one published is what a new subscriber gets.
+  const auto cloud = ros::topic::waitForMessage<sensor_msgs::PointCloud2>(private_node.resolveName("dense_cloud"),
+                                                                          node, ros::Duration(30));
+  const auto grid = ros::topic::waitForMessage<nav_msgs::OccupancyGrid>(private_node.resolveName("occupancy_grid"),
+                                                                        node, ros::Duration(30));
+  slam_node.stop();  // only now: what arrived above was published while the node ran
+  spinner.stop();
+  ASSERT_TRUE(cloud) << "no dense cloud while running";
+  EXPECT_GT(cloud->width * cloud->height, 100u);
+  ASSERT_TRUE(grid) << "no occupancy grid while running";
+  const OccupancyGrid back = gridFromMessage(*grid);
+  EXPECT_GT(back.rows * back.cols, 0);
+  EXPECT_NE(std::count(back.cells.begin(), back.cells.end(), OccupancyGrid::kFree), 0);
+  // At shutdown the dense files `run --dense` writes, the same mesh byte for byte (the same frames, masks, poses).
+  const fs::path run_dir = scratch / "run";
+  runAmosSlam(bag, run_dir, "--dense");
+  expectRunsFiles(run_dir, options.output_dir);
+  EXPECT_TRUE(fs::exists(run_dir / "mesh.ply"));
+  EXPECT_EQ(fileText(fs::path(options.output_dir) / "mesh.ply"), fileText(run_dir / "mesh.ply"));
 }
 
 TEST(SlamNode, OccupancyGridRoundTripsThroughItsMessage) {

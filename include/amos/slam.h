@@ -168,6 +168,17 @@ struct MapSummary {
   std::size_t lost = 0;          // of them, with state kLost
 };
 
+// What a caller tells writeOutputs about its run for stats.json (docs/usage.md, "Outputs"): where the frames came
+// from and how it kept up with them (`amos-slam run` fills the same fields from its own frame source).
+struct RunDescription {
+  std::string sequence;            // "sequence": where the frames came from (a folder, a bag, a topic, a device)
+  std::string config;              // "config": the settings' name (default: Options::settings_file)
+  std::string source_kind = "api"; // "source.kind" (run: folder | realtime | bag | openni2)
+  std::size_t delivered = 0;       // frames the caller received (0 = the frames tracked)
+  std::size_t dropped = 0;         // of those, left out because tracking was busy
+  std::vector<double> latency_ms;  // per tracked frame: from its arrival to its pose (empty = not measured)
+};
+
 // The SLAM system. Move-only; a moved-from Slam throws std::runtime_error from every member function.
 class Slam {
  public:
@@ -221,6 +232,14 @@ class Slam {
   bool finished() const;
   // Writes the map (after finish(): the map local mapping has settled).
   void saveMap(const std::string& path) const;
+  // Writes into `dir` (created if needed) what `amos-slam run` writes there for the same frames, by the same code:
+  // trajectory.txt (as writeTrajectory), keyframes.txt, map.ply, stats.json (counts, per-stage times, wall time
+  // from the first frame to finish(), `run`'s description; no evaluation) and settings_used.yaml (the settings with
+  // the overrides and the mode). After finish() these are the final files; before, those of the frames so far.
+  // Each file is written under a temporary name and renamed; an error names the file that cannot be written.
+  void writeOutputs(const std::string& dir, const RunDescription& run = {}) const;
+  // The names writeOutputs writes.
+  static std::vector<std::string> outputNames();
 
   // One pose per tracked frame (T_wc), with the map's corrections up to now (bundle adjustment, loop closing): after
   // finish() it is the final trajectory, what `amos-slam run` writes. In localization mode only the localised frames.
@@ -243,6 +262,11 @@ class Slam {
   // The live volume's surface so far (tracking poses, every Dense.liveEveryth kept frame fused), or nullopt before
   // the first one (or with Dense.liveEvery 0). An error without Options::dense.
   std::optional<DenseSnapshot> denseSnapshot() const;
+  // The floor plan of that live surface (the floor found and the grid built from it as denseMap() does from the
+  // final surface; the cameras placed by trajectory()), or nullopt before the first live surface or while no floor
+  // is found in it. Takes a while on a large surface (tens of ms): for a caller's own rate, not every frame. An
+  // error without Options::dense.
+  std::optional<OccupancyGrid> denseLiveGrid() const;
   // The settings' camera size (Camera.width x Camera.height), which every frame must have.
   cv::Size imageSize() const;
 

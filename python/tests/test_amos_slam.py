@@ -1,5 +1,6 @@
 """Tests of the Python module amos_slam (CTest python/*; python/CMakeLists.txt sets the environment):
-AMOS_SOURCE_DIR (configs), AMOS_SEQUENCE (a synthetic walking_xyz sequence of 30 frames), PYTHONPATH (the module)."""
+AMOS_SOURCE_DIR (configs), AMOS_SEQUENCE (a synthetic walking_xyz sequence of 30 frames), PYTHONPATH (the module),
+AMOS_BAG_FROM_FOLDER (amos_bag_from_folder, in a build with the ROS part)."""
 import gc
 import inspect
 import logging
@@ -7,6 +8,7 @@ import os
 import pathlib
 import re
 import shutil
+import subprocess
 import tempfile
 import threading
 import unittest
@@ -217,6 +219,68 @@ class Folders(unittest.TestCase):
         self.assertEqual(sum(1 for _ in folder), 0)
 
 
+BAG_FROM_FOLDER = os.environ.get("AMOS_BAG_FROM_FOLDER", "")
+
+
+@unittest.skipUnless(amos_slam.bags_available and BAG_FROM_FOLDER, "the module was built without the ROS part")
+class Bags(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.work = pathlib.Path(tempfile.mkdtemp())
+        cls.bag = cls.work / "seq.bag"
+        subprocess.run([BAG_FROM_FOLDER, str(SEQUENCE), str(cls.bag), "--config", str(CONFIG)], check=True,
+                       stdout=subprocess.DEVNULL)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.work)
+
+    def test_a_bag_reads_as_its_folder(self):
+        folder = amos_slam.SequenceFolder(SEQUENCE)
+        with amos_slam.SequenceFolder(self.bag) as bag:
+            self.assertTrue(bag.is_bag)
+            self.assertFalse(folder.is_bag)
+            self.assertEqual(len(bag), len(folder))
+            frames = list(bag)
+            self.assertEqual(bag.skipped, 0)
+            self.assertEqual(bag.ground_truth, [])  # no groundtruth.txt beside it, no topic asked for
+        self.assertEqual([f.timestamp for f in frames], [folder.read(i).timestamp for i in range(len(folder))])
+        first = folder.read(0)
+        np.testing.assert_array_equal(frames[0].bgr, first.bgr)
+        np.testing.assert_array_equal(frames[0].depth, first.depth)
+        self.assertIn("seq.bag:/camera/rgb/image_color/", frames[0].rgb_file)
+        with self.assertRaisesRegex(RuntimeError, "moved from"):
+            len(bag)  # closed by the with block
+
+    def test_topic_keywords(self):
+        shutil.copy(SEQUENCE / "groundtruth.txt", self.work / "groundtruth.txt")
+        try:
+            bag = amos_slam.SequenceFolder(self.bag, rgb_topic="/camera/rgb/image_color")
+            truth = amos_slam.SequenceFolder(SEQUENCE).ground_truth
+            self.assertEqual([p.timestamp for p in bag.ground_truth], [p.timestamp for p in truth])
+        finally:
+            (self.work / "groundtruth.txt").unlink()
+        with self.assertRaisesRegex(RuntimeError, f"bag '{re.escape(str(self.bag))}' has no colour topic '/nope'"):
+            amos_slam.SequenceFolder(self.bag, rgb_topic="/nope", depth_topic="/camera/depth/image")
+        with self.assertRaisesRegex(RuntimeError, "has no ground-truth topic '/tf'"):
+            amos_slam.SequenceFolder(self.bag, groundtruth_topic="/tf")
+        with self.assertRaisesRegex(RuntimeError, "topic '/camera/rgb/camera_info' holds sensor_msgs/CameraInfo"):
+            amos_slam.SequenceFolder(self.bag, groundtruth_topic="/camera/rgb/camera_info")
+        with self.assertRaises(TypeError):  # keywords only
+            amos_slam.SequenceFolder(self.bag, "/camera/rgb/image_color")
+
+    def test_a_folder_refuses_the_bag_keywords(self):
+        with self.assertRaisesRegex(RuntimeError, "SequenceOptions::depth_topic '/d': only for a bag"):
+            amos_slam.SequenceFolder(SEQUENCE, depth_topic="/d")
+
+
+@unittest.skipIf(amos_slam.bags_available, "the module reads bags")
+class NoBags(unittest.TestCase):
+    def test_a_bag_is_an_error_naming_it(self):
+        with self.assertRaisesRegex(RuntimeError, "'x.bag' is a ROS 1 bag, and this library was built without"):
+            amos_slam.SequenceFolder("x.bag")
+
+
 @unittest.skipUnless(amos_slam.dense_available, "the library was built without Open3D")
 class Dense(unittest.TestCase):
     def test_dense_map_arrays_files_and_reprs(self):
@@ -226,7 +290,10 @@ class Dense(unittest.TestCase):
                     with self.assertRaisesRegex(RuntimeError, "after finish"):
                         slam.dense_map()
             snapshot = slam.dense_snapshot()
+            live_grid = slam.dense_live_grid()
         m = slam.dense_map()
+        if live_grid is not None:
+            self.assertEqual(live_grid.cells.ndim, 2)
         self.assertRegex(repr(m), r"DenseMap\(mesh_vertices=\d+, cloud_points=\d+, grid=")
         n = m.mesh.vertices.shape[0]
         self.assertGreater(n, 1000)

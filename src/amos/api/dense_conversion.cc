@@ -8,6 +8,8 @@ namespace {
 
 amos::DenseCloud publicCloud(const dense::DenseCloud& cloud) { return {cloud.points, cloud.normals, cloud.colours}; }
 
+}  // namespace
+
 amos::OccupancyGrid publicGrid(const dense::OccupancyGrid& grid, const dense::FloorPlane& floor) {
   amos::OccupancyGrid g;
   g.rows = grid.height;
@@ -20,8 +22,6 @@ amos::OccupancyGrid publicGrid(const dense::OccupancyGrid& grid, const dense::Fl
   g.floor_offset = floor.offset;
   return g;
 }
-
-}  // namespace
 
 amos::DenseMap publicDenseMap(const dense::DenseMap& map) {
   amos::DenseMap out;

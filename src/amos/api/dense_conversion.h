@@ -9,6 +9,7 @@ namespace amos::api {
 
 amos::DenseMap publicDenseMap(const dense::DenseMap& map);
 amos::DenseSnapshot publicSnapshot(const dense::LiveCloud& live);
+amos::OccupancyGrid publicGrid(const dense::OccupancyGrid& grid, const dense::FloorPlane& floor);
 dense::DenseMesh internalMesh(const amos::DenseMesh& mesh);
 dense::DenseCloud internalCloud(const amos::DenseCloud& cloud);
 // The grid and its floor plane (what the floor plan's files need).

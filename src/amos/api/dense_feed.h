@@ -30,6 +30,10 @@ class DenseFeed {
   DenseMap fuse(const std::vector<io::StampedPose>& trajectory) const;
   // The live volume's latest surface, or nullopt.
   std::optional<DenseSnapshot> snapshot() const;
+  // The floor plan of the live volume's latest surface (dense::findFloor and dense::buildOccupancyGrid over it, as
+  // the final fusion makes its own over the final surface), the cameras placed by `trajectory` (T_wc); nullopt
+  // before the first live surface or while no floor is found.
+  std::optional<OccupancyGrid> liveGrid(const std::vector<io::StampedPose>& trajectory) const;
 
  private:
   struct Impl;

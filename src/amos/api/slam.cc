@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <deque>
 #include <fstream>
 #include <mutex>
@@ -20,6 +21,7 @@
 #include "amos/api/engine.h"
 #include "amos/api/frame_checks.h"
 #include "amos/api/logging_default.h"
+#include "amos/api/run_outputs.h"
 #include "amos/api/settings_overrides.h"
 #include "amos/api/settings_sections.h"
 #include "amos/config/settings.h"
@@ -115,6 +117,8 @@ struct Slam::Impl {
   std::optional<double> last_timestamp;
   std::unique_ptr<KeyFrameEvents> events = std::make_unique<KeyFrameEvents>();
   std::unique_ptr<api::DenseFeed> dense;  // Options::dense
+  api::EngineRun run;                     // for writeOutputs (run.settings: set below)
+  std::optional<std::chrono::steady_clock::time_point> first_frame, finished_at;
   std::unique_ptr<api::Engine> engine;    // last: its threads stop before the rest goes
 
   explicit Impl(const Options& options) : settings(readSettings(options)), reader(settings.readerOptions()) {
@@ -135,6 +139,16 @@ struct Slam::Impl {
                             "Mode::kGeometry or Mode::kNone"};
     engine = std::make_unique<api::Engine>(settings, o);
     map_loaded = !options.map_file.empty();
+    run.settings = &settings;
+    run.settings_file = options.settings_file;
+    run.mode = o.mode;
+    run.deterministic = options.deterministic;
+  }
+
+  double wallTimeS() const {
+    if (!first_frame) return 0;
+    const auto end = finished_at.value_or(std::chrono::steady_clock::now());
+    return std::chrono::duration<double>(end - *first_frame).count();
   }
 
   cv::Size imageSize() const { return {reader.width, reader.height}; }
@@ -178,6 +192,7 @@ struct Slam::Impl {
                   fmt::format("amos::Slam::submit: {} frames already wait (at most {}): call next() first",
                               pending(), kMaxPending));
     api::checkFrame({bgr, depth, timestamp, prior_mask}, imageSize(), last_timestamp, "amos::Slam::track");
+    if (!first_frame) first_frame = std::chrono::steady_clock::now();
     engine->pipeline().push(frame(bgr, depth, timestamp), prior_mask.empty() ? cv::Mat() : prior_mask.clone());
     last_timestamp = timestamp;
     ++frames;
@@ -207,6 +222,7 @@ struct Slam::Impl {
     engine->pipeline().finish();
     if (dense) dense->finish();
     finished = true;
+    finished_at = std::chrono::steady_clock::now();
   }
 };
 
@@ -326,6 +342,16 @@ void Slam::saveMap(const std::string& path) const {
   impl.engine->slam().saveMap(path);
 }
 
+void Slam::writeOutputs(const std::string& dir, const RunDescription& run) const {
+  const auto& impl = use(impl_, "writeOutputs");
+  std::lock_guard lock(impl.mutex);
+  api::EngineRun engine_run = impl.run;
+  engine_run.wall_time_s = impl.wallTimeS();
+  api::writeRunOutputs(dir, *impl.engine, engine_run, run);
+}
+
+std::vector<std::string> Slam::outputNames() { return api::runOutputNames(); }
+
 std::vector<StampedPose> Slam::trajectory() const {
   const auto& impl = use(impl_, "trajectory");
   std::lock_guard lock(impl.mutex);
@@ -391,6 +417,17 @@ std::optional<DenseSnapshot> Slam::denseSnapshot() const {
   std::lock_guard lock(impl.mutex);
   core::require(impl.dense != nullptr, "amos::Slam::denseSnapshot: the Slam was made without Options::dense");
   return impl.dense->snapshot();
+}
+
+std::optional<OccupancyGrid> Slam::denseLiveGrid() const {
+  const auto& impl = use(impl_, "denseLiveGrid");
+  std::vector<io::StampedPose> trajectory;
+  {
+    std::lock_guard lock(impl.mutex);
+    core::require(impl.dense != nullptr, "amos::Slam::denseLiveGrid: the Slam was made without Options::dense");
+    trajectory = impl.engine->slam().trajectory();
+  }
+  return impl.dense->liveGrid(trajectory);  // outside the lock: tracking goes on while the grid is built
 }
 
 cv::Size Slam::imageSize() const { return use(impl_, "imageSize").imageSize(); }

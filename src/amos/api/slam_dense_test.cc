@@ -3,6 +3,8 @@
 // frames; the Dense.* settings reach it; its errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -130,6 +132,26 @@ TEST(SlamDense, DenseSettingsAndOverridesApply) {
   EXPECT_NE(errorOf([&] { Slam s(bad); }).find("voxel"), std::string::npos);
 }
 
+// The floor plan of the live surface (what amos_slam_node publishes while it runs): once the live volume holds
+// every frame, the same floor as the final map's, and a grid with free and occupied cells.
+TEST(SlamDense, LiveGridFindsTheFinalMapsFloor) {
+  Options o = denseOptions();
+  o.overrides = {{"Dense.liveEvery", "1"}, {"Dense.livePeriod", "0.001"}};  // a new live surface every frame
+  Slam slam(o);
+  EXPECT_FALSE(slam.denseLiveGrid());  // no live surface yet
+  trackAll(slam, sequence());
+  slam.finish();  // the fusion queue drained: the live surface holds every frame
+  const std::optional<OccupancyGrid> live = slam.denseLiveGrid();
+  const DenseMap map = slam.denseMap();
+  ASSERT_TRUE(map.grid);
+  ASSERT_TRUE(live);
+  EXPECT_EQ(live->cells.size(), static_cast<std::size_t>(live->rows) * live->cols);
+  EXPECT_GT(std::count(live->cells.begin(), live->cells.end(), OccupancyGrid::kFree), 0);
+  EXPECT_GT(std::count(live->cells.begin(), live->cells.end(), OccupancyGrid::kOccupied), 0);
+  EXPECT_GT(live->floor_normal.dot(map.grid->floor_normal), std::cos(5 * M_PI / 180));
+  EXPECT_NEAR(live->floor_offset, map.grid->floor_offset, 0.05);
+}
+
 #else
 
 TEST(SlamDense, DenseWithoutOpen3DIsAnErrorSayingSo) {
@@ -146,6 +168,7 @@ TEST(SlamDense, DenseCallsWithoutDenseAreErrors) {
   slam.finish();
   EXPECT_NE(errorOf([&] { slam.denseMap(); }).find("Options::dense"), std::string::npos);
   EXPECT_NE(errorOf([&] { slam.denseSnapshot(); }).find("Options::dense"), std::string::npos);
+  EXPECT_NE(errorOf([&] { slam.denseLiveGrid(); }).find("Options::dense"), std::string::npos);
   EXPECT_NE(errorOf([] { writeFloorPlan(DenseMap{}, "x"); }).find("writeFloorPlan"), std::string::npos);
 }
 

@@ -264,5 +264,33 @@ TEST(SequenceFolder, ReadsTheRunsFramesAndNamesWhatIsWrong) {
   EXPECT_THROW(SequenceFolder("/nonexistent/sequence"), std::runtime_error);
 }
 
+// A ".bag" path: read by a library with the ROS part (src/amos/rosbag/sequence_folder_bag_test.cc), else refused
+// with an error naming it; either way the error names the bag.
+TEST(SequenceFolder, ABagPathIsReadOrRefusedNamingIt) {
+  const std::string bag = "/nonexistent/recording.bag";
+  try {
+    SequenceFolder folder(bag);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    const std::string expected = bagReadingAvailable()
+                                     ? "bag '" + bag + "' cannot be read"
+                                     : "'" + bag + "' is a ROS 1 bag, and this library was built without the ROS part";
+    EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+  }
+}
+
+TEST(SequenceFolder, AFolderRefusesTheBagOptions) {
+  SequenceOptions options;
+  options.groundtruth_topic = "/tf";
+  try {
+    SequenceFolder folder(sequence("walking_xyz", 30), options);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("amos::SequenceOptions::groundtruth_topic '/tf': only for a bag"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace amos

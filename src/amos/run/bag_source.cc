@@ -11,6 +11,7 @@
 #include "amos/rosbag/bag_index.h"
 #include "amos/rosbag/bag_reader.h"
 #include "amos/rosbag/bag_settings.h"
+#include "amos/rosbag/ground_truth_topic.h"
 #endif
 
 namespace amos::run {
@@ -52,6 +53,12 @@ BagInput indexBagInput(const SequenceRunOptions& options, const config::Settings
                             size.width, size.height, index.topics.rgb));
   rosbag::selectFrames(index, options.first_frame, options.max_frames);
   BagInput input;
+  if (!options.groundtruth_topic.empty()) {
+    input.ground_truth = rosbag::readGroundTruthTopic(
+        index.bag, {options.groundtruth_topic, options.groundtruth_parent_frame, options.groundtruth_child_frame});
+    input.ground_truth_source = fmt::format("bag '{}', topic '{}'", index.bag, options.groundtruth_topic);
+    index.sequence.groundtruth_file.clear();  // the topic asked for wins over a groundtruth.txt beside the bag
+  }
   input.index = index.sequence;
   auto shared = std::make_shared<rosbag::BagIndex>(std::move(index));
   input.open = [shared](const io::ReaderOptions& reader) { return rosbag::openBagReader(std::move(*shared), reader); };

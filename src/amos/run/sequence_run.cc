@@ -177,7 +177,7 @@ struct OwnObservers {
 // Before the source is opened (a paced or live source starts its clock at once); MaskWriting creates its folders
 // in onStart.
 OwnObservers makeOwnObservers(const config::Settings& settings, const SequenceRunOptions& options,
-                              const std::string& gt_file) {
+                              const std::string& gt_file, BagInput& bag) {
   OwnObservers own;
   std::optional<eval::GroundTruthMasks> truth_masks;
   if (options.source != FrameSourceKind::kCamera) truth_masks = eval::GroundTruthMasks::find(options.sequence_dir);
@@ -188,7 +188,10 @@ OwnObservers makeOwnObservers(const config::Settings& settings, const SequenceRu
   if (truth_masks) own.scoring = std::make_unique<MaskScoring>(std::move(*truth_masks), save_masks);
   if (save_masks)
     own.writing = std::make_unique<MaskWriting>(options.masks_output_dir, options.overlay_count, own.scoring.get());
-  own.evaluation = std::make_unique<TrajectoryEvaluation>(gt_file, settings.groundtruth_format);
+  own.evaluation = bag.ground_truth.empty()
+                       ? std::make_unique<TrajectoryEvaluation>(gt_file, settings.groundtruth_format)
+                       : std::make_unique<TrajectoryEvaluation>(std::move(bag.ground_truth), bag.ground_truth_source,
+                                                                settings.groundtruth_format);
   return own;
 }
 
@@ -298,7 +301,7 @@ SequenceRunResult runSequence(const config::Settings& settings, const SequenceRu
   if (index && (!index->association.file.empty() || index->association.duplicate_rows > 0))
     result.info.association = index->association;
   result.engine = makeEngine(settings, options);
-  OwnObservers own = makeOwnObservers(settings, options, gt_file);
+  OwnObservers own = makeOwnObservers(settings, options, gt_file, bag);
   // Opened last, just before the loop: a paced or live source starts its clock at once.
   std::unique_ptr<io::FrameSource> source = openSource(settings, options, index, bag);
   const bool paced = options.source != FrameSourceKind::kFolder;

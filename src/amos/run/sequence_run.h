@@ -55,6 +55,10 @@ struct SequenceRunOptions {
   // FrameSourceKind::kBag: --rgb-topic, --depth-topic, --camera-info-topic ("" = the known drivers' names,
   // rosbag/bag_topics.h).
   std::string rgb_topic, depth_topic, camera_info_topic;
+  // FrameSourceKind::kBag: --groundtruth-topic (the ground truth from this topic instead of a groundtruth.txt
+  // beside the bag; rosbag/ground_truth_topic.h) and, for a tf2_msgs/TFMessage topic, the frames of the pose.
+  std::string groundtruth_topic;
+  std::string groundtruth_parent_frame = "/world", groundtruth_child_frame = "/kinect";
   std::string record_dir;      // --record: write every processed frame there in TUM layout ("" = do not)
   std::string config_label;    // recorded in stats.json
   std::string mode = "none";   // dynamic front end: none | prior | geometry | full (the CLI defaults to full)

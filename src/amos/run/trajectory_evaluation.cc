@@ -25,6 +25,12 @@ TrajectoryEvaluation::TrajectoryEvaluation(std::string groundtruth_file, config:
   }
 }
 
+TrajectoryEvaluation::TrajectoryEvaluation(std::vector<io::StampedPose> ground_truth, std::string source,
+                                           config::GroundTruthFormat format)
+    : groundtruth_file_(std::move(source)), ground_truth_(std::move(ground_truth)) {
+  if (format == config::GroundTruthFormat::kBonn) ground_truth_ = eval::bonnMarkerToCamera(ground_truth_);
+}
+
 void TrajectoryEvaluation::addToInfo(const std::vector<io::StampedPose>& trajectory, report::RunInfo& info) {
   if (ground_truth_.empty() || trajectory.size() < 2) return;
   try {

@@ -18,6 +18,10 @@ class TrajectoryEvaluation : public RunObserver {
  public:
   // `groundtruth_file`: "" = none (nothing is evaluated). Reads it (see above).
   TrajectoryEvaluation(std::string groundtruth_file, config::GroundTruthFormat format);
+  // Ground truth read already (a bag's topic, run/bag_source.h), named `source` in messages; converted as a file's
+  // of `format` is.
+  TrajectoryEvaluation(std::vector<io::StampedPose> ground_truth, std::string source,
+                       config::GroundTruthFormat format);
 
   // The ground truth as camera poses for the observers (RunStart::ground_truth); empty when there is none or it
   // cannot be read.
