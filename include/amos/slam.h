@@ -177,6 +177,11 @@ struct RunDescription {
   std::size_t delivered = 0;       // frames the caller received (0 = the frames tracked)
   std::size_t dropped = 0;         // of those, left out because tracking was busy
   std::vector<double> latency_ms;  // per tracked frame: from its arrival to its pose (empty = not measured)
+  // A ground-truth file of these frames (TUM format; the settings' Dataset.groundtruth says whether its poses are
+  // the camera's or Bonn's marker's): stats.json then has run's "evaluation" (ATE / RPE of trajectory.txt), as run
+  // has against a sequence's groundtruth.txt. "" = none. One that cannot be read, or an evaluation that fails, is
+  // a warning (the library's log), and the files are written without it.
+  std::string groundtruth_file;
   // Names of the caller's own files in the same folder (e.g. a saved map): listed in run_manifest.json beside
   // writeOutputs' own, so that `amos-slam run --overwrite` on the folder may replace them.
   std::vector<std::string> other_outputs;
@@ -238,7 +243,7 @@ class Slam {
   // Writes into `dir` (created if needed) what `amos-slam run` writes there for the same frames, by the same code:
   // trajectory.txt (as writeTrajectory), keyframes.txt, map.ply, stats.json (counts, per-stage times, the share of
   // keypoints removed per frame, depth dropouts, wall time from the first frame to finish(), `run`'s description;
-  // no evaluation), settings_used.yaml (the settings with the overrides and the mode), the per-frame files
+  // the evaluation with RunDescription::groundtruth_file), settings_used.yaml (the settings with the overrides and the mode), the per-frame files
   // trajectory_live.txt (each tracked frame's pose at tracking time, as FrameResult::T_wc) and frames.tsv (one line
   // per frame: index, time stamp, state, inliers, keyframe, ms since the frame before), kept by the Slam as it
   // tracks, and run_manifest.json (the names written, with RunDescription::other_outputs). Not report.html (the

@@ -2,6 +2,7 @@
 
 #include "amos/config/settings_writer.h"
 #include "amos/dynamic/dynamic_options.h"
+#include "amos/report/ground_truth_evaluation.h"
 #include "amos/report/output_folder.h"
 #include "amos/report/run_report.h"
 
@@ -17,6 +18,11 @@ report::RunInfo runInfo(const Engine& engine, const EngineRun& run, const RunDes
   info.deterministic = run.deterministic;
   info.wall_time_s = run.wall_time_s;
   info.depth_dropouts = run.depth_dropouts;
+  if (!d.groundtruth_file.empty()) {
+    info.evaluation = report::evaluateOrWarn(
+        report::readGroundTruthOrWarn(d.groundtruth_file, run.settings->groundtruth_format),
+        engine.slam().trajectory(), d.groundtruth_file);
+  }
   // As the run's finishRun fills them from the pipeline.
   info.front_end_times = &engine.pipeline().times();
   if (engine.pipeline().mode() != dynamic::DynamicMode::kNone)

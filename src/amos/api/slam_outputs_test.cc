@@ -117,6 +117,7 @@ TEST(SlamOutputs, WritesRunsFilesByteForByte) {
   description.source_kind = "test";
   description.delivered = folder.size() + 2;
   description.dropped = 2;
+  description.groundtruth_file = seq + "/groundtruth.txt";
   slam.writeOutputs((dir / "api").string(), description);
 
   std::set<std::string> run_names = fileNames(dir / "run");
@@ -140,15 +141,17 @@ TEST(SlamOutputs, WritesRunsFilesByteForByte) {
   EXPECT_EQ(stats["source"]["delivered"], folder.size() + 2);
   EXPECT_EQ(stats["source"]["dropped"], 2);
   EXPECT_GT(stats["wall_time_s"].get<double>(), 0.0);
-  // run's shape: its keys, its stages, the share of keypoints removed per frame, the depth dropouts. Aside: what
-  // run has of the sequence folder, which the Slam never sees (its association file; its ground truth and mover
-  // masks, and the time scoring against them).
+  // run's shape: its keys, its stages, the share of keypoints removed per frame, the depth dropouts, the evaluation
+  // against the same ground truth. Aside: what run has of the sequence folder, which the Slam never sees (its
+  // association file; its mover masks and the time scoring against them).
   std::set<std::string> run_keys = keys(run_stats);
-  for (const char* key : {"association", "evaluation", "mask_accuracy", "mask_outputs_s"}) run_keys.erase(key);
+  for (const char* key : {"association", "mask_accuracy", "mask_outputs_s"}) run_keys.erase(key);
   EXPECT_EQ(keys(stats), run_keys);
   EXPECT_EQ(keys(stats["stages"]), keys(run_stats["stages"]));
   EXPECT_EQ(stats["removed_keypoint_fraction"]["per_frame"].size(), folder.size());
   EXPECT_EQ(stats["depth_dropouts"], run_stats["depth_dropouts"]);
+  ASSERT_TRUE(run_stats.contains("evaluation"));
+  EXPECT_EQ(stats["evaluation"], run_stats["evaluation"]);
   expectSameFrames(dir / "api" / "frames.tsv", dir / "run" / "frames.tsv");
   // run_manifest.json: what was written there, as run's manifest lists it.
   const nlohmann::json manifest = nlohmann::json::parse(readFile(dir / "api" / report::kManifestFile));
