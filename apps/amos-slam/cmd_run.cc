@@ -271,9 +271,7 @@ dense::LiveCloudCallback liveCloudToViewer(RunWatchers::DenseCloudSink sink) {
 #endif
 
 std::vector<std::string> outputNames(const RunArgs& args) {
-  std::vector<std::string> names = {"trajectory_live.txt", "frames.tsv",     "trajectory.txt",
-                                    "keyframes.txt",       "map.ply",        "stats.json",
-                                    "settings_used.yaml"};
+  std::vector<std::string> names = report::mainOutputNames();
   if (args.save_masks) names.insert(names.end(), {"masks", "overlays"});
 #ifdef AMOS_HAVE_DENSE_PLUGIN
   if (args.dense) {

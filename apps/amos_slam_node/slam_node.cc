@@ -21,6 +21,12 @@ namespace amos::node {
 
 namespace fs = std::filesystem;
 
+namespace {
+// What the node writes with ~dense at shutdown beside Slam::writeOutputs' files (run --dense's dense files).
+const std::vector<std::string> kDenseFiles = {"mesh.ply", "cloud.ply", "removed_points.ply", "occupancy.pgm",
+                                              "occupancy.yaml"};
+}  // namespace
+
 struct SlamNode::Subscriptions {
   StampPairer pairer;
   ros::Subscriber rgb, depth, camera_info;
@@ -191,6 +197,8 @@ std::string SlamNode::writeOutputs(bool final) {
   run.delivered = node_stats.received;
   run.dropped = node_stats.dropped;
   run.latency_ms = node_stats.latency_ms;
+  run.other_outputs = {"node_stats.json", "map.amosmap"};
+  if (options_.dense) run.other_outputs.insert(run.other_outputs.end(), kDenseFiles.begin(), kDenseFiles.end());
   slam_->writeOutputs(options_.output_dir, run);
   writeNodeStats((dir / "node_stats.json").string(), node_stats, slam_->summary());
   std::vector<std::string> written = Slam::outputNames();

@@ -9,12 +9,15 @@
 #include <rosbag/view.h>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstdlib>
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <vector>
 
 #include "amos/io/trajectory.h"
 #include "amos/rosbag/bag_index.h"
@@ -107,19 +110,23 @@ void runAmosSlam(const std::string& bag, const fs::path& output, const std::stri
   ASSERT_EQ(std::system(command.c_str()), 0) << fileText(log);
 }
 
-// Every file `run` wrote into `run_dir` is in `node_dir` too, but its per-frame log (trajectory_live.txt,
-// frames.tsv: written by the run's own frame loop), its output folder's manifest and report.html (recorded by the
-// run's observers, which the node does not have).
+// Every file `run` wrote into `run_dir` is in `node_dir` too (per-frame files and manifest included), and the
+// node's manifest lists it, but report.html (made by the viewer module from run's own observers; not the
+// library's).
 void expectRunsFiles(const fs::path& run_dir, const fs::path& node_dir) {
+  const nlohmann::json manifest = nlohmann::json::parse(fileText(node_dir / "run_manifest.json"));
+  const auto listed = manifest["outputs"].get<std::vector<std::string>>();
   std::size_t compared = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(run_dir)) {
     const std::string name = entry.path().filename().string();
-    if (name == "trajectory_live.txt" || name == "frames.tsv" || name == "run_manifest.json" || name == "report.html")
-      continue;
+    if (name == "report.html") continue;
     EXPECT_TRUE(fs::exists(node_dir / name)) << "the node did not write " << name;
+    if (name != "run_manifest.json") {
+      EXPECT_NE(std::find(listed.begin(), listed.end(), name), listed.end()) << "its manifest lacks " << name;
+    }
     ++compared;
   }
-  EXPECT_GE(compared, 5u);
+  EXPECT_GE(compared, 8u);  // run's main files and its manifest
 }
 
 NodeOptions syntheticBagOptions() {
@@ -169,6 +176,7 @@ TEST(SlamNode, PlayedBagGivesRunsTrajectory) {
   EXPECT_EQ(stats.processed, static_cast<std::size_t>(kFrames));
   EXPECT_EQ(fileText(fs::path(options.output_dir) / "trajectory.txt"), expected_text);
   EXPECT_EQ(fileText(fs::path(options.output_dir) / "keyframes.txt"), fileText(run_dir / "keyframes.txt"));
+  EXPECT_EQ(fileText(fs::path(options.output_dir) / "trajectory_live.txt"), fileText(run_dir / "trajectory_live.txt"));
   EXPECT_TRUE(fs::exists(fs::path(options.output_dir) / "node_stats.json"));
   expectRunsFiles(run_dir, options.output_dir);
 

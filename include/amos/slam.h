@@ -177,6 +177,14 @@ struct RunDescription {
   std::size_t delivered = 0;       // frames the caller received (0 = the frames tracked)
   std::size_t dropped = 0;         // of those, left out because tracking was busy
   std::vector<double> latency_ms;  // per tracked frame: from its arrival to its pose (empty = not measured)
+  // A ground-truth file of these frames (TUM format; the settings' Dataset.groundtruth says whether its poses are
+  // the camera's or Bonn's marker's): stats.json then has run's "evaluation" (ATE / RPE of trajectory.txt), as run
+  // has against a sequence's groundtruth.txt. "" = none. One that cannot be read, or an evaluation that fails, is
+  // a warning (the library's log), and the files are written without it.
+  std::string groundtruth_file;
+  // Names of the caller's own files in the same folder (e.g. a saved map): listed in run_manifest.json beside
+  // writeOutputs' own, so that `amos-slam run --overwrite` on the folder may replace them.
+  std::vector<std::string> other_outputs;
 };
 
 // The SLAM system. Move-only; a moved-from Slam throws std::runtime_error from every member function.
@@ -233,10 +241,15 @@ class Slam {
   // Writes the map (after finish(): the map local mapping has settled).
   void saveMap(const std::string& path) const;
   // Writes into `dir` (created if needed) what `amos-slam run` writes there for the same frames, by the same code:
-  // trajectory.txt (as writeTrajectory), keyframes.txt, map.ply, stats.json (counts, per-stage times, wall time
-  // from the first frame to finish(), `run`'s description; no evaluation) and settings_used.yaml (the settings with
-  // the overrides and the mode). After finish() these are the final files; before, those of the frames so far.
-  // Each file is written under a temporary name and renamed; an error names the file that cannot be written.
+  // trajectory.txt (as writeTrajectory), keyframes.txt, map.ply, stats.json (counts, per-stage times, the share of
+  // keypoints removed per frame, depth dropouts, wall time from the first frame to finish(), `run`'s description;
+  // the evaluation with RunDescription::groundtruth_file), settings_used.yaml (the settings with the overrides and the mode), the per-frame files
+  // trajectory_live.txt (each tracked frame's pose at tracking time, as FrameResult::T_wc) and frames.tsv (one line
+  // per frame: index, time stamp, state, inliers, keyframe, ms since the frame before), kept by the Slam as it
+  // tracks, and run_manifest.json (the names written, with RunDescription::other_outputs). Not report.html (the
+  // viewer module's, `amos-slam run` only). After finish() these are the final files; before, those of the frames
+  // so far. Each file is written under a temporary name and renamed; an error names the file that cannot be
+  // written.
   void writeOutputs(const std::string& dir, const RunDescription& run = {}) const;
   // The names writeOutputs writes.
   static std::vector<std::string> outputNames();

@@ -28,6 +28,7 @@
 #include "amos/core/error.h"
 #include "amos/io/dataset.h"
 #include "amos/io/trajectory.h"
+#include "amos/report/frame_log.h"
 
 namespace amos {
 
@@ -119,6 +120,9 @@ struct Slam::Impl {
   std::unique_ptr<api::DenseFeed> dense;  // Options::dense
   api::EngineRun run;                     // for writeOutputs (run.settings: set below)
   std::optional<std::chrono::steady_clock::time_point> first_frame, finished_at;
+  std::optional<std::chrono::steady_clock::time_point> last_result;  // when next() last returned
+  std::vector<report::FrameRecord> records;  // every frame's line of run's per-frame files (writeOutputs)
+  report::DepthDropouts depth_dropouts;
   std::unique_ptr<api::Engine> engine;    // last: its threads stop before the rest goes
 
   explicit Impl(const Options& options) : settings(readSettings(options)), reader(settings.readerOptions()) {
@@ -213,7 +217,18 @@ struct Slam::Impl {
     r.keypoints = out.slam.keypoints + out.slam.removed_dynamic;  // the core counts the kept ones
     r.keypoints_removed = out.slam.removed_dynamic;
     if (dense) dense->push(out);
+    keepRecord(out);
     return r;
+  }
+
+  // What `amos-slam run`'s per-frame files and stats.json say of the frame (run/controller.cc keeps the same).
+  void keepRecord(const system::ProcessedFrame& out) {
+    const auto now = std::chrono::steady_clock::now();
+    report::FrameRecord record = report::frameRecord(out);
+    record.frame_ms = std::chrono::duration<double, std::milli>(now - last_result.value_or(*first_frame)).count();
+    last_result = now;
+    records.push_back(std::move(record));
+    report::countDepthDropout(out, depth_dropouts);
   }
 
   void finish() {
@@ -347,6 +362,8 @@ void Slam::writeOutputs(const std::string& dir, const RunDescription& run) const
   std::lock_guard lock(impl.mutex);
   api::EngineRun engine_run = impl.run;
   engine_run.wall_time_s = impl.wallTimeS();
+  engine_run.frames = &impl.records;
+  engine_run.depth_dropouts = impl.depth_dropouts;
   api::writeRunOutputs(dir, *impl.engine, engine_run, run);
 }
 

@@ -20,6 +20,7 @@
 
 #include "amos/core/error.h"
 #include "amos/io/atomic_file.h"
+#include "amos/report/frame_log.h"
 
 namespace amos::report {
 
@@ -180,16 +181,22 @@ void clearEarlierRun(const fs::path& dir, bool overwrite) {
   }
 }
 
-void writeManifest(const fs::path& dir, const std::vector<std::string>& outputs) {
+}  // namespace
+
+const std::vector<std::string>& mainOutputNames() {
+  static const std::vector<std::string> names = {kLiveTrajectoryFile, kFramesFile, "trajectory.txt", "keyframes.txt",
+                                                 "map.ply",           "stats.json", "settings_used.yaml"};
+  return names;
+}
+
+void writeManifest(const std::string& dir, const std::vector<std::string>& outputs) {
   const nlohmann::json j = {
       {"program", "amos-slam"},
       {"about", "what this run writes into this folder; `run --overwrite` removes these, and nothing else"},
       {"pid", static_cast<long>(::getpid())},
       {"outputs", outputs}};
-  io::writeFileAtomically((dir / kManifestFile).string(), j.dump(2) + "\n");
+  io::writeFileAtomically((fs::path(dir) / kManifestFile).string(), j.dump(2) + "\n");
 }
-
-}  // namespace
 
 OutputFolderLock OutputFolderLock::acquire(const std::string& dir) {
   const std::string path = (fs::path(dir) / kLockFile).string();

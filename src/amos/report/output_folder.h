@@ -16,13 +16,22 @@
 
 namespace amos::report {
 
-// Everything a run may leave in its output folder (run_report.h, mask_outputs.h, run/live_log.h): trajectory.txt,
+// Everything a run may leave in its output folder (run_report.h, mask_outputs.h, frame_log.h): trajectory.txt,
 // keyframes.txt, map.ply, stats.json, settings_used.yaml (config/settings_writer.h), trajectory_live.txt,
 // frames.tsv, masks/, overlays/, report.html (viewer/report_html.h), and with --dense mesh.ply, cloud.ply,
 // removed_points.ply, occupancy.pgm, occupancy.yaml (run/dense_observer.h).
 const std::vector<std::string>& runOutputNames();
 
+// The files every run writes into its output folder, whatever its options: trajectory_live.txt, frames.tsv
+// (frame_log.h), trajectory.txt, keyframes.txt, map.ply, stats.json (run_report.h), settings_used.yaml. What
+// `amos-slam run` and amos::Slam::writeOutputs both write (and list in their manifest).
+const std::vector<std::string>& mainOutputNames();
+
 inline constexpr const char* kManifestFile = "run_manifest.json";
+
+// Writes <dir>/run_manifest.json, listing `outputs` (the names written into `dir`), under a temporary name and
+// renamed; throws core::Error naming it when it cannot be written. prepareOutputFolder writes it for a run.
+void writeManifest(const std::string& dir, const std::vector<std::string>& outputs);
 inline constexpr const char* kLockFile = ".amos-run.lock";
 
 // The lock of an output folder, held while it lives: an flock(2) on <dir>/.amos-run.lock, which holds the PID of

@@ -6,6 +6,7 @@
 #include <optional>
 #include <utility>
 
+#include "amos/report/frame_log.h"
 #include "amos/run/paced_feeder.h"
 
 namespace amos::run {
@@ -110,12 +111,7 @@ bool RunController::consume(const system::ProcessedFrame& out) {
   if (options_.paced)
     spdlog::debug("frame {}: {:.1f} ms from arrival to pose", frame.index, outcome_.latency_ms.back());
   ++outcome_.processed;
-  if (frame.depth_dropout) {
-    report::DepthDropouts& d = outcome_.depth_dropouts;
-    ++d.frames;
-    d.tracked += out.slam.track.state == tracking::TrackingState::kOk;
-    d.lost += out.slam.track.state == tracking::TrackingState::kLost;
-  }
+  report::countDepthDropout(out, outcome_.depth_dropouts);
   notifyFrame(out);
   if (options_.on_frame)
     options_.on_frame({frame.index + 1, source_.size(), outcome_.processed, &out.slam, runMs() / 1000.0});

@@ -1,43 +1,26 @@
 #include "amos/run/trajectory_evaluation.h"
 
-#include <spdlog/spdlog.h>
-
-#include <exception>
 #include <utility>
 
-#include "amos/core/error.h"
-#include "amos/eval/bonn_ground_truth.h"
-#include "amos/eval/evaluate.h"
+#include "amos/report/ground_truth_evaluation.h"
 
 namespace amos::run {
 
 TrajectoryEvaluation::TrajectoryEvaluation(std::string groundtruth_file, config::GroundTruthFormat format)
     : groundtruth_file_(std::move(groundtruth_file)) {
   if (groundtruth_file_.empty()) return;
-  try {
-    ground_truth_ = io::readTumTrajectoryWithPoses(groundtruth_file_, "ground-truth file");
-    if (format == config::GroundTruthFormat::kBonn) ground_truth_ = eval::bonnMarkerToCamera(ground_truth_);
-  } catch (const std::exception& e) {
-    spdlog::warn("{}; the run goes on without evaluation (fix the file and run `amos-slam eval` on the outputs)",
-                 e.what());
-    ground_truth_.clear();
-    usable_ = false;
-  }
+  ground_truth_ = report::readGroundTruthOrWarn(groundtruth_file_, format);
+  usable_ = !ground_truth_.empty();  // a file read holds a pose at least
 }
 
 TrajectoryEvaluation::TrajectoryEvaluation(std::vector<io::StampedPose> ground_truth, std::string source,
                                            config::GroundTruthFormat format)
-    : groundtruth_file_(std::move(source)), ground_truth_(std::move(ground_truth)) {
-  if (format == config::GroundTruthFormat::kBonn) ground_truth_ = eval::bonnMarkerToCamera(ground_truth_);
-}
+    : groundtruth_file_(std::move(source)),
+      ground_truth_(report::groundTruthAsCameraPoses(std::move(ground_truth), format)) {}
 
 void TrajectoryEvaluation::addToInfo(const std::vector<io::StampedPose>& trajectory, report::RunInfo& info) {
-  if (ground_truth_.empty() || trajectory.size() < 2) return;
-  try {
-    info.evaluation = eval::evaluate(ground_truth_, trajectory);
-  } catch (const std::exception& e) {
-    spdlog::warn("no evaluation against {}: {}", groundtruth_file_, e.what());
-  }
+  if (auto evaluation = report::evaluateOrWarn(ground_truth_, trajectory, groundtruth_file_))
+    info.evaluation = std::move(evaluation);
 }
 
 }  // namespace amos::run

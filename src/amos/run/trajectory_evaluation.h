@@ -1,6 +1,7 @@
 #pragma once
 // The evaluation of a run as an observer: at the end, the final trajectory against the sequence's ground truth
-// (ATE / RPE, eval/evaluate.h; Bonn marker poses converted to camera poses first), into RunInfo::evaluation.
+// (ATE / RPE, eval/evaluate.h; Bonn marker poses converted to camera poses first), into RunInfo::evaluation, by
+// report/ground_truth_evaluation.h (which amos::Slam::writeOutputs evaluates with too).
 // The ground truth is read and checked when the observer is made, before the first frame: a file that cannot be
 // read (a bad first line, a truncated last line, a field that is not a number, no pose) is a warning naming the
 // file and the line, and the run goes on without evaluation. Nothing the evaluation does costs the run its
