@@ -219,6 +219,9 @@ void bindValues(py::module_& m) {
       .def_readonly("keypoints", &amos::FrameResult::keypoints, "ORB keypoints extracted.")
       .def_readonly("keypoints_removed", &amos::FrameResult::keypoints_removed,
                     "Of those, inside the dynamic mask (not used).")
+      .def_readonly("extract_ms", &amos::FrameResult::extract_ms, "Wall ms of this frame's ORB extraction.")
+      .def_readonly("build_ms", &amos::FrameResult::build_ms, "Wall ms of building the frame (depth, grid).")
+      .def_readonly("track_ms", &amos::FrameResult::track_ms, "Wall ms of tracking the frame.")
       .def("__repr__", [](const amos::FrameResult& r) {
         return fmt::format("FrameResult(frame={}, timestamp={:.6f}, state={}, T_wc={}, keypoints={}, removed={})",
                            r.frame, r.timestamp, amos::toString(r.state), matrixRepr(r.T_wc), r.keypoints,

@@ -112,6 +112,9 @@ bool SlamNode::makeSlam(bool warn) {
   o.deterministic = options_.deterministic;
   o.dense = options_.dense;
   slam_ = std::make_unique<Slam>(o);
+#ifdef AMOS_NODE_REPORT
+  report_ = std::make_unique<NodeReport>(options_.settings_file, options_.mode, sourceName());
+#endif
   slam_ready_.store(true, std::memory_order_release);
   ROS_INFO("amos_slam_node: tracking (%s, mode %s)", options_.settings_file.c_str(), options_.mode.c_str());
   return true;
@@ -123,6 +126,9 @@ void SlamNode::trackLoop() {
       if (!slam_ && !makeSlam(/*warn=*/true)) continue;
       const FrameResult result = slam_->track(frame->bgr, frame->depth, frame->timestamp);
       publish(result, *frame);
+#ifdef AMOS_NODE_REPORT
+      report_->add(result, frame->bgr);
+#endif
     } catch (const std::exception& e) {
       ROS_ERROR("amos_slam_node: %s; stopping", e.what());
       slot_.close();
@@ -184,14 +190,17 @@ void SlamNode::onDenseTimer(const ros::WallTimerEvent&) {
     grid_.publish(gridMessage(*grid, now, options_.map_frame));
 }
 
+std::string SlamNode::sourceName() const {
+  return fmt::format("topics {} + {}", node_.resolveName(options_.rgb_topic), node_.resolveName(options_.depth_topic));
+}
+
 std::string SlamNode::writeOutputs(bool final) {
   if (options_.output_dir.empty() || !slam_ready_.load(std::memory_order_acquire)) return "nothing (no ~output_dir)";
   const fs::path dir(options_.output_dir);
   const NodeStats node_stats = stats();
   // What `amos-slam run` writes, by the library's code (amos::Slam::writeOutputs), with the node's frames.
   RunDescription run;
-  run.sequence = fmt::format("topics {} + {}", node_.resolveName(options_.rgb_topic),
-                             node_.resolveName(options_.depth_topic));
+  run.sequence = sourceName();
   run.config = options_.settings_file;
   run.source_kind = "ros";
   run.delivered = node_stats.received;
@@ -199,10 +208,17 @@ std::string SlamNode::writeOutputs(bool final) {
   run.latency_ms = node_stats.latency_ms;
   run.other_outputs = {"node_stats.json", "map.amosmap"};
   if (options_.dense) run.other_outputs.insert(run.other_outputs.end(), kDenseFiles.begin(), kDenseFiles.end());
+#ifdef AMOS_NODE_REPORT
+  run.other_outputs.push_back("report.html");
+#endif
   slam_->writeOutputs(options_.output_dir, run);
   writeNodeStats((dir / "node_stats.json").string(), node_stats, slam_->summary());
   std::vector<std::string> written = Slam::outputNames();
   written.push_back("node_stats.json");
+#ifdef AMOS_NODE_REPORT
+  report_->write(dir, slam_->trajectory());  // after stats.json, which the page shows
+  written.push_back("report.html");
+#endif
   if (final) {  // the map and the dense files need the settled map (Slam::finish)
     slam_->saveMap((dir / "map.amosmap").string());
     written.push_back("map.amosmap");

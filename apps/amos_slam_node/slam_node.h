@@ -28,6 +28,9 @@
 #include "amos/slam.h"
 #include "latest_frame.h"
 #include "node_options.h"
+#ifdef AMOS_NODE_REPORT
+#include "node_report.h"
+#endif
 #include "stamp_pairer.h"
 
 namespace amos::node {
@@ -67,6 +70,7 @@ class SlamNode {
   bool makeSlam(bool warn);  // false while the calibration waits for camera_info (`warn`: say so, throttled)
   void publish(const FrameResult& result, const StampedFrame& frame);
   std::string writeOutputs(bool final);
+  std::string sourceName() const;  // "topics /rgb + /depth", resolved
 
   NodeOptions options_;
   std::function<void()> on_failure_;
@@ -79,6 +83,9 @@ class SlamNode {
   std::optional<core::CameraIntrinsics> camera_info_;  // guarded by camera_mutex_
   LatestFrame slot_;
   std::unique_ptr<Slam> slam_;  // made and used by the tracking thread; read by the timer and the service
+#ifdef AMOS_NODE_REPORT
+  std::unique_ptr<NodeReport> report_;  // made with slam_
+#endif
   std::atomic<bool> slam_ready_{false};
   mutable std::mutex stats_mutex_;
   NodeStats stats_;  // guarded by stats_mutex_ (but received / dropped: the slot's)

@@ -110,16 +110,14 @@ void runAmosSlam(const std::string& bag, const fs::path& output, const std::stri
   ASSERT_EQ(std::system(command.c_str()), 0) << fileText(log);
 }
 
-// Every file `run` wrote into `run_dir` is in `node_dir` too (per-frame files and manifest included), and the
-// node's manifest lists it, but report.html (made by the viewer module from run's own observers; not the
-// library's).
+// Every file `run` wrote into `run_dir` is in `node_dir` too (per-frame files, manifest and report.html included),
+// and the node's manifest lists it. Without the viewer module neither writes report.html.
 void expectRunsFiles(const fs::path& run_dir, const fs::path& node_dir) {
   const nlohmann::json manifest = nlohmann::json::parse(fileText(node_dir / "run_manifest.json"));
   const auto listed = manifest["outputs"].get<std::vector<std::string>>();
   std::size_t compared = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(run_dir)) {
     const std::string name = entry.path().filename().string();
-    if (name == "report.html") continue;
     EXPECT_TRUE(fs::exists(node_dir / name)) << "the node did not write " << name;
     if (name != "run_manifest.json") {
       EXPECT_NE(std::find(listed.begin(), listed.end(), name), listed.end()) << "its manifest lacks " << name;
@@ -127,6 +125,32 @@ void expectRunsFiles(const fs::path& run_dir, const fs::path& node_dir) {
     ++compared;
   }
   EXPECT_GE(compared, 8u);  // run's main files and its manifest
+}
+
+// The JSON block report.html's page draws from (viewer/report_html.h).
+nlohmann::json reportData(const fs::path& report) {
+  const std::string page = fileText(report);
+  const std::string open = R"(<script id="amos-report-data" type="application/json">)";
+  const std::size_t begin = page.find(open);
+  EXPECT_NE(begin, std::string::npos) << report << " has no data block";
+  if (begin == std::string::npos) return {};
+  const std::size_t end = page.find("</script>", begin);
+  return nlohmann::json::parse(page.substr(begin + open.size(), end - begin - open.size()));
+}
+
+// The node's report.html shows the frames run's shows, in the same states, with the SLAM stages' times.
+void expectRunsReport(const fs::path& run_dir, const fs::path& node_dir) {
+  if (!fs::exists(run_dir / "report.html")) return;  // a build without the viewer module
+  const nlohmann::json run = reportData(run_dir / "report.html"), node = reportData(node_dir / "report.html");
+  ASSERT_TRUE(node.contains("frames"));
+  EXPECT_EQ(node["frames"]["index"], run["frames"]["index"]);
+  EXPECT_EQ(node["frames"]["state"], run["frames"]["state"]);
+  EXPECT_EQ(node["frames"]["keypoints"], run["frames"]["keypoints"]);
+  EXPECT_EQ(node["frames"]["removed"], run["frames"]["removed"]);
+  double extract_ms = 0;
+  for (const auto& ms : node["frames"]["extract_ms"]) extract_ms += ms.get<double>();
+  EXPECT_GT(extract_ms, 0.0);
+  EXPECT_EQ(node["trajectory"].size(), run["trajectory"].size());
 }
 
 NodeOptions syntheticBagOptions() {
@@ -179,6 +203,7 @@ TEST(SlamNode, PlayedBagGivesRunsTrajectory) {
   EXPECT_EQ(fileText(fs::path(options.output_dir) / "trajectory_live.txt"), fileText(run_dir / "trajectory_live.txt"));
   EXPECT_TRUE(fs::exists(fs::path(options.output_dir) / "node_stats.json"));
   expectRunsFiles(run_dir, options.output_dir);
+  expectRunsReport(run_dir, options.output_dir);
 
   const std::vector<geometry_msgs::PoseStamped> published = listener.poses();
   ASSERT_EQ(published.size(), expected.trajectory.size());

@@ -148,6 +148,8 @@ struct FrameResult {
   cv::Mat dynamic_mask;
   int keypoints = 0;          // ORB keypoints extracted
   int keypoints_removed = 0;  // of those, inside the dynamic mask
+  // Wall ms of this frame's SLAM stages: ORB extraction, building the frame, tracking (stats.json's "stages").
+  double extract_ms = 0, build_ms = 0, track_ms = 0;
 };
 
 // One frame handed to trackFrames() (the arguments of track()).

@@ -216,6 +216,9 @@ struct Slam::Impl {
         out.dynamic_mask.empty() ? cv::Mat::zeros(out.frame.bgr.size(), CV_8U) : out.dynamic_mask.clone();
     r.keypoints = out.slam.keypoints + out.slam.removed_dynamic;  // the core counts the kept ones
     r.keypoints_removed = out.slam.removed_dynamic;
+    r.extract_ms = out.slam.extract_ms;
+    r.build_ms = out.slam.build_ms;
+    r.track_ms = out.slam.track_ms;
     if (dense) dense->push(out);
     keepRecord(out);
     return r;

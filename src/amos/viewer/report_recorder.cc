@@ -28,17 +28,24 @@ void ReportRecorder::onFrame(const run::FrameSnapshot& f) {
   r.frame_ms = f.frame_ms;
   r.keypoints = static_cast<int>(f.keypoints.size());
   r.removed = f.keypoints_removed;
-  frames_.push_back(std::move(r));
+  addFrame(std::move(r), f.bgr, f.dynamic_mask, f.keypoints);
+}
+
+void ReportRecorder::addFrame(ReportFrame frame, const cv::Mat& bgr, const cv::Mat& dynamic_mask,
+                              const std::vector<cv::Point2f>& keypoints) {
+  const std::size_t index = frame.index;
+  const double timestamp = frame.timestamp;
+  frames_.push_back(std::move(frame));
   bool picked = false;
   if (overlay_frames_.empty()) {
-    picked = f.index % 150 == 75 && overlays_.size() < 2 * overlay_count_;
-  } else if (next_overlay_ < overlay_frames_.size() && f.index >= overlay_frames_[next_overlay_]) {
+    picked = index % 150 == 75 && overlays_.size() < 2 * overlay_count_;
+  } else if (next_overlay_ < overlay_frames_.size() && index >= overlay_frames_[next_overlay_]) {
     picked = true;
-    while (next_overlay_ < overlay_frames_.size() && overlay_frames_[next_overlay_] <= f.index) ++next_overlay_;
+    while (next_overlay_ < overlay_frames_.size() && overlay_frames_[next_overlay_] <= index) ++next_overlay_;
   }
-  if (picked && !f.bgr.empty())
+  if (picked && !bgr.empty())
     overlays_.push_back(
-        {f.index, f.timestamp, encodeJpeg(renderFrameOverlay(f.bgr, f.dynamic_mask, f.keypoints, overlay_width_), 80)});
+        {index, timestamp, encodeJpeg(renderFrameOverlay(bgr, dynamic_mask, keypoints, overlay_width_), 80)});
 }
 
 void ReportRecorder::onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) {

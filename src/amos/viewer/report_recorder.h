@@ -35,6 +35,10 @@ class ReportRecorder : public run::RunObserver {
   void onStart(const run::RunStart& start) override;
   void onFrame(const run::FrameSnapshot& frame) override;
   void onEnd(const std::vector<io::StampedPose>& trajectory, const report::RunInfo& info) override;
+  // onFrame's work for a caller without run::FrameSnapshot (amos_slam_node, from amos::Slam's FrameResult): the
+  // frame's figures, and its colour image, dynamic mask and keypoints for the strip of overlays (may be empty).
+  void addFrame(ReportFrame frame, const cv::Mat& bgr, const cv::Mat& dynamic_mask,
+                const std::vector<cv::Point2f>& keypoints);
 
   const std::vector<ReportFrame>& frames() const { return frames_; }
   const std::vector<ReportOverlay>& overlays() const { return overlays_; }
