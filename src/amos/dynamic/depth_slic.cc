@@ -317,9 +317,10 @@ std::vector<LabelSum> sumLabels(const Planes& p, const cv::Mat& labels, std::siz
       const int start = x;
       double run_l = 0, run_z = 0;
       int run_a = 0, run_b = 0, run_nz = 0;
+      // Without a branch on the depth's validity: Z is 0 where it is not valid, so adding it there changes nothing.
       for (; x < p.width && lab[x] == k; ++x) {
         run_l += L[x], run_a += static_cast<int>(A[x]), run_b += static_cast<int>(B[x]);
-        if (V[x] > 0.f) run_z += Z[x], ++run_nz;
+        run_z += Z[x], run_nz += V[x] > 0.f;
       }
       if (k < 0) continue;
       const int n = x - start;
@@ -410,11 +411,17 @@ int enforceConnectivity(const Planes& p, cv::Mat& labels, int min_size, float in
       int& id = id_of_root[run_root(run.node)];
       if (id < 0) id = static_cast<int>(stats.size()), stats.emplace_back();
       Stats& st = stats[id];
+      std::fill(out + run.x0, out + run.x1, id);
+      // The sums in locals, added in the same order as into `st` directly (same result), so that they stay in
+      // registers instead of a store and a load per pixel. Z is 0 where not valid, so adding it there changes
+      // nothing.
+      double sl = st.L, sa = st.A, sb = st.B, sz = st.z;
+      int nz = st.nz;
       for (int x = run.x0; x < run.x1; ++x) {
-        out[x] = id;
-        st.L += Lp[x], st.A += Ap[x], st.B += Bp[x];
-        if (Vp[x] > 0.f) st.z += Zp[x], ++st.nz;
+        sl += Lp[x], sa += Ap[x], sb += Bp[x];
+        sz += Zp[x], nz += Vp[x] > 0.f;
       }
+      st.L = sl, st.A = sa, st.B = sb, st.z = sz, st.nz = nz;
       st.n += run.x1 - run.x0;
     }
   }
