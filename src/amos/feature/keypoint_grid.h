@@ -36,8 +36,7 @@ class KeypointGrid {
   cv::Rect2d bounds_;
   int cols_ = 0, rows_ = 0;
   double inv_cell_w_ = 0, inv_cell_h_ = 0;
-  std::vector<int> cell_start_;  // cell c holds entries [cell_start_[c], cell_start_[c + 1])
-  // Per entry, in cell order: the keypoint's index, position and octave.
+  std::vector<int> cell_start_;  // cell c holds indices_[cell_start_[c], cell_start_[c + 1])
   std::vector<int> indices_;
   std::vector<float> us_, vs_;
   std::vector<int> octaves_;
