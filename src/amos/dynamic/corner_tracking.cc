@@ -55,8 +55,9 @@ std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std
                               options.lk_epsilon);
   std::vector<cv::Point2f> forward;
   std::vector<uchar> ok_forward;
-  std::vector<float> error;
-  cv::calcOpticalFlowPyrLK(pyramids.last, pyramids.current, points, forward, ok_forward, error, window,
+  // No error output: nothing reads it, and without it OpenCV skips a pass over every window at full resolution
+  // (the tracks and their status do not depend on it).
+  cv::calcOpticalFlowPyrLK(pyramids.last, pyramids.current, points, forward, ok_forward, cv::noArray(), window,
                            options.lk_levels, stop);
   // Only the points that converged inside the image go back (LK treats every point on its own, so leaving the
   // others out changes nothing for these). The backward pass starts where the forward pass ended, without a hint
@@ -78,7 +79,7 @@ std::vector<PointTrack> trackPoints(const FramePairPyramids& pyramids, const std
   }
   std::vector<cv::Point2f> backward;
   std::vector<uchar> ok_backward;
-  cv::calcOpticalFlowPyrLK(pyramids.current, pyramids.last, returning, backward, ok_backward, error, window,
+  cv::calcOpticalFlowPyrLK(pyramids.current, pyramids.last, returning, backward, ok_backward, cv::noArray(), window,
                            options.lk_levels, stop);
   const float fb2 = static_cast<float>(options.forward_backward_px * options.forward_backward_px);
   for (std::size_t k = 0; k < candidates.size(); ++k) {

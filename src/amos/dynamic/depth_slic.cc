@@ -315,13 +315,25 @@ std::vector<LabelSum> sumLabels(const Planes& p, const cv::Mat& labels, std::siz
     for (int x = 0; x < p.width;) {
       const int k = lab[x];
       const int start = x;
-      double run_l = 0, run_z = 0;
-      int run_a = 0, run_b = 0, run_nz = 0;
-      for (; x < p.width && lab[x] == k; ++x) {
-        run_l += L[x], run_a += static_cast<int>(A[x]), run_b += static_cast<int>(B[x]);
-        if (V[x] > 0.f) run_z += Z[x], ++run_nz;
-      }
+      while (x < p.width && lab[x] == k) ++x;
       if (k < 0) continue;
+      // The run's pixels in two interleaved sums (exact, as said above, so the grouping does not matter): two
+      // chains of dependent additions instead of one. Z is 0 where it is not valid, so adding it there changes
+      // nothing, and no branch is needed.
+      double l0 = 0, l1 = 0, z0 = 0, z1 = 0;
+      int run_a = 0, run_b = 0, run_nz = 0;
+      int i = start;
+      for (; i + 1 < x; i += 2) {
+        l0 += L[i], l1 += L[i + 1], z0 += Z[i], z1 += Z[i + 1];
+        run_a += static_cast<int>(A[i]) + static_cast<int>(A[i + 1]);
+        run_b += static_cast<int>(B[i]) + static_cast<int>(B[i + 1]);
+        run_nz += (V[i] > 0.f) + (V[i + 1] > 0.f);
+      }
+      if (i < x) {
+        l0 += L[i], z0 += Z[i];
+        run_a += static_cast<int>(A[i]), run_b += static_cast<int>(B[i]), run_nz += V[i] > 0.f;
+      }
+      const double run_l = l0 + l1, run_z = z0 + z1;
       const int n = x - start;
       LabelSum& s = sums[k];
       // x's sum over [start, x) = n * (start + x - 1) / 2.
@@ -410,11 +422,17 @@ int enforceConnectivity(const Planes& p, cv::Mat& labels, int min_size, float in
       int& id = id_of_root[run_root(run.node)];
       if (id < 0) id = static_cast<int>(stats.size()), stats.emplace_back();
       Stats& st = stats[id];
+      std::fill(out + run.x0, out + run.x1, id);
+      // The sums in locals, added in the same order as into `st` directly (same result), so that they stay in
+      // registers instead of a store and a load per pixel. Z is 0 where not valid, so adding it there changes
+      // nothing.
+      double sl = st.L, sa = st.A, sb = st.B, sz = st.z;
+      int nz = st.nz;
       for (int x = run.x0; x < run.x1; ++x) {
-        out[x] = id;
-        st.L += Lp[x], st.A += Ap[x], st.B += Bp[x];
-        if (Vp[x] > 0.f) st.z += Zp[x], ++st.nz;
+        sl += Lp[x], sa += Ap[x], sb += Bp[x];
+        sz += Zp[x], nz += Vp[x] > 0.f;
       }
+      st.L = sl, st.A = sa, st.B = sb, st.z = sz, st.nz = nz;
       st.n += run.x1 - run.x0;
     }
   }

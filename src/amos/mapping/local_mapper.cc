@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <shared_mutex>
+#include <vector>
 
 #include "amos/core/error.h"
 #include "amos/core/option_error.h"
@@ -242,6 +244,19 @@ void LocalMapper::cullRecentPoints(const map::KeyFramePtr& kf) {
 void LocalMapper::cullKeyFrames(const map::KeyFramePtr& current) {
   const double close = current->sensor().closeDepth();
   const auto neighbours = current->orderedConnections();
+  // The observers' keyframes by id, each looked up in the map once per call instead of once per observation (an
+  // ordered-map search and a shared_ptr copy, tens of thousands per keyframe). A keyframe culled below has its
+  // observations erased from its points, so no later lookup asks for it.
+  std::vector<map::KeyFramePtr> observer_cache;
+  std::vector<char> observer_looked_up;
+  auto observer = [&](map::KeyFrameId other) -> const map::KeyFramePtr& {
+    if (other >= observer_cache.size()) {
+      const std::size_t size = std::max<std::size_t>(other + 1, map_->nextKeyFrameId());
+      observer_cache.resize(size), observer_looked_up.resize(size, 0);
+    }
+    if (!observer_looked_up[other]) observer_cache[other] = map_->keyFrame(other), observer_looked_up[other] = 1;
+    return observer_cache[other];
+  };
   for (const auto& [w, id] : neighbours) {
     if (id == map_->firstKeyFrameId()) continue;
     const map::KeyFramePtr kf = map_->keyFrame(id);
@@ -258,7 +273,7 @@ void LocalMapper::cullKeyFrames(const map::KeyFramePtr& current) {
       int observers = 0;
       for (const auto& [other, idx] : p->observations()) {
         if (other == id) continue;
-        const map::KeyFramePtr o = map_->keyFrame(other);
+        const map::KeyFramePtr& o = observer(other);
         if (!o) continue;
         if (o->features().keys[idx].octave <= level + 1 && ++observers >= options_.redundant_observers) break;
       }

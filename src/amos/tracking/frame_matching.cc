@@ -11,7 +11,7 @@ namespace amos::tracking {
 
 void addTemporaryPoints(map::Frame& last, int min_points, std::vector<map::MapPointPtr>& temporaries) {
   const map::FrameFeatures& f = *last.features;
-  const auto by_depth = keypointsByDepth(f);
+  const auto by_depth = keypointsByDepth(f, last.sensor->closeDepth(), min_points);
   int n = 0;
   for (const auto& [z, i] : by_depth) {
     const auto& p = last.map_points[i];
@@ -48,6 +48,7 @@ MotionModelMatch trackWithMotionModel(map::Frame& frame, const map::Frame& last,
   const double th = options.motion_search_radius;
   int best_n = -1;
   std::vector<map::MapPointPtr> best_matches;
+  bool best_is_last = false;
   core::SE3 best_pose = core::SE3::Identity();
   for (const PosePrediction& prediction : predictions) {
     frame.resetMatches();
@@ -57,15 +58,20 @@ MotionModelMatch trackWithMotionModel(map::Frame& frame, const map::Frame& last,
       frame.resetMatches();
       n = searchLastFrame(frame, last, 2 * th, options.matching);
     }
-    if (n > best_n) {
+    best_is_last = n > best_n;
+    if (best_is_last) {
       best_n = n;
-      best_matches = frame.map_points;
+      // Taken, not copied: the next prediction starts from resetMatches() anyway.
+      best_matches.swap(frame.map_points);
       best_pose = prediction.T_cw;
       result.used_external = prediction.external;
     }
   }
   spdlog::debug("frame {}: motion model {} matches", frame.id, best_n);
-  if (best_n < options.motion_min_matches) return result;
+  if (best_n < options.motion_min_matches) {
+    if (best_is_last) frame.map_points.swap(best_matches);  // the frame keeps the last prediction's matches
+    return result;
+  }
   frame.map_points = std::move(best_matches);
   frame.outlier.assign(frame.size(), false);
   frame.setPose(best_pose);

@@ -40,7 +40,7 @@ NewKeyFrame insertKeyFrame(map::Map& map, map::Frame& frame, const KeyFrameInser
     }
     map.addObservation(p, kf, i);
   }
-  const auto by_depth = keypointsByDepth(*frame.features);
+  const auto by_depth = keypointsByDepth(*frame.features, frame.sensor->closeDepth(), insertion.new_points_min);
   int n = 0;
   for (const auto& [z, i] : by_depth) {
     if (!frame.map_points[i]) {

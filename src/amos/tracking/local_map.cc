@@ -1,7 +1,6 @@
 #include "amos/tracking/local_map.h"
 
-#include <map>
-#include <unordered_set>
+#include <algorithm>
 
 #include <spdlog/spdlog.h>
 
@@ -19,19 +18,27 @@ map::KeyFramePtr LocalMap::update(map::Frame& frame, const map::Map& map, int ma
 void LocalMap::reset(const map::KeyFramePtr& kf) { keyframes_ = {kf}; }
 
 map::KeyFramePtr LocalMap::addObservingKeyFrames(map::Frame& frame, const map::Map& map) {
-  std::map<map::KeyFrameId, int> counts;
+  // Observations per keyframe id, in a dense array; the keyframes then in ascending id order (as a std::map of the
+  // counts would give them).
+  observed_ids_.clear();
   for (auto& p : frame.map_points) {
     if (!p) continue;
     if (p->isBad()) {
       p.reset();
       continue;
     }
-    for (const auto& [kf_id, index] : p->observations()) ++counts[kf_id];
+    for (const auto& [kf_id, index] : p->observations()) {
+      if (kf_id >= observation_counts_.size()) observation_counts_.resize(kf_id + 1, 0);
+      if (observation_counts_[kf_id]++ == 0) observed_ids_.push_back(kf_id);
+    }
   }
+  std::sort(observed_ids_.begin(), observed_ids_.end());
   keyframes_.clear();
   map::KeyFramePtr best;
   int best_count = 0;
-  for (const auto& [kf_id, c] : counts) {
+  for (const map::KeyFrameId kf_id : observed_ids_) {
+    const int c = observation_counts_[kf_id];
+    observation_counts_[kf_id] = 0;  // ready for the next frame
     map::KeyFramePtr kf = map.keyFrame(kf_id);
     if (!kf || kf->isBad()) continue;
     keyframes_.push_back(kf);
@@ -44,11 +51,12 @@ map::KeyFramePtr LocalMap::addObservingKeyFrames(map::Frame& frame, const map::M
 }
 
 void LocalMap::addNeighbours(const map::Map& map, int max_keyframes) {
-  std::unordered_set<map::KeyFrameId> included;
+  IdMarks& included = keyframe_marks_;
+  included.clear();
   for (const auto& kf : keyframes_) included.insert(kf->id());
   const std::size_t direct = keyframes_.size();
   auto add = [&](map::KeyFrameId id) {
-    if (included.count(id)) return false;
+    if (included.contains(id)) return false;
     map::KeyFramePtr kf = map.keyFrame(id);
     if (!kf || kf->isBad()) return false;
     keyframes_.push_back(kf);
@@ -70,16 +78,19 @@ void LocalMap::addNeighbours(const map::Map& map, int max_keyframes) {
 
 void LocalMap::collectPoints() {
   points_.clear();
-  std::unordered_set<const map::MapPoint*> seen;
+  IdMarks& seen = point_marks_;
+  seen.clear();
   for (const auto& kf : keyframes_) {
     for (const auto& p : kf->mapPoints()) {
-      if (p && !p->isBad() && seen.insert(p.get()).second) points_.push_back(p);
+      if (p && !p->isBad() && seen.insert(p->id())) points_.push_back(p);
     }
   }
 }
 
 int LocalMap::searchUnmatched(map::Frame& frame, double th, const match::MatchingOptions& matching) const {
-  std::unordered_set<const map::MapPoint*> in_frame;
+  // The frame's matched map points by id (its temporary points, which have none, are not local points anyway).
+  IdMarks& in_frame = frame_point_marks_;
+  in_frame.clear();
   for (auto& p : frame.map_points) {
     if (!p) continue;
     if (p->isBad()) {
@@ -87,13 +98,13 @@ int LocalMap::searchUnmatched(map::Frame& frame, double th, const match::Matchin
       continue;
     }
     p->increaseVisible();
-    in_frame.insert(p.get());
+    if (p->id() != map::kNoMapPoint) in_frame.insert(p->id());
   }
   const bool masked = !frame.dynamic_mask.empty();
   std::vector<ProjectedPoint> candidates;
   candidates.reserve(points_.size());
   for (const auto& p : points_) {
-    if (in_frame.count(p.get())) continue;
+    if (in_frame.contains(p->id())) continue;
     ProjectedPoint pp;
     if (!projectIntoFrame(frame, p, 0.5, pp)) continue;
     p->increaseVisible();

@@ -10,6 +10,7 @@
 #include "amos/map/map.h"
 #include "amos/map/map_point.h"
 #include "amos/match/matching_options.h"
+#include "amos/tracking/id_marks.h"
 #include "amos/tracking/matching.h"
 
 namespace amos::tracking {
@@ -40,6 +41,12 @@ class LocalMap {
 
   std::vector<map::KeyFramePtr> keyframes_;
   std::vector<map::MapPointPtr> points_;
+  // Per-frame scratch, kept so that no frame allocates it again: observation counts by keyframe id (zero between
+  // calls) and the ids counted, the keyframes and points taken, the frame's own matched points.
+  std::vector<int> observation_counts_;
+  std::vector<map::KeyFrameId> observed_ids_;
+  IdMarks keyframe_marks_, point_marks_;
+  mutable IdMarks frame_point_marks_;
 };
 
 }  // namespace amos::tracking
