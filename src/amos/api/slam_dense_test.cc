@@ -18,6 +18,7 @@
 #include "amos/slam.h"
 #include "amos/synth/sequence.h"
 #include "amos/testing/error_of.h"
+#include "amos/testing/file_text.h"
 #include "amos/testing/scratch_dir.h"
 
 #ifdef AMOS_HAVE_OPEN3D
@@ -36,12 +37,6 @@ std::string sequence() {
                                1, 30);
 }
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 Options denseOptions() {
   Options o;
@@ -62,7 +57,7 @@ void trackAll(Slam& slam, const std::string& dir) {
 
 // Whether two files hold the same bytes (the message gives their sizes, not their binary contents).
 ::testing::AssertionResult sameBytes(const fs::path& a, const fs::path& b) {
-  const std::string x = readFile(a), y = readFile(b);
+  const std::string x = testing::fileText(a), y = testing::fileText(b);
   if (!x.empty() && x == y) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << a << " (" << x.size() << " bytes) and " << b << " (" << y.size()
                                        << " bytes) differ";

@@ -20,6 +20,7 @@
 #include "amos/sequence_folder.h"
 #include "amos/slam.h"
 #include "amos/synth/sequence.h"
+#include "amos/testing/file_text.h"
 #include "amos/testing/scratch_dir.h"
 
 namespace amos {
@@ -29,12 +30,6 @@ namespace fs = std::filesystem;
 
 const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // The settings file's keys and values, without its comment lines (which say who wrote it).
 std::string withoutComments(const std::string& text) {
@@ -75,7 +70,7 @@ std::set<std::string> keys(const nlohmann::json& object) {
 // frames.tsv: run's header and frames; per frame the same index, time stamp, state, inliers and keyframe flag (the
 // rgb file names the frame as its caller did; frame_ms is wall time).
 void expectSameFrames(const fs::path& api, const fs::path& run) {
-  const auto api_rows = tsvRows(readFile(api)), run_rows = tsvRows(readFile(run));
+  const auto api_rows = tsvRows(testing::fileText(api)), run_rows = tsvRows(testing::fileText(run));
   ASSERT_EQ(api_rows.size(), run_rows.size());
   ASSERT_GT(api_rows.size(), 1u);
   EXPECT_EQ(api_rows[0], run_rows[0]);  // the header: the columns' names
@@ -126,12 +121,12 @@ TEST(SlamOutputs, WritesRunsFilesByteForByte) {
   const std::vector<std::string> names = Slam::outputNames();
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()), run_names);
   for (const char* name : {"trajectory.txt", "keyframes.txt", "map.ply", "trajectory_live.txt"}) {
-    const std::string expected = readFile(dir / "run" / name);
+    const std::string expected = testing::fileText(dir / "run" / name);
     EXPECT_FALSE(expected.empty()) << name;
-    EXPECT_EQ(readFile(dir / "api" / name), expected) << name;
+    EXPECT_EQ(testing::fileText(dir / "api" / name), expected) << name;
   }
-  const nlohmann::json stats = nlohmann::json::parse(readFile(dir / "api" / "stats.json"));
-  const nlohmann::json run_stats = nlohmann::json::parse(readFile(dir / "run" / "stats.json"));
+  const nlohmann::json stats = nlohmann::json::parse(testing::fileText(dir / "api" / "stats.json"));
+  const nlohmann::json run_stats = nlohmann::json::parse(testing::fileText(dir / "run" / "stats.json"));
   EXPECT_EQ(stats["frames"], run_stats["frames"]);
   EXPECT_EQ(stats["keyframes"], run_stats["keyframes"]);
   EXPECT_EQ(stats["mode"], "geometry");
@@ -154,11 +149,11 @@ TEST(SlamOutputs, WritesRunsFilesByteForByte) {
   EXPECT_EQ(stats["evaluation"], run_stats["evaluation"]);
   expectSameFrames(dir / "api" / "frames.tsv", dir / "run" / "frames.tsv");
   // run_manifest.json: what was written there, as run's manifest lists it.
-  const nlohmann::json manifest = nlohmann::json::parse(readFile(dir / "api" / report::kManifestFile));
-  const nlohmann::json run_manifest = nlohmann::json::parse(readFile(dir / "run" / report::kManifestFile));
+  const nlohmann::json manifest = nlohmann::json::parse(testing::fileText(dir / "api" / report::kManifestFile));
+  const nlohmann::json run_manifest = nlohmann::json::parse(testing::fileText(dir / "run" / report::kManifestFile));
   EXPECT_EQ(manifest["outputs"], run_manifest["outputs"]);
   // settings_used.yaml: the run's effective settings (its comment lines aside), readable as settings again.
-  const std::string used = readFile(dir / "api" / "settings_used.yaml");
+  const std::string used = testing::fileText(dir / "api" / "settings_used.yaml");
   EXPECT_EQ(withoutComments(used),
             withoutComments(config::settingsFileText(run::effectiveSettings(settings, options), {})));
   EXPECT_NO_THROW(run::loadSettings((dir / "api" / "settings_used.yaml").string()));

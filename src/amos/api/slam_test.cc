@@ -16,6 +16,7 @@
 #include "amos/run/sequence_run.h"
 #include "amos/sequence_folder.h"
 #include "amos/synth/sequence.h"
+#include "amos/testing/file_text.h"
 #include "amos/testing/scratch_dir.h"
 
 namespace amos {
@@ -25,12 +26,6 @@ namespace fs = std::filesystem;
 
 const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::string sequence(const std::string& preset, int frames) {
   return synth::cachedSequence((fs::path(AMOS_BINARY_DIR) / "test_outputs" / "api_sequences").string(), preset, 1,
@@ -79,8 +74,8 @@ TEST(SlamApi, TrajectoryIsTheRunsByteForByte) {
   slam.writeTrajectory((dir / "api.txt").string());
   EXPECT_EQ(ok, 30u);
   EXPECT_EQ(slam.trajectory().size(), 30u);
-  EXPECT_GT(readFile(dir / "run.txt").size(), 1000u);
-  EXPECT_EQ(readFile(dir / "api.txt"), readFile(dir / "run.txt"));
+  EXPECT_GT(testing::fileText(dir / "run.txt").size(), 1000u);
+  EXPECT_EQ(testing::fileText(dir / "api.txt"), testing::fileText(dir / "run.txt"));
 }
 
 // T_wc maps camera points into the world: the last pose is near the ground truth's relative motion, and its
