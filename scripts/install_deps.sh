@@ -13,6 +13,7 @@ core=(build-essential cmake ninja-build pkg-config ccache
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev)
 optional=(
   python3 libgtest-dev libgmock-dev universal-ctags   # the tests (cmake/test_labels.py), scripts/code_metrics.py
+  curl                                                # scripts/fetch_data.sh downloads with it (and its test)
   libbenchmark-dev                                    # -DAMOS_BUILD_BENCH=ON
   libopenni2-dev                                      # the live camera module
   libcpp-httplib-dev libjs-three chromium             # the web viewer and report.html; chromium for its tests
