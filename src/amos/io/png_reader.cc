@@ -19,9 +19,7 @@
 #include "amos/io/image_decoders.h"
 #include "amos/io/image_read_flags.h"
 
-#if AMOS_WITH_LIBDEFLATE
-#include <libdeflate.h>
-#endif
+#include "amos/io/libdeflate_threads.h"
 #if defined(__SANITIZE_ADDRESS__)
 #include <sanitizer/asan_interface.h>
 #endif
@@ -349,14 +347,6 @@ int outputType(const PngLayout& layout, Mode mode) {
   if (mode == Mode::colour) return CV_8UC3;
   const int channels = layout.channels == 2 ? 4 : layout.channels;
   return CV_MAKETYPE(layout.bit_depth == 16 ? CV_16U : CV_8U, channels);
-}
-
-libdeflate_decompressor* threadDecompressor() {
-  struct Free {
-    void operator()(libdeflate_decompressor* d) const { libdeflate_free_decompressor(d); }
-  };
-  thread_local const std::unique_ptr<libdeflate_decompressor, Free> decompressor(libdeflate_alloc_decompressor());
-  return decompressor.get();
 }
 
 // Inflates the IDAT stream into exactly `expected` bytes (in the thread's scratch memory).
