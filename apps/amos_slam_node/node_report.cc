@@ -1,21 +1,18 @@
 #include "node_report.h"
 
 #include <chrono>
-#include <fstream>
-#include <sstream>
 
 #include "amos/core/error.h"
 #include "amos/viewer/report_html.h"
+#include "amos/viewer/whole_file.h"
 
 namespace amos::node {
 namespace {
 
 std::string fileText(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  core::require(in.good(), "report.html: cannot read " + path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::string text = viewer::readWholeFile(path);
+  core::require(!text.empty(), "report.html: cannot read " + path.string());
+  return text;
 }
 
 }  // namespace
