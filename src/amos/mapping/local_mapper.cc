@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <optional>
 #include <shared_mutex>
 #include <vector>
 
@@ -247,15 +248,13 @@ void LocalMapper::cullKeyFrames(const map::KeyFramePtr& current) {
   // The observers' keyframes by id, each looked up in the map once per call instead of once per observation (an
   // ordered-map search and a shared_ptr copy, tens of thousands per keyframe). A keyframe culled below has its
   // observations erased from its points, so no later lookup asks for it.
-  std::vector<map::KeyFramePtr> observer_cache;
-  std::vector<char> observer_looked_up;
+  std::vector<std::optional<map::KeyFramePtr>> observers_by_id;  // nullopt: not looked up yet
   auto observer = [&](map::KeyFrameId other) -> const map::KeyFramePtr& {
-    if (other >= observer_cache.size()) {
-      const std::size_t size = std::max<std::size_t>(other + 1, map_->nextKeyFrameId());
-      observer_cache.resize(size), observer_looked_up.resize(size, 0);
-    }
-    if (!observer_looked_up[other]) observer_cache[other] = map_->keyFrame(other), observer_looked_up[other] = 1;
-    return observer_cache[other];
+    if (other >= observers_by_id.size())
+      observers_by_id.resize(std::max<std::size_t>(other + 1, map_->nextKeyFrameId()));
+    std::optional<map::KeyFramePtr>& kf = observers_by_id[other];
+    if (!kf) kf = map_->keyFrame(other);
+    return *kf;
   };
   for (const auto& [w, id] : neighbours) {
     if (id == map_->firstKeyFrameId()) continue;
