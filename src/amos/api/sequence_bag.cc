@@ -33,9 +33,9 @@ BagSequence openBagSequence(const std::string& bag, const SequenceOptions& optio
     };
   };
   if (!options.groundtruth_topic.empty()) {
-    out.ground_truth = rosbag::readGroundTruthTopic(
-        bag, {options.groundtruth_topic, options.groundtruth_parent_frame, options.groundtruth_child_frame});
-    out.index.groundtruth_file.clear();  // the topic asked for wins over a groundtruth.txt beside the bag
+    out.ground_truth = rosbag::takeGroundTruthTopic(
+        bag, {options.groundtruth_topic, options.groundtruth_parent_frame, options.groundtruth_child_frame},
+        out.index);
   }
   return out;
 }

@@ -104,4 +104,11 @@ std::vector<io::StampedPose> readGroundTruthTopic(const std::string& bag, const 
   return poses;
 }
 
+std::vector<io::StampedPose> takeGroundTruthTopic(const std::string& bag, const GroundTruthTopic& source,
+                                                  io::SequenceIndex& sequence) {
+  std::vector<io::StampedPose> poses = readGroundTruthTopic(bag, source);
+  sequence.groundtruth_file.clear();
+  return poses;
+}
+
 }  // namespace amos::rosbag

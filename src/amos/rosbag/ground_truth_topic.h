@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "amos/io/dataset.h"
 #include "amos/io/trajectory.h"
 
 namespace amos::rosbag {
@@ -22,5 +23,10 @@ struct GroundTruthTopic {
 // the topic holds another message type, or it has no pose (for /tf: none from parent_frame to child_frame, with
 // the frame pairs it has).
 std::vector<io::StampedPose> readGroundTruthTopic(const std::string& bag, const GroundTruthTopic& source);
+
+// readGroundTruthTopic for the indexed bag `sequence` (run --sequence X.bag and amos::SequenceFolder): the topic
+// asked for wins over a groundtruth.txt beside the bag, so the index forgets that file.
+std::vector<io::StampedPose> takeGroundTruthTopic(const std::string& bag, const GroundTruthTopic& source,
+                                                  io::SequenceIndex& sequence);
 
 }  // namespace amos::rosbag

@@ -54,10 +54,10 @@ BagInput indexBagInput(const SequenceRunOptions& options, const config::Settings
   rosbag::selectFrames(index, options.first_frame, options.max_frames);
   BagInput input;
   if (!options.groundtruth_topic.empty()) {
-    input.ground_truth = rosbag::readGroundTruthTopic(
-        index.bag, {options.groundtruth_topic, options.groundtruth_parent_frame, options.groundtruth_child_frame});
+    input.ground_truth = rosbag::takeGroundTruthTopic(
+        index.bag, {options.groundtruth_topic, options.groundtruth_parent_frame, options.groundtruth_child_frame},
+        index.sequence);
     input.ground_truth_source = fmt::format("bag '{}', topic '{}'", index.bag, options.groundtruth_topic);
-    index.sequence.groundtruth_file.clear();  // the topic asked for wins over a groundtruth.txt beside the bag
   }
   input.index = index.sequence;
   auto shared = std::make_shared<rosbag::BagIndex>(std::move(index));
