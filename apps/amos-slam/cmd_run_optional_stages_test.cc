@@ -27,7 +27,7 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kFusionStarted = "final fusion started";
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool stagesContains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 // tum3.yaml with a fine dense map (1 cm voxels at full resolution): a final fusion of a second or more, long
 // enough to be interrupted, and a mesh and cloud of about 20 MB each, far above the full disk's limit. (5 mm
@@ -58,14 +58,14 @@ nlohmann::json stats(const fs::path& out) { return nlohmann::json::parse(readFil
 
 void expectNoPartialFiles(const fs::path& dir) {
   for (const auto& e : fs::recursive_directory_iterator(dir))
-    EXPECT_FALSE(contains(e.path().filename().string(), "partial")) << e.path();
+    EXPECT_FALSE(stagesContains(e.path().filename().string(), "partial")) << e.path();
 }
 
 TEST(RunOptionalStages, SigkillDuringTheFinalFusionLeavesTheMainOutputs) {
   const fs::path out = testOutputDir("optional_stages", "sigkill");
   bool killed = false;
   const Finished f = runChild(denseRun(out), out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
-    if (!killed && contains(line, kFusionStarted)) killed = kill(pid, SIGKILL) == 0;
+    if (!killed && stagesContains(line, kFusionStarted)) killed = kill(pid, SIGKILL) == 0;
   });
   ASSERT_TRUE(killed) << f.err;
   ASSERT_TRUE(WIFSIGNALED(f.status));
@@ -81,7 +81,7 @@ TEST(RunOptionalStages, AFloorPlanThatCannotBeWrittenIsAWarningUnlessAskedToFail
                                                                : std::vector<std::string>{}),
                                 out.string() + ".stdout", [&](const std::string& line, pid_t) {
                                   // In the way of the floor plan's image, once the folder is the run's.
-                                  if (contains(line, kFusionStarted)) fs::create_directories(out / "occupancy.pgm");
+                                  if (stagesContains(line, kFusionStarted)) fs::create_directories(out / "occupancy.pgm");
                                 });
     ASSERT_TRUE(WIFEXITED(f.status)) << f.err;
     EXPECT_EQ(WEXITSTATUS(f.status), fail_on_optional ? 1 : 0) << f.err;
@@ -91,9 +91,9 @@ TEST(RunOptionalStages, AFloorPlanThatCannotBeWrittenIsAWarningUnlessAskedToFail
     const nlohmann::json s = stats(out);
     EXPECT_EQ(s["end"]["status"], "complete");
     EXPECT_EQ(s["optional_stages"]["dense"]["status"], "failed") << s["optional_stages"];
-    EXPECT_TRUE(contains(s["optional_stages"]["dense"]["reason"].get<std::string>(), "occupancy"));
+    EXPECT_TRUE(stagesContains(s["optional_stages"]["dense"]["reason"].get<std::string>(), "occupancy"));
     EXPECT_EQ(s["dense"]["files"]["mesh.ply"], "written");
-    EXPECT_TRUE(contains(f.out, "optional stage dense: failed")) << f.out;
+    EXPECT_TRUE(stagesContains(f.out, "optional stage dense: failed")) << f.out;
   }
 }
 
@@ -131,23 +131,23 @@ TEST(RunOptionalStages, AFullDiskLeavesNoTruncatedFileUnderAFinalName) {
   expectNoPartialFiles(out);
   const nlohmann::json s = stats(out);
   EXPECT_EQ(s["optional_stages"]["dense"]["status"], "failed");
-  EXPECT_TRUE(contains(s["optional_stages"]["dense"]["reason"].get<std::string>(), "mesh.ply"));
+  EXPECT_TRUE(stagesContains(s["optional_stages"]["dense"]["reason"].get<std::string>(), "mesh.ply"));
 }
 
 TEST(RunOptionalStages, ASignalDuringTheFinalFusionIsAnsweredAtOnceAndStopsIt) {
   const fs::path out = testOutputDir("optional_stages", "sigint");
   Clock::time_point sent{}, answered{};
   const Finished f = runChild(denseRun(out), out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
-    if (sent == Clock::time_point{} && contains(line, kFusionStarted)) {
+    if (sent == Clock::time_point{} && stagesContains(line, kFusionStarted)) {
       sent = Clock::now();
       kill(pid, SIGINT);
     }
-    if (answered == Clock::time_point{} && contains(line, "interrupted during dense fusion")) answered = Clock::now();
+    if (answered == Clock::time_point{} && stagesContains(line, "interrupted during dense fusion")) answered = Clock::now();
   });
   ASSERT_NE(sent, Clock::time_point{}) << f.err;
   ASSERT_NE(answered, Clock::time_point{}) << f.err;
   EXPECT_LT(std::chrono::duration<double>(answered - sent).count(), 1.0);
-  EXPECT_TRUE(contains(f.err, "trajectory.txt, keyframes.txt, map.ply, stats.json")) << f.err;
+  EXPECT_TRUE(stagesContains(f.err, "trajectory.txt, keyframes.txt, map.ply, stats.json")) << f.err;
   ASSERT_TRUE(WIFEXITED(f.status)) << f.err;
   EXPECT_EQ(WEXITSTATUS(f.status), 130);
   expectMainOutputs(out);

@@ -34,7 +34,7 @@ std::string sequence() { return syntheticSequence("static_xyz", kFrames); }
 
 fs::path outputDir(const std::string& name) { return testOutputDir("run", name); }
 
-std::vector<std::string> runArgs(const fs::path& output) { return app::runArgs(sequence(), "none", output); }
+std::vector<std::string> noneRunArgs(const fs::path& output) { return app::runArgs(sequence(), "none", output); }
 
 // Lines of a trajectory file that hold a pose.
 std::size_t poses(const fs::path& trajectory) {
@@ -44,11 +44,11 @@ std::size_t poses(const fs::path& trajectory) {
   return n;
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool runContains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-void expectNoPartialFiles(const fs::path& dir) {
+void runExpectNoPartialFiles(const fs::path& dir) {
   for (const auto& e : fs::recursive_directory_iterator(dir))
-    EXPECT_FALSE(contains(e.path().filename().string(), ".partial")) << e.path();
+    EXPECT_FALSE(runContains(e.path().filename().string(), ".partial")) << e.path();
 }
 
 // SIGINT / SIGTERM after the 5th frame: the run ends at the next frame boundary and writes every output for the
@@ -56,8 +56,8 @@ void expectNoPartialFiles(const fs::path& dir) {
 void expectStoppedBy(int signal_number, const std::string& name) {
   const fs::path out = outputDir("stopped_by_" + name);
   bool sent = false;
-  const Finished f = runChild(runArgs(out), out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
-    if (!sent && contains(line, "frame 5/")) {
+  const Finished f = runChild(noneRunArgs(out), out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
+    if (!sent && runContains(line, "frame 5/")) {
       kill(pid, signal_number);
       sent = true;
     }
@@ -73,10 +73,10 @@ void expectStoppedBy(int signal_number, const std::string& name) {
   EXPECT_EQ(stats["end"]["status"], "interrupted");
   EXPECT_EQ(stats["end"]["reason"], name);
   EXPECT_EQ(stats["frames"], n);
-  EXPECT_TRUE(contains(f.err, "run interrupted by " + name)) << f.err;
-  EXPECT_TRUE(contains(f.out, "frames " + std::to_string(n) + " ")) << f.out;
-  EXPECT_TRUE(contains(f.out, "run interrupted after")) << f.out;
-  expectNoPartialFiles(out);
+  EXPECT_TRUE(runContains(f.err, "run interrupted by " + name)) << f.err;
+  EXPECT_TRUE(runContains(f.out, "frames " + std::to_string(n) + " ")) << f.out;
+  EXPECT_TRUE(runContains(f.out, "run interrupted after")) << f.out;
+  runExpectNoPartialFiles(out);
 }
 
 TEST(RunCommand, SigintEndsTheRunWithItsOutputsAndStatus130) { expectStoppedBy(SIGINT, "SIGINT"); }
@@ -107,13 +107,13 @@ fs::path sequenceWithAGap(const std::string& name, double gap_s) {
 // out the gap: 11.5 minutes on a Bonn sequence). The run ends with its outputs and status 130.
 TEST(RunCommand, SigintEndsARealtimeRunWaitingOutAGapAtOnce) {
   const fs::path out = outputDir("gap_sigint");
-  std::vector<std::string> args = runArgs(out);
+  std::vector<std::string> args = noneRunArgs(out);
   args[2] = sequenceWithAGap("gap_sigint_sequence", 600.0).string();
   args.push_back("--realtime");
   bool sent = false;
   std::chrono::steady_clock::time_point sent_at;
   const Finished f = runChild(args, out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
-    if (!sent && contains(line, "frame 5/6")) {
+    if (!sent && runContains(line, "frame 5/6")) {
       std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the loop waits for the 6th frame by then
       kill(pid, SIGINT);
       sent_at = std::chrono::steady_clock::now();
@@ -129,7 +129,7 @@ TEST(RunCommand, SigintEndsARealtimeRunWaitingOutAGapAtOnce) {
   EXPECT_GE(tracked, 1u);
   EXPECT_LE(tracked, 5u);
   EXPECT_EQ(poses(out / "trajectory_live.txt"), tracked);
-  expectNoPartialFiles(out);
+  runExpectNoPartialFiles(out);
 }
 
 // A second signal ends the program at once (the default action), with one line on stderr saying that what is on
@@ -138,8 +138,8 @@ TEST(RunCommand, ASecondSignalEndsItAtOnceAndSaysTheFilesStayValid) {
   const fs::path out = outputDir("second_signal");
   bool sent = false;
   const auto start = std::chrono::steady_clock::now();
-  const Finished f = runChild(runArgs(out), out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
-    if (!sent && contains(line, "frame 5/")) {
+  const Finished f = runChild(noneRunArgs(out), out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
+    if (!sent && runContains(line, "frame 5/")) {
       kill(pid, SIGINT);
       kill(pid, SIGTERM);
       sent = true;
@@ -149,7 +149,7 @@ TEST(RunCommand, ASecondSignalEndsItAtOnceAndSaysTheFilesStayValid) {
   ASSERT_TRUE(WIFSIGNALED(f.status)) << f.err;
   EXPECT_TRUE(WTERMSIG(f.status) == SIGTERM || WTERMSIG(f.status) == SIGINT) << WTERMSIG(f.status);
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
-  EXPECT_TRUE(contains(f.err, "second signal, ending at once; what is on disk in " + out.string() + " stays valid"))
+  EXPECT_TRUE(runContains(f.err, "second signal, ending at once; what is on disk in " + out.string() + " stays valid"))
       << f.err;
   EXPECT_GE(poses(out / "trajectory_live.txt"), 5u);
   const std::string live = readFile(out / "trajectory_live.txt");
@@ -160,15 +160,15 @@ TEST(RunCommand, ASecondSignalEndsItAtOnceAndSaysTheFilesStayValid) {
 // the summary only.
 TEST(RunCommand, ProgressAndWarningsOnStderrSummaryOnStdout) {
   const fs::path out = outputDir("streams");
-  std::vector<std::string> args = runArgs(out);
+  std::vector<std::string> args = noneRunArgs(out);
   args.back() = "10";  // --progress-every 10
   const Finished f = runChild(args, out.string() + ".stdout");
   ASSERT_TRUE(WIFEXITED(f.status));
   EXPECT_EQ(WEXITSTATUS(f.status), 0) << f.err;
-  EXPECT_FALSE(contains(f.err, "\r"));
-  EXPECT_TRUE(contains(f.err, "frame 10/40")) << f.err;
-  EXPECT_TRUE(contains(f.err, "frame 40/40")) << f.err;
-  EXPECT_FALSE(contains(f.err, "frame 11/40")) << f.err;
+  EXPECT_FALSE(runContains(f.err, "\r"));
+  EXPECT_TRUE(runContains(f.err, "frame 10/40")) << f.err;
+  EXPECT_TRUE(runContains(f.err, "frame 40/40")) << f.err;
+  EXPECT_FALSE(runContains(f.err, "frame 11/40")) << f.err;
   std::istringstream lines(f.out);
   std::vector<std::string> out_lines;
   for (std::string line; std::getline(lines, line);) out_lines.push_back(line);
@@ -176,14 +176,14 @@ TEST(RunCommand, ProgressAndWarningsOnStderrSummaryOnStdout) {
   EXPECT_EQ(out_lines.front().rfind("frames 40  tracked 40", 0), 0u) << f.out;
   EXPECT_EQ(out_lines.back(), "outputs written to " + out.string());
   for (const std::string& line : out_lines) {
-    EXPECT_FALSE(contains(line, "[info]") || contains(line, "[warning]") || contains(line, "frame ")) << line;
+    EXPECT_FALSE(runContains(line, "[info]") || runContains(line, "[warning]") || runContains(line, "frame ")) << line;
   }
 }
 
 // SIGPIPE never kills a run: with nobody reading stdout the run still ends normally and writes its outputs.
 TEST(RunCommand, AClosedStdoutDoesNotKillTheRun) {
   const fs::path out = outputDir("closed_stdout");
-  const Finished f = runChild(runArgs(out), fs::path());
+  const Finished f = runChild(noneRunArgs(out), fs::path());
   ASSERT_TRUE(WIFEXITED(f.status)) << "killed by signal " << WTERMSIG(f.status);
   EXPECT_EQ(WEXITSTATUS(f.status), 0) << f.err;
   EXPECT_EQ(poses(out / "trajectory.txt"), static_cast<std::size_t>(kFrames));
@@ -199,13 +199,13 @@ TEST(RunCommand, NegativeOrOutOfRangeNumbersAreRefusedByTheParser) {
        {std::tuple<std::string, std::string, std::string>{"--first-frame", "-1", "must be a whole number, 0 or more"},
         {"--max-frames", "-5", "must be a whole number, 0 or more"},
         {"--viewer-port", "70000", "must be a port, 0 (any free one) to 65535"}}) {
-    std::vector<std::string> args = runArgs(out / "run");
+    std::vector<std::string> args = noneRunArgs(out / "run");
     args.push_back(flag);
     args.push_back(value);
     const Finished f = runChild(args, out / "stdout");
     ASSERT_TRUE(WIFEXITED(f.status));
     EXPECT_NE(WEXITSTATUS(f.status), 0) << flag;
-    EXPECT_TRUE(contains(f.err, flag + ": " + message)) << f.err;
+    EXPECT_TRUE(runContains(f.err, flag + ": " + message)) << f.err;
     EXPECT_FALSE(fs::exists(out / "run" / "trajectory.txt")) << flag;
   }
 }
@@ -214,12 +214,12 @@ TEST(RunCommand, NegativeOrOutOfRangeNumbersAreRefusedByTheParser) {
 // the run.
 TEST(RunCommand, AGroundTruthTopicOnAFolderIsRefused) {
   const fs::path out = outputDir("groundtruth_topic");
-  std::vector<std::string> args = runArgs(out / "run");
+  std::vector<std::string> args = noneRunArgs(out / "run");
   args.insert(args.end(), {"--groundtruth-topic", "/tf"});
   const Finished f = runChild(args, out / "stdout");
   ASSERT_TRUE(WIFEXITED(f.status));
   EXPECT_NE(WEXITSTATUS(f.status), 0);
-  EXPECT_TRUE(contains(f.err, "run --groundtruth-topic /tf: only for --sequence X.bag")) << f.err;
+  EXPECT_TRUE(runContains(f.err, "run --groundtruth-topic /tf: only for --sequence X.bag")) << f.err;
   EXPECT_FALSE(fs::exists(out / "run" / "trajectory.txt"));
 }
 
@@ -227,29 +227,29 @@ TEST(RunCommand, BadOutputIsRefusedBeforeTheRun) {
   const fs::path root = outputDir("bad_output");
   fs::create_directories(root);
   std::ofstream(root / "file") << "x";
-  Finished f = runChild(runArgs(root / "file" / "run"), root / "stdout");
+  Finished f = runChild(noneRunArgs(root / "file" / "run"), root / "stdout");
   ASSERT_TRUE(WIFEXITED(f.status));
   EXPECT_EQ(WEXITSTATUS(f.status), 1);
-  EXPECT_TRUE(contains(f.err, "'" + (root / "file").string() + "' is a file")) << f.err;
+  EXPECT_TRUE(runContains(f.err, "'" + (root / "file").string() + "' is a file")) << f.err;
   EXPECT_TRUE(f.out.empty()) << f.out;
 
   // Files no run manifest lists are never replaced, with --overwrite neither.
   fs::create_directories(root / "foreign");
   std::ofstream(root / "foreign" / "stats.json") << "{}";
   for (const bool overwrite : {false, true}) {
-    std::vector<std::string> args = runArgs(root / "foreign");
+    std::vector<std::string> args = noneRunArgs(root / "foreign");
     if (overwrite) args.push_back("--overwrite");
     f = runChild(args, root / "stdout");
     EXPECT_EQ(WEXITSTATUS(f.status), 1);
-    EXPECT_TRUE(contains(f.err, overwrite ? "has no run manifest (run_manifest.json)"
+    EXPECT_TRUE(runContains(f.err, overwrite ? "has no run manifest (run_manifest.json)"
                                           : "holds stats.json, which no run manifest (run_manifest.json) lists"))
         << f.err;
-    EXPECT_TRUE(contains(f.err, "away")) << f.err;  // says what to do: move them away
+    EXPECT_TRUE(runContains(f.err, "away")) << f.err;  // says what to do: move them away
     EXPECT_EQ(readFile(root / "foreign" / "stats.json"), "{}");
   }
 
   // An earlier run (its manifest) is refused without --overwrite, replaced with it; other files stay.
-  std::vector<std::string> args = runArgs(root / "earlier");
+  std::vector<std::string> args = noneRunArgs(root / "earlier");
   args.push_back("--max-frames");
   args.push_back("3");
   f = runChild(args, root / "stdout");
@@ -257,7 +257,7 @@ TEST(RunCommand, BadOutputIsRefusedBeforeTheRun) {
   std::ofstream(root / "earlier" / "notes.txt") << "mine";
   f = runChild(args, root / "stdout");
   EXPECT_EQ(WEXITSTATUS(f.status), 1);
-  EXPECT_TRUE(contains(f.err, "holds an earlier run (trajectory_live.txt, frames.tsv, trajectory.txt")) << f.err;
+  EXPECT_TRUE(runContains(f.err, "holds an earlier run (trajectory_live.txt, frames.tsv, trajectory.txt")) << f.err;
   args.back() = "4";
   args.push_back("--overwrite");
   f = runChild(args, root / "stdout");
@@ -289,8 +289,8 @@ TEST(RunCommand, OutputsInsideTheInputAreRefused) {
     const Finished f = runChild(args, root / "stdout");
     ASSERT_TRUE(WIFEXITED(f.status));
     EXPECT_EQ(WEXITSTATUS(f.status), 1) << extra[1];
-    EXPECT_TRUE(contains(f.err, message)) << f.err;
-    EXPECT_TRUE(contains(f.err, "a run never writes into its input")) << f.err;
+    EXPECT_TRUE(runContains(f.err, message)) << f.err;
+    EXPECT_TRUE(runContains(f.err, "a run never writes into its input")) << f.err;
   }
   std::size_t after = 0;
   for (auto it = fs::recursive_directory_iterator(input); it != fs::recursive_directory_iterator(); ++it) ++after;
@@ -301,36 +301,36 @@ TEST(RunCommand, OutputsInsideTheInputAreRefused) {
 // the whole run went and then the map was lost).
 TEST(RunCommand, ABadSaveMapPathIsRefusedBeforeTheRun) {
   const fs::path out = outputDir("bad_save_map");
-  std::vector<std::string> args = runArgs(out);
+  std::vector<std::string> args = noneRunArgs(out);
   args.push_back("--save-map");
   args.push_back((out.parent_path() / "no_such_folder" / "map.bin").string());
   const Finished f = runChild(args, out.string() + ".stdout");
   ASSERT_TRUE(WIFEXITED(f.status));
   EXPECT_EQ(WEXITSTATUS(f.status), 1);
-  EXPECT_TRUE(contains(f.err, "does not exist")) << f.err;
-  EXPECT_FALSE(contains(f.err, "frame 1/")) << f.err;
+  EXPECT_TRUE(runContains(f.err, "does not exist")) << f.err;
+  EXPECT_FALSE(runContains(f.err, "frame 1/")) << f.err;
   EXPECT_FALSE(fs::exists(out / "trajectory.txt"));
 }
 
 // One run per output folder: a second run on a folder in use is refused at once, naming the first one's PID.
 TEST(RunCommand, ASecondRunOnTheSameOutputIsRefusedNamingThePid) {
   const fs::path out = outputDir("busy");
-  std::vector<std::string> first = runArgs(out);
+  std::vector<std::string> first = noneRunArgs(out);
   first[2] = sequenceWithAGap("busy_sequence", 600.0).string();
   first.push_back("--realtime");
   Finished second;
   pid_t first_pid = 0;
   const Finished f = runChild(first, out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
-    if (first_pid == 0 && contains(line, "frame 5/6")) {  // waiting ten minutes for the 6th frame
+    if (first_pid == 0 && runContains(line, "frame 5/6")) {  // waiting ten minutes for the 6th frame
       first_pid = pid;
-      second = runChild(runArgs(out), out.string() + ".second");
+      second = runChild(noneRunArgs(out), out.string() + ".second");
       kill(pid, SIGINT);
     }
   });
   ASSERT_NE(first_pid, 0) << f.err;
   ASSERT_TRUE(WIFEXITED(second.status));
   EXPECT_EQ(WEXITSTATUS(second.status), 1);
-  EXPECT_TRUE(contains(second.err, "is in use by another run (PID " + std::to_string(first_pid) + ",")) << second.err;
+  EXPECT_TRUE(runContains(second.err, "is in use by another run (PID " + std::to_string(first_pid) + ",")) << second.err;
   EXPECT_EQ(WEXITSTATUS(f.status), 130) << f.err;
   // The first run's outputs, untouched by the second (--realtime may drop a frame on a loaded machine).
   EXPECT_GE(poses(out / "trajectory.txt"), 1u);
@@ -347,7 +347,7 @@ TEST(RunCommand, ABadGroundTruthIsAWarningAndTheRunGoesOn) {
   fs::copy(sequence(), input, fs::copy_options::recursive);
   const std::string gt = readFile(input / "groundtruth.txt");
   std::ofstream(input / "groundtruth.txt") << gt.substr(0, gt.size() - 20);  // the last line cut short
-  std::vector<std::string> args = runArgs(root / "out");
+  std::vector<std::string> args = noneRunArgs(root / "out");
   args[2] = input.string();
   const Finished f = runChild(args, root / "stdout");
   ASSERT_TRUE(WIFEXITED(f.status));
@@ -355,7 +355,7 @@ TEST(RunCommand, ABadGroundTruthIsAWarningAndTheRunGoesOn) {
   const std::size_t warning = f.err.find((input / "groundtruth.txt").string() + ":");
   ASSERT_NE(warning, std::string::npos) << f.err;
   EXPECT_LT(warning, f.err.find("frame 1/")) << f.err;
-  EXPECT_TRUE(contains(f.err, "the run goes on without evaluation")) << f.err;
+  EXPECT_TRUE(runContains(f.err, "the run goes on without evaluation")) << f.err;
   EXPECT_EQ(poses(root / "out" / "trajectory.txt"), static_cast<std::size_t>(kFrames));
   for (const char* file : {"keyframes.txt", "map.ply", "stats.json", "settings_used.yaml"})
     EXPECT_TRUE(fs::exists(root / "out" / file)) << file;
@@ -369,12 +369,12 @@ TEST(RunCommand, ARunWithEveryFrameSkippedFails) {
   fs::create_directories(root);
   fs::copy(sequence(), input, fs::copy_options::recursive);
   for (const auto& e : fs::directory_iterator(input / "rgb")) fs::resize_file(e.path(), 100);
-  std::vector<std::string> args = runArgs(root / "out");
+  std::vector<std::string> args = noneRunArgs(root / "out");
   args[2] = input.string();
   const Finished f = runChild(args, root / "stdout");
   ASSERT_TRUE(WIFEXITED(f.status));
   EXPECT_EQ(WEXITSTATUS(f.status), 1) << f.err;
-  EXPECT_TRUE(contains(f.err, "was skipped (unreadable 40): nothing was tracked")) << f.err;
+  EXPECT_TRUE(runContains(f.err, "was skipped (unreadable 40): nothing was tracked")) << f.err;
   EXPECT_TRUE(fs::exists(root / "out" / "stats.json"));
 }
 

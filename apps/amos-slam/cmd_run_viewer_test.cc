@@ -29,12 +29,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // 120 frames replayed at 30 Hz (--realtime): four seconds in which the viewer is looked at.
-std::string sequence() { return syntheticSequence("walking_xyz", 120); }
+std::string viewerSequence() { return syntheticSequence("walking_xyz", 120); }
 
-fs::path outputDir(const std::string& name) { return testOutputDir("viewer", name); }
+fs::path viewerOutputDir(const std::string& name) { return testOutputDir("viewer", name); }
 
 std::vector<std::string> viewerRunArgs(const fs::path& output) {
-  std::vector<std::string> args = runArgs(sequence(), "geometry", output);
+  std::vector<std::string> args = runArgs(viewerSequence(), "geometry", output);
   for (const char* a : {"--realtime", "--viewer", "--viewer-port", "0", "--viewer-hold"}) args.emplace_back(a);
   return args;
 }
@@ -61,7 +61,7 @@ nlohmann::json getState(int port) {
   return nlohmann::json::parse(r->body);
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool viewerContains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 nlohmann::json reportData(const fs::path& report) {
   const std::string html = readFile(report);
@@ -73,7 +73,7 @@ nlohmann::json reportData(const fs::path& report) {
 }
 
 TEST(RunViewer, EndpointsShowTheRunWhileItGoes) {
-  const fs::path out = outputDir("endpoints");
+  const fs::path out = viewerOutputDir("endpoints");
   int port = 0;
   nlohmann::json early, late, final_state;
   cv::Mat frame_image;
@@ -87,7 +87,7 @@ TEST(RunViewer, EndpointsShowTheRunWhileItGoes) {
       if (const auto r = c.Get("/api/frame.jpg"); r && r->status == 200)
         frame_image = cv::imdecode(std::vector<unsigned char>(r->body.begin(), r->body.end()), cv::IMREAD_COLOR);
     }
-    if (port > 0 && contains(line, "still serving")) {
+    if (port > 0 && viewerContains(line, "still serving")) {
       final_state = getState(port);
       kill(pid, SIGTERM);
     }
@@ -127,33 +127,33 @@ TEST(RunViewer, EndpointsShowTheRunWhileItGoes) {
 // With --viewer-hold and stdout in a file (not a terminal), the summary is in the file when the run ends, while
 // the viewer still serves: not only once Ctrl-C has ended the program.
 TEST(RunViewer, HeldRunHasWrittenItsSummary) {
-  const fs::path out = outputDir("held_summary");
+  const fs::path out = viewerOutputDir("held_summary");
   std::vector<std::string> args = runArgs(syntheticSequence("static_xyz", 40), "none", out);
   for (const char* a : {"--viewer", "--viewer-port", "0", "--viewer-hold"}) args.emplace_back(a);
   const fs::path stdout_file = out.string() + ".stdout";
   std::string while_held;
   const Finished f = runChild(args, stdout_file, [&](const std::string& line, pid_t pid) {
-    if (contains(line, "still serving")) {
+    if (viewerContains(line, "still serving")) {
       while_held = readFile(stdout_file);
       kill(pid, SIGINT);
     }
   });
   ASSERT_TRUE(WIFEXITED(f.status)) << f.err;
   EXPECT_EQ(WEXITSTATUS(f.status), 0) << f.err;
-  EXPECT_TRUE(contains(while_held, "frames 40  tracked 40")) << while_held;
-  EXPECT_TRUE(contains(while_held, "outputs written to " + out.string())) << while_held;
+  EXPECT_TRUE(viewerContains(while_held, "frames 40  tracked 40")) << while_held;
+  EXPECT_TRUE(viewerContains(while_held, "outputs written to " + out.string())) << while_held;
 }
 
 // A viewer port in use (here by another viewer) is an error at start naming the port; nothing runs.
 TEST(RunViewer, APortInUseIsRefusedAtStart) {
-  const fs::path out = outputDir("port_in_use");
+  const fs::path out = viewerOutputDir("port_in_use");
   int port = 0;
   Finished second;
   std::vector<std::string> first = runArgs(syntheticSequence("static_xyz", 40), "none", out / "first");
   for (const char* a : {"--viewer", "--viewer-port", "0", "--viewer-hold"}) first.emplace_back(a);
   const Finished f = runChild(first, out.string() + ".stdout", [&](const std::string& line, pid_t pid) {
     if (const auto p = viewerPort(line)) port = *p;
-    if (contains(line, "still serving")) {
+    if (viewerContains(line, "still serving")) {
       std::vector<std::string> args = runArgs(syntheticSequence("static_xyz", 40), "none", out / "second");
       args.insert(args.end(), {"--viewer", "--viewer-port", std::to_string(port)});
       second = runChild(args, out.string() + ".second");
@@ -163,15 +163,15 @@ TEST(RunViewer, APortInUseIsRefusedAtStart) {
   ASSERT_GT(port, 0) << f.err;
   ASSERT_TRUE(WIFEXITED(second.status));
   EXPECT_EQ(WEXITSTATUS(second.status), 1) << second.err;
-  EXPECT_TRUE(contains(second.err, "port " + std::to_string(port) + " is in use")) << second.err;
-  EXPECT_FALSE(contains(second.err, "frame 1/")) << second.err;
+  EXPECT_TRUE(viewerContains(second.err, "port " + std::to_string(port) + " is in use")) << second.err;
+  EXPECT_FALSE(viewerContains(second.err, "frame 1/")) << second.err;
 }
 
 // --load-map passes through the viewer: the page shows the map the run started from and says where it came from.
 TEST(RunViewer, ALoadedMapIsShownFromTheStart) {
-  const fs::path first = outputDir("map_first_half"), second = outputDir("map_second_half");
+  const fs::path first = viewerOutputDir("map_first_half"), second = viewerOutputDir("map_second_half");
   const fs::path map_file = first.parent_path() / "first_half.map";
-  std::vector<std::string> save = runArgs(sequence(), "geometry", first);
+  std::vector<std::string> save = runArgs(viewerSequence(), "geometry", first);
   save.insert(save.end(), {"--max-frames", "60", "--save-map", map_file.string()});
   const Finished saved = runChild(save, first.string() + ".stdout");
   ASSERT_TRUE(WIFEXITED(saved.status) && WEXITSTATUS(saved.status) == 0) << saved.err;
@@ -186,7 +186,7 @@ TEST(RunViewer, ALoadedMapIsShownFromTheStart) {
   const Finished f = runChild(args, second.string() + ".stdout", [&](const std::string& line, pid_t pid) {
     if (const auto p = viewerPort(line)) port = *p;
     if (port > 0 && at_start.is_null() && progressFrame(line) >= 1) at_start = getState(port);
-    if (port > 0 && contains(line, "still serving")) {
+    if (port > 0 && viewerContains(line, "still serving")) {
       at_end = getState(port);
       kill(pid, SIGTERM);
     }
@@ -206,7 +206,7 @@ TEST(RunViewer, ALoadedMapIsShownFromTheStart) {
 }
 
 TEST(ViewCommand, ServesAFinishedRunAndNothingOutsideIt) {
-  const fs::path root = outputDir("view");
+  const fs::path root = viewerOutputDir("view");
   const fs::path run = root / "run";
   fs::create_directories(run / "overlays");
   std::ofstream(run / "trajectory.txt") << "1 0 0 0 0 0 0 1\n2 0.1 0 0 0 0 0 1\n";
@@ -224,7 +224,7 @@ TEST(ViewCommand, ServesAFinishedRunAndNothingOutsideIt) {
     for (const std::string path : {"/files/stats.json", "/files/../secret.txt", "/files/%2e%2e/secret.txt",
                                    "/files//etc/passwd", "/files/overlays/../../secret.txt"}) {
       const auto r = c.Get(path.c_str());
-      answers.emplace_back(path, r ? (contains(r->body, "SECRET") || contains(r->body, "root:") ? -1 : r->status) : 0);
+      answers.emplace_back(path, r ? (viewerContains(r->body, "SECRET") || viewerContains(r->body, "root:") ? -1 : r->status) : 0);
     }
     kill(pid, SIGINT);
   });
@@ -271,23 +271,23 @@ std::vector<std::string> consoleMessages(const std::string& log) {
   std::vector<std::string> out;
   std::istringstream lines(log);
   for (std::string line; std::getline(lines, line);)
-    if (contains(line, "CONSOLE") && !contains(line, "GL Driver Message")) out.push_back(line);
+    if (viewerContains(line, "CONSOLE") && !viewerContains(line, "GL Driver Message")) out.push_back(line);
   return out;
 }
 
 void expectDrawnWithoutErrors(const BrowserResult& r, const std::string& what) {
-  EXPECT_TRUE(contains(r.dom, "data-drawn=\"1\"")) << what << " did not draw; DOM:\n"
+  EXPECT_TRUE(viewerContains(r.dom, "data-drawn=\"1\"")) << what << " did not draw; DOM:\n"
                                                    << r.dom.substr(0, 2000) << "\nlog:\n" << r.log;
-  EXPECT_FALSE(contains(r.dom, "data-errors")) << what << ":\n" << r.dom.substr(0, 2000);
-  EXPECT_FALSE(contains(r.log, "Uncaught")) << what << ":\n" << r.log;
+  EXPECT_FALSE(viewerContains(r.dom, "data-errors")) << what << ":\n" << r.dom.substr(0, 2000);
+  EXPECT_FALSE(viewerContains(r.log, "Uncaught")) << what << ":\n" << r.log;
   for (const std::string& m : consoleMessages(r.log)) ADD_FAILURE() << what << " console: " << m;
 }
 
 TEST(Browser, LivePageDrawsTheRunAndReportHtmlLoads) {
   const std::string browser = chromium();
   if (browser.empty()) GTEST_SKIP() << "chromium is not installed (scripts/install_deps.sh installs it)";
-  const fs::path out = outputDir("browser");
-  const fs::path scratch = outputDir("browser_scratch");
+  const fs::path out = viewerOutputDir("browser");
+  const fs::path scratch = viewerOutputDir("browser_scratch");
   fs::create_directories(scratch);
   int port = 0;
   std::optional<BrowserResult> live;
@@ -296,12 +296,12 @@ TEST(Browser, LivePageDrawsTheRunAndReportHtmlLoads) {
     // The page is opened while the run goes (frame 20 of 120) and follows it.
     if (port > 0 && !live && progressFrame(line) >= 20)
       live = loadInBrowser(browser, "http://127.0.0.1:" + std::to_string(port) + "/", scratch, "live");
-    if (contains(line, "still serving")) kill(pid, SIGTERM);
+    if (viewerContains(line, "still serving")) kill(pid, SIGTERM);
   });
   ASSERT_TRUE(WIFEXITED(f.status)) << f.err;
   ASSERT_TRUE(live) << f.err;
   expectDrawnWithoutErrors(*live, "the live page");
-  EXPECT_TRUE(contains(live->dom, "frames per second")) << live->dom.substr(0, 2000);
+  EXPECT_TRUE(viewerContains(live->dom, "frames per second")) << live->dom.substr(0, 2000);
   ASSERT_TRUE(fs::exists(out / "report.html"));
   expectDrawnWithoutErrors(loadInBrowser(browser, "file://" + (out / "report.html").string(), scratch, "report"),
                            "report.html");

@@ -20,13 +20,14 @@
 #include "amos/synth/sequence.h"
 #include "amos/testing/error_of.h"
 #include "amos/testing/scratch_dir.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
+using amos::testing::kTum3;
 
 using amos::testing::errorOf;
 

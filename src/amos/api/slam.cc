@@ -249,7 +249,7 @@ namespace {
 // The Slam's state, for the call `method`; a moved-from Slam is an error naming it. (A template: Slam::Impl is
 // private.)
 template <typename Pointer>
-auto& use(const Pointer& impl, const char* method) {
+auto& useSlam(const Pointer& impl, const char* method) {
   core::require(impl != nullptr, fmt::format("amos::Slam::{}: this Slam was moved from", method));
   return *impl;
 }
@@ -283,7 +283,7 @@ Slam& Slam::operator=(Slam&& other) noexcept {
 }
 
 FrameResult Slam::track(const cv::Mat& bgr, const cv::Mat& depth, double timestamp, const cv::Mat& prior_mask) {
-  auto& impl = use(impl_, "track");
+  auto& impl = useSlam(impl_, "track");
   std::lock_guard lock(impl.mutex);
   core::require(impl.pending() == 0, "amos::Slam::track: frames submitted with submit() wait: take them with next()");
   impl.submit(bgr, depth, timestamp, prior_mask);
@@ -317,25 +317,25 @@ std::size_t Slam::trackFrames(const std::function<std::optional<InputFrame>()>& 
 }
 
 void Slam::submit(const cv::Mat& bgr, const cv::Mat& depth, double timestamp, const cv::Mat& prior_mask) {
-  auto& impl = use(impl_, "submit");
+  auto& impl = useSlam(impl_, "submit");
   std::lock_guard lock(impl.mutex);
   impl.submit(bgr, depth, timestamp, prior_mask);
 }
 
 FrameResult Slam::next() {
-  auto& impl = use(impl_, "next");
+  auto& impl = useSlam(impl_, "next");
   std::lock_guard lock(impl.mutex);
   return impl.next();
 }
 
 std::size_t Slam::pending() const {
-  const auto& impl = use(impl_, "pending");
+  const auto& impl = useSlam(impl_, "pending");
   std::lock_guard lock(impl.mutex);
   return impl.pending();
 }
 
 void Slam::loadMap(const std::string& path) {
-  auto& impl = use(impl_, "loadMap");
+  auto& impl = useSlam(impl_, "loadMap");
   std::lock_guard lock(impl.mutex);
   core::require(impl.frames == 0, "amos::Slam::loadMap: only before the first frame");
   impl.engine->slam().loadMap(path);
@@ -343,25 +343,25 @@ void Slam::loadMap(const std::string& path) {
 }
 
 void Slam::finish() {
-  auto& impl = use(impl_, "finish");
+  auto& impl = useSlam(impl_, "finish");
   std::lock_guard lock(impl.mutex);
   impl.finish();
 }
 
 bool Slam::finished() const {
-  const auto& impl = use(impl_, "finished");
+  const auto& impl = useSlam(impl_, "finished");
   std::lock_guard lock(impl.mutex);
   return impl.finished;
 }
 
 void Slam::saveMap(const std::string& path) const {
-  const auto& impl = use(impl_, "saveMap");
+  const auto& impl = useSlam(impl_, "saveMap");
   std::lock_guard lock(impl.mutex);
   impl.engine->slam().saveMap(path);
 }
 
 void Slam::writeOutputs(const std::string& dir, const RunDescription& run) const {
-  const auto& impl = use(impl_, "writeOutputs");
+  const auto& impl = useSlam(impl_, "writeOutputs");
   std::lock_guard lock(impl.mutex);
   api::EngineRun engine_run = impl.run;
   engine_run.wall_time_s = impl.wallTimeS();
@@ -373,19 +373,19 @@ void Slam::writeOutputs(const std::string& dir, const RunDescription& run) const
 std::vector<std::string> Slam::outputNames() { return api::runOutputNames(); }
 
 std::vector<StampedPose> Slam::trajectory() const {
-  const auto& impl = use(impl_, "trajectory");
+  const auto& impl = useSlam(impl_, "trajectory");
   std::lock_guard lock(impl.mutex);
   return publicPoses(impl.engine->slam().trajectory());
 }
 
 void Slam::writeTrajectory(const std::string& path) const {
-  const auto& impl = use(impl_, "writeTrajectory");
+  const auto& impl = useSlam(impl_, "writeTrajectory");
   std::lock_guard lock(impl.mutex);
   io::writeTumTrajectory(path, impl.engine->slam().trajectory());
 }
 
 std::vector<KeyFrame> Slam::keyFrames() const {
-  const auto& impl = use(impl_, "keyFrames");
+  const auto& impl = useSlam(impl_, "keyFrames");
   std::lock_guard lock(impl.mutex);
   const map::Map& map = impl.engine->slam().map();
   std::vector<KeyFrame> out;
@@ -396,7 +396,7 @@ std::vector<KeyFrame> Slam::keyFrames() const {
 }
 
 std::vector<KeyFrame> Slam::takeKeyFrameEvents() {
-  auto& impl = use(impl_, "takeKeyFrameEvents");
+  auto& impl = useSlam(impl_, "takeKeyFrameEvents");
   std::lock_guard lock(impl.events->mutex);
   std::vector<KeyFrame> out(impl.events->pending.begin(), impl.events->pending.end());
   impl.events->pending.clear();
@@ -404,13 +404,13 @@ std::vector<KeyFrame> Slam::takeKeyFrameEvents() {
 }
 
 std::vector<Eigen::Vector3d> Slam::mapPoints() const {
-  const auto& impl = use(impl_, "mapPoints");
+  const auto& impl = useSlam(impl_, "mapPoints");
   std::lock_guard lock(impl.mutex);
   return impl.engine->slam().mapPointPositions();
 }
 
 MapSummary Slam::summary() const {
-  const auto& impl = use(impl_, "summary");
+  const auto& impl = useSlam(impl_, "summary");
   std::lock_guard lock(impl.mutex);
   const system::SlamStats s = impl.engine->slam().stats();
   MapSummary m;
@@ -424,7 +424,7 @@ MapSummary Slam::summary() const {
 }
 
 DenseMap Slam::denseMap() const {
-  const auto& impl = use(impl_, "denseMap");
+  const auto& impl = useSlam(impl_, "denseMap");
   std::lock_guard lock(impl.mutex);
   core::require(impl.dense != nullptr, "amos::Slam::denseMap: the Slam was made without Options::dense");
   core::require(impl.finished, "amos::Slam::denseMap: only after finish() (the map is fused with the final "
@@ -433,14 +433,14 @@ DenseMap Slam::denseMap() const {
 }
 
 std::optional<DenseSnapshot> Slam::denseSnapshot() const {
-  const auto& impl = use(impl_, "denseSnapshot");
+  const auto& impl = useSlam(impl_, "denseSnapshot");
   std::lock_guard lock(impl.mutex);
   core::require(impl.dense != nullptr, "amos::Slam::denseSnapshot: the Slam was made without Options::dense");
   return impl.dense->snapshot();
 }
 
 std::optional<OccupancyGrid> Slam::denseLiveGrid() const {
-  const auto& impl = use(impl_, "denseLiveGrid");
+  const auto& impl = useSlam(impl_, "denseLiveGrid");
   std::vector<io::StampedPose> trajectory;
   {
     std::lock_guard lock(impl.mutex);
@@ -450,6 +450,6 @@ std::optional<OccupancyGrid> Slam::denseLiveGrid() const {
   return impl.dense->liveGrid(trajectory);  // outside the lock: tracking goes on while the grid is built
 }
 
-cv::Size Slam::imageSize() const { return use(impl_, "imageSize").imageSize(); }
+cv::Size Slam::imageSize() const { return useSlam(impl_, "imageSize").imageSize(); }
 
 }  // namespace amos

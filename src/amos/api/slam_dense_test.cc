@@ -20,6 +20,7 @@
 #include "amos/testing/error_of.h"
 #include "amos/testing/file_text.h"
 #include "amos/testing/scratch_dir.h"
+#include "amos/testing/test_inputs.h"
 
 #ifdef AMOS_HAVE_OPEN3D
 #include "amos/run/dense_observer.h"
@@ -30,7 +31,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
+using amos::testing::kTum3;
 
 std::string sequence() {
   return synth::cachedSequence((fs::path(AMOS_BINARY_DIR) / "test_outputs" / "api_sequences").string(), "walking_xyz",

@@ -22,13 +22,14 @@
 #include "amos/synth/sequence.h"
 #include "amos/testing/file_text.h"
 #include "amos/testing/scratch_dir.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
+using amos::testing::kTum3;
 
 
 // The settings file's keys and values, without its comment lines (which say who wrote it).

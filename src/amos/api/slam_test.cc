@@ -18,13 +18,14 @@
 #include "amos/synth/sequence.h"
 #include "amos/testing/file_text.h"
 #include "amos/testing/scratch_dir.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
+using amos::testing::kTum3;
 
 
 std::string sequence(const std::string& preset, int frames) {
@@ -32,7 +33,7 @@ std::string sequence(const std::string& preset, int frames) {
                                frames);
 }
 
-Options geometryOptions() {
+Options slamGeometryOptions() {
   Options o;
   o.settings_file = kTum3;
   o.mode = Mode::kGeometry;
@@ -59,7 +60,7 @@ TEST(SlamApi, TrajectoryIsTheRunsByteForByte) {
   const run::SequenceRunResult run = run::runSequence(config::loadSettings(kTum3), run_options);
   io::writeTumTrajectory((dir / "run.txt").string(), run.trajectory);
 
-  Slam slam(geometryOptions());
+  Slam slam(slamGeometryOptions());
   const SequenceFolder folder(seq);
   std::size_t ok = 0;
   for (std::size_t i = 0; i < folder.size(); ++i) {
@@ -81,7 +82,7 @@ TEST(SlamApi, TrajectoryIsTheRunsByteForByte) {
 // T_wc maps camera points into the world: the last pose is near the ground truth's relative motion, and its
 // inverse relation to the frame result holds (the first frame is the world's origin).
 TEST(SlamApi, FirstPoseIsTheOriginAndPosesAreRigid) {
-  Slam slam(geometryOptions());
+  Slam slam(slamGeometryOptions());
   const SequenceFolder folder(sequence("walking_xyz", 30));
   const RgbdImages first = folder.read(0);
   const FrameResult r0 = slam.track(first.bgr, first.depth, first.timestamp);
@@ -97,7 +98,7 @@ TEST(SlamApi, FirstPoseIsTheOriginAndPosesAreRigid) {
 }
 
 TEST(SlamApi, BadFramesAndCallsOutOfOrderAreClearErrors) {
-  Slam slam(geometryOptions());
+  Slam slam(slamGeometryOptions());
   const SequenceFolder folder(sequence("walking_xyz", 30));
   const RgbdImages f = folder.read(0);
   cv::Mat small;
@@ -121,10 +122,10 @@ TEST(SlamApi, BadFramesAndCallsOutOfOrderAreClearErrors) {
 
   Options no_settings;
   EXPECT_THROW(Slam{no_settings}, std::runtime_error);
-  Options missing = geometryOptions();
+  Options missing = slamGeometryOptions();
   missing.settings_file = "/nonexistent/settings.yaml";
   EXPECT_THROW(Slam{missing}, std::runtime_error);
-  Options localize = geometryOptions();
+  Options localize = slamGeometryOptions();
   localize.localization_only = true;
   Slam without_map(localize);
   EXPECT_THROW(without_map.track(f.bgr, f.depth, f.timestamp), std::runtime_error);
@@ -134,7 +135,7 @@ TEST(SlamApi, BadFramesAndCallsOutOfOrderAreClearErrors) {
 // written.
 TEST(SlamApi, DepthInMetresEqualsRawDepthAndInputsAreUnchanged) {
   const SequenceFolder folder(sequence("walking_xyz", 30));
-  Slam raw(geometryOptions()), metres(geometryOptions());
+  Slam raw(slamGeometryOptions()), metres(slamGeometryOptions());
   for (std::size_t i = 0; i < 10; ++i) {
     const RgbdImages f = folder.read(i);
     const cv::Mat bgr_before = f.bgr.clone(), depth_before = f.depth.clone();
@@ -155,7 +156,7 @@ TEST(SlamApi, KeyFrameEventsAndMapsRoundTrip) {
   const fs::path dir = testing::scratchDirForThisTest("amos_api_");
   const SequenceFolder folder(sequence("walking_xyz", 30));
   std::atomic<int> callbacks{0};
-  Options o = geometryOptions();
+  Options o = slamGeometryOptions();
   o.on_keyframe = [&](const KeyFrameEvent&) { ++callbacks; };
   Slam slam(o);
   trackAll(slam, folder);
@@ -171,7 +172,7 @@ TEST(SlamApi, KeyFrameEventsAndMapsRoundTrip) {
   EXPECT_EQ(slam.keyFrames().size(), saved.keyframes);
   slam.saveMap((dir / "map.amap").string());
 
-  Options again = geometryOptions();
+  Options again = slamGeometryOptions();
   again.map_file = (dir / "map.amap").string();
   again.localization_only = true;
   Slam localizer(again);
@@ -180,7 +181,7 @@ TEST(SlamApi, KeyFrameEventsAndMapsRoundTrip) {
   EXPECT_EQ(localizer.summary().keyframes, saved.keyframes);
   EXPECT_GT(localizer.trajectory().size(), 25u);
 
-  Options via_call = geometryOptions();
+  Options via_call = slamGeometryOptions();
   via_call.localization_only = true;
   Slam loaded(via_call);
   loaded.loadMap((dir / "map.amap").string());
@@ -192,7 +193,7 @@ TEST(SlamApi, KeyFrameEventsAndMapsRoundTrip) {
 // with none, are errors.
 TEST(SlamApi, SubmittingAheadGivesTrackResults) {
   const SequenceFolder folder(sequence("walking_xyz", 30));
-  Slam one(geometryOptions()), ahead(geometryOptions());
+  Slam one(slamGeometryOptions()), ahead(slamGeometryOptions());
   for (std::size_t i = 0; i < 12; ++i) {
     const RgbdImages f = folder.read(i);
     one.track(f.bgr, f.depth, f.timestamp);

@@ -32,16 +32,16 @@ SectionRegistry lamp() {
   return sections;
 }
 
-const char* kCamera = "Camera.fx: 500\nCamera.fy: 500\nCamera.cx: 320\nCamera.cy: 240\n";
+const char* kCameraSection = "Camera.fx: 500\nCamera.fy: 500\nCamera.cx: 320\nCamera.cy: 240\n";
 
 TEST(SectionRegistry, AnAddedSectionIsReadCheckedByKeyAndWritten) {
-  const Settings s = parseSettings(std::string(kCamera) + "Lamp.bulbs: 3\n", "lamp.yaml", lamp());
+  const Settings s = parseSettings(std::string(kCameraSection) + "Lamp.bulbs: 3\n", "lamp.yaml", lamp());
   EXPECT_EQ(s.section<LampOptions>().bulbs, 3);
   EXPECT_DOUBLE_EQ(s.section<LampOptions>().brightness, 0.5);
   EXPECT_NE(settingsFileText(s, {}).find("Lamp.bulbs: 3\n"), std::string::npos);
   EXPECT_NE(keysMarkdown(lamp()).find("| `Lamp.brightness` | `0.5` |"), std::string::npos);
   try {
-    parseSettings(std::string(kCamera) + "Lamp.brightness: 2\n", "lamp.yaml", lamp());
+    parseSettings(std::string(kCameraSection) + "Lamp.brightness: 2\n", "lamp.yaml", lamp());
     ADD_FAILURE() << "accepted a brightness of 2";
   } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("lamp.yaml:5: Lamp.brightness must be in (0, 1]"), std::string::npos)
@@ -50,7 +50,7 @@ TEST(SectionRegistry, AnAddedSectionIsReadCheckedByKeyAndWritten) {
 }
 
 TEST(SectionRegistry, ACopyOfTheSettingsHoldsItsOwnOptions) {
-  Settings a = parseSettings(kCamera, "lamp.yaml", lamp());
+  Settings a = parseSettings(kCameraSection, "lamp.yaml", lamp());
   Settings b = a;
   b.section<LampOptions>().bulbs = 7;
   EXPECT_EQ(a.section<LampOptions>().bulbs, 2);
@@ -58,7 +58,7 @@ TEST(SectionRegistry, ACopyOfTheSettingsHoldsItsOwnOptions) {
 }
 
 TEST(SectionRegistry, WithoutTheRegistryItsKeysAreUnknownAndItsSectionAbsent) {
-  const Settings s = parseSettings(std::string(kCamera) + "Lamp.bulbs: 3\n", "plain.yaml");
+  const Settings s = parseSettings(std::string(kCameraSection) + "Lamp.bulbs: 3\n", "plain.yaml");
   EXPECT_THROW(s.section<LampOptions>(), core::Error);
 }
 

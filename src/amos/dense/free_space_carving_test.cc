@@ -17,7 +17,7 @@ namespace {
 
 using testing::Box;
 
-DenseOptions roomOptions() {
+DenseOptions carvingRoomOptions() {
   DenseOptions o;
   o.voxel_size = 0.05;
   o.truncation = 0.15;
@@ -69,7 +69,7 @@ TEST(FreeSpaceCarving, ASurfaceFusedThenSeenThroughIsRemoved) {
     const core::SE3 T_wc = testing::cameraPose({-0.5, -0.4 + 0.06 * i, 1.3}, 0.05 * (i % 4) - 0.08, -0.2);
     views.push_back(viewOf(T_wc, i < 5 ? std::vector<Box>{box} : std::vector<Box>{}));
   }
-  const DenseOptions o = roomOptions();
+  const DenseOptions o = carvingRoomOptions();
   const Carved c = fuseAndCarve(views, o);
   const double tolerance = 2 * o.voxel_size;
   const std::size_t ghosts_before = offTheRoom(c.before, tolerance), ghosts_after = offTheRoom(c.after, tolerance);
@@ -90,7 +90,7 @@ TEST(FreeSpaceCarving, AStaticSurfaceSeenFromGrazingAnglesIsKept) {
                                                M_PI / 2 - 0.05 * (i % 4), -0.1);
     views.push_back(viewOf(T_wc, {}));
   }
-  DenseOptions o = roomOptions();  // the default voxel and band: a pixel (2 cm at 2 m) spans more than the band
+  DenseOptions o = carvingRoomOptions();  // the default voxel and band: a pixel (2 cm at 2 m) spans more than the band
   o.voxel_size = 0.02;             // along a wall seen at 5 degrees
   o.truncation = 0.06;
   const Carved c = fuseAndCarve(views, o);
@@ -110,13 +110,13 @@ TEST(FreeSpaceCarving, NoiseWithinTheBandDoesNotCarve) {
     });
     views.push_back(v);
   }
-  const Carved c = fuseAndCarve(views, roomOptions());
+  const Carved c = fuseAndCarve(views, carvingRoomOptions());
   ASSERT_GT(c.before.size(), 5000u);
   EXPECT_LT(c.result.points.size(), c.before.size() / 1000 + 1) << "carved " << c.result.points.size();
 }
 
 TEST(FreeSpaceCarving, ForgettingAVertexsVoxelsRemovesItFromTheMesh) {
-  TsdfVolume volume(roomOptions());
+  TsdfVolume volume(carvingRoomOptions());
   const View v = viewOf(testing::cameraPose({0, 0, 1.3}, 0, -0.2), {});
   volume.integrate(v.depth, v.bgr, testing::roomCamera(), v.T_wc.inverse());
   const std::vector<Eigen::Vector3d> before = volume.extractMesh()->vertices_;

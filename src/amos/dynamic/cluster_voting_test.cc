@@ -7,7 +7,7 @@ namespace {
 
 // 120 x 100 decision map: cluster 0 on the left (x < 60), cluster 1 on the right; the bottom strip (y >= 80) is a
 // border block (-1).
-cv::Mat leftRightClusters() {
+cv::Mat votingLeftRightClusters() {
   cv::Mat map(100, 120, CV_32S, cv::Scalar(0));
   map(cv::Rect(60, 0, 60, 80)).setTo(1);
   map(cv::Rect(0, 80, 120, 20)).setTo(-1);
@@ -29,11 +29,11 @@ DynamicOptions noReassignment() {
   return options;
 }
 
-// voteClusters on leftRightClusters().
+// voteClusters on votingLeftRightClusters().
 ClusterVoting vote(const std::vector<cv::Point2f>& violators, const std::vector<ClusterScore>& scores,
                    const std::vector<bool>& confirmed, DynamicDiagnostics& diag,
                    const DynamicOptions& options = noReassignment()) {
-  return voteClusters(violators, leftRightClusters(), scores, confirmed, options, diag);
+  return voteClusters(violators, votingLeftRightClusters(), scores, confirmed, options, diag);
 }
 
 TEST(ClusterVoting, ACandidateNeedsVotesAConfirmedClusterDoesNot) {

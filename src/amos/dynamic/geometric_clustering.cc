@@ -21,13 +21,13 @@ void ClusteringOptions::check() const {
 
 namespace {
 
-struct Centre {
+struct ClusterCentre {
   double x = 0, y = 0, depth = 0;
   bool has_depth = false;
 };
 
 // Squared normalised distance; the depth dimension counts only when both sides know their depth.
-double distance2(const ClusterPoint& p, const Centre& c, double inv_cell, double inv_depth) {
+double distance2(const ClusterPoint& p, const ClusterCentre& c, double inv_cell, double inv_depth) {
   const double dx = (p.x - c.x) * inv_cell, dy = (p.y - c.y) * inv_cell;
   double d2 = dx * dx + dy * dy;
   if (p.depth > 0 && c.has_depth) {
@@ -37,7 +37,7 @@ double distance2(const ClusterPoint& p, const Centre& c, double inv_cell, double
   return d2;
 }
 
-Centre centreAt(const ClusterPoint& p) { return {p.x, p.y, p.depth, p.depth > 0}; }
+ClusterCentre centreAt(const ClusterPoint& p) { return {p.x, p.y, p.depth, p.depth > 0}; }
 
 // Uniform double in [0, 1) straight from the engine's bits, so the sequence is the same on every standard library.
 double uniform01(std::mt19937& rng) { return rng() / 4294967296.0; }
@@ -59,7 +59,7 @@ std::vector<int> kmeansClusters(const std::vector<ClusterPoint>& points, cv::Siz
   // k-means++ seeding: each new centre is drawn with probability proportional to the squared distance to the
   // nearest centre chosen so far.
   std::mt19937 rng(options.seed);
-  std::vector<Centre> centres;
+  std::vector<ClusterCentre> centres;
   centres.reserve(k);
   centres.push_back(centreAt(points[static_cast<std::size_t>(uniform01(rng) * n)]));
   std::vector<double> nearest(n, std::numeric_limits<double>::max());

@@ -9,14 +9,14 @@ namespace {
 
 // The small test camera looking at a wall 2 m away, with the same pose in both frames: 81 still tracks in cluster 0
 // (x < 60) and 20 in cluster 1 that moved 2 px, too little for a candidate (3 px) and plenty under a clean refit.
-struct Scene {
+struct ConfirmationScene {
   std::vector<PointTrack> tracks;
   FrontEndInput in;
   cv::Mat decision_map;
 };
 
-Scene slowMoverScene() {
-  Scene scene;
+ConfirmationScene slowMoverScene() {
+  ConfirmationScene scene;
   for (int y = 10; y <= 90; y += 10)
     for (int x = 6; x <= 54; x += 6) scene.tracks.push_back({cv::Point2f(x, y), cv::Point2f(x, y)});
   for (int y = 20; y <= 80; y += 20)
@@ -34,7 +34,7 @@ struct Confirmed {
   DynamicDiagnostics diag;
 };
 
-Confirmed confirm(const Scene& scene, const DynamicOptions& options) {
+Confirmed confirm(const ConfirmationScene& scene, const DynamicOptions& options) {
   Confirmed c;
   DynamicDiagnostics scoring_diag;
   const PriorRegions no_prior;
@@ -46,7 +46,7 @@ Confirmed confirm(const Scene& scene, const DynamicOptions& options) {
 }
 
 TEST(PoseConfirmation, ASlowMoverIsConfirmedUnderTheRefittedPose) {
-  const Scene scene = slowMoverScene();
+  const ConfirmationScene scene = slowMoverScene();
   const DynamicOptions options;
   const Confirmed c = confirm(scene, options);
   ASSERT_FALSE(c.candidates.cluster_scores[1].candidate);
@@ -65,7 +65,7 @@ TEST(PoseConfirmation, ASlowMoverIsConfirmedUnderTheRefittedPose) {
 }
 
 TEST(PoseConfirmation, WhenTheLastMaskLeavesTooFewTracksTheRefitDoesWithoutIt) {
-  Scene scene = slowMoverScene();
+  ConfirmationScene scene = slowMoverScene();
   scene.in.last_mask = cv::Mat(100, 120, CV_8U, cv::Scalar(255));  // every track started on a mover
   const Confirmed c = confirm(scene, DynamicOptions{});
   ASSERT_EQ(c.candidates.outside_candidates, std::vector<bool>(101, false));
@@ -75,7 +75,7 @@ TEST(PoseConfirmation, WhenTheLastMaskLeavesTooFewTracksTheRefitDoesWithoutIt) {
 }
 
 TEST(PoseConfirmation, WithoutTheRefitTheInitialPoseAndCandidateThresholdJudge) {
-  const Scene scene = slowMoverScene();
+  const ConfirmationScene scene = slowMoverScene();
   DynamicOptions options;
   options.reprojection.refit_pose = false;
   const Confirmed c = confirm(scene, options);

@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 // Three frames of 4x4 px: instance 1 (a person) fills the top row and moves in frames 0-1; instance 2 (an
 // object) fills the bottom row and moves only in frame 2.
 fs::path writeSequence(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / name;
+  const fs::path dir = fs::path(::testing::TempDir()) / name;
   fs::remove_all(dir);
   fs::create_directories(dir / "masks");
   std::ofstream index(dir / "masks.txt");
@@ -60,7 +60,7 @@ TEST(GroundTruthMasks, FindsFramesByTimeStamp) {
 }
 
 TEST(GroundTruthMasks, AbsentWithoutMasksAndMalformedThrows) {
-  const fs::path dir = fs::path(testing::TempDir()) / "gt_masks_none";
+  const fs::path dir = fs::path(::testing::TempDir()) / "gt_masks_none";
   fs::create_directories(dir);
   EXPECT_FALSE(GroundTruthMasks::find(dir.string()).has_value());
   const fs::path bad = writeSequence("gt_masks_bad");

@@ -39,7 +39,7 @@ cv::Mat renderDepth(const core::PinholeCamera& camera, const Eigen::Vector3d& ce
 
 // Superpixels: 40 x 40 px blocks (test_scenes.h: blockLabels, blockAt).
 
-struct Scene {
+struct DepthEvidenceScene {
   core::PinholeCamera camera = testing::testCamera();
   DepthEvidenceOptions options;
   DepthSampleGrid grid{camera, options.sample_step_px};
@@ -63,7 +63,7 @@ struct Scene {
 };
 
 TEST(DepthEvidence, StaticSceneSeenFromAMovingCameraDoesNotMove) {
-  const Scene s;
+  const DepthEvidenceScene s;
   const Box box;
   const DepthEvidence e = s.evidence({0, 0, 0}, box, {0.03, -0.01, 0.02}, box, false, 0.005);
   EXPECT_GT(e.samples, 15000);
@@ -73,7 +73,7 @@ TEST(DepthEvidence, StaticSceneSeenFromAMovingCameraDoesNotMove) {
 TEST(DepthEvidence, PoseErrorAtTheBoxEdgesDoesNotMoveThem) {
   // A 2 mrad rotation error (about a pixel) slides the box edge over the wall behind it: the samples within 2 px of
   // a depth edge in either frame do not count, so no superpixel moves.
-  const Scene s;
+  const DepthEvidenceScene s;
   const Box box;
   const core::SE3 error(Eigen::AngleAxisd(0.002, Eigen::Vector3d::UnitY()));
   const DepthEvidence e = s.evidence({0, 0, 0}, box, {0.02, 0, 0}, box, false, 0.0, error);
@@ -81,7 +81,7 @@ TEST(DepthEvidence, PoseErrorAtTheBoxEdgesDoesNotMoveThem) {
 }
 
 TEST(DepthEvidence, BoxComingTowardsTheCameraMovesItsInsideOnly) {
-  const Scene s;
+  const DepthEvidenceScene s;
   Box before, after;
   after.z = 1.45;  // 5 cm nearer: 10 sigma of the 1.5 m noise, above the 1 cm floor
   const DepthEvidence e = s.evidence({0, 0, 0}, before, {0, 0, 0}, after, false, 0.003);
@@ -96,7 +96,7 @@ TEST(DepthEvidence, BoxComingTowardsTheCameraMovesItsInsideOnly) {
 }
 
 TEST(DepthEvidence, BoxGoingAwayMovesOverOneFrameButOnlyRecedesInFreeSpaceMode) {
-  const Scene s;
+  const DepthEvidenceScene s;
   Box before, after;
   after.z = 1.55;
   const cv::Point centre = s.pixel({0, 0, 0}, {0, 0, 1.55});
@@ -111,7 +111,7 @@ TEST(DepthEvidence, BoxGoingAwayMovesOverOneFrameButOnlyRecedesInFreeSpaceMode) 
 
 TEST(DepthEvidence, FlatBoxSlidingSidewaysViolatesFreeSpaceAtItsLeadingEdge) {
   // The box's flat face shows no depth change, but where it now stands the last frame saw the wall 1.5 m behind.
-  const Scene s;
+  const DepthEvidenceScene s;
   Box before, after;
   after.x0 += 0.1, after.x1 += 0.1;  // 35 px to the right at 1.5 m
   const DepthEvidence e = s.evidence({0, 0, 0}, before, {0, 0, 0}, after, true, 0.003);

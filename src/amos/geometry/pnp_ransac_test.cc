@@ -12,7 +12,7 @@
 namespace amos::geometry {
 namespace {
 
-struct Scene {
+struct PnpScene {
   std::vector<Eigen::Vector3d> points_w;
   std::vector<Eigen::Vector2d> pixels;
   std::vector<bool> is_outlier;
@@ -21,12 +21,12 @@ struct Scene {
 
 // Points 1..5 m in front of a camera at pose T_cw, seen with Gaussian pixel noise; a fraction of the pixels are
 // replaced by uniformly random ones (outliers).
-Scene makeScene(int n, double outlier_fraction, double noise_px, unsigned seed) {
+PnpScene makeScene(int n, double outlier_fraction, double noise_px, unsigned seed) {
   const auto camera = testing::testCamera();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::normal_distribution<double> noise(0.0, noise_px);
-  Scene s;
+  PnpScene s;
   core::Vector6d xi;
   xi << 0.3, -0.2, 0.5, 0.1, -0.25, 0.15;
   s.T_cw = core::expSE3(xi);
@@ -47,7 +47,7 @@ Scene makeScene(int n, double outlier_fraction, double noise_px, unsigned seed) 
 }
 
 TEST(PnpRansac, RecoversPoseWithHalfOutliers) {
-  const Scene s = makeScene(400, 0.5, 0.5, 7);
+  const PnpScene s = makeScene(400, 0.5, 0.5, 7);
   PnpRansacOptions options;
   const PnpResult r = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options);
   ASSERT_TRUE(r.success);
@@ -66,7 +66,7 @@ TEST(PnpRansac, RecoversPoseWithHalfOutliers) {
 
 TEST(PnpRansac, RecoversPoseFacingAWall) {
   // Every point on one plane (a wall 2.5 m in front of the camera): EPnP's general form degenerates there.
-  Scene s = makeScene(300, 0.4, 0.5, 21);
+  PnpScene s = makeScene(300, 0.4, 0.5, 21);
   const auto camera = testing::testCamera();
   const core::SE3 T_wc = s.T_cw.inverse();
   std::mt19937 rng(4);
@@ -88,7 +88,7 @@ TEST(PnpRansac, RecoversPoseFacingAWall) {
 }
 
 TEST(PnpRansac, DeterministicForASeed) {
-  const Scene s = makeScene(200, 0.3, 1.0, 11);
+  const PnpScene s = makeScene(200, 0.3, 1.0, 11);
   PnpRansacOptions options;
   options.max_iterations = 40;  // a short budget makes the result depend on the samples drawn
   const PnpResult a = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options);
@@ -104,7 +104,7 @@ TEST(PnpRansac, DeterministicForASeed) {
 }
 
 TEST(PnpRansac, FailsWithTooFewPoints) {
-  const Scene s = makeScene(10, 0.0, 0.5, 3);
+  const PnpScene s = makeScene(10, 0.0, 0.5, 3);
   PnpRansacOptions options;  // min_inliers 15 > 10 points
   EXPECT_FALSE(solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options).success);
   const std::vector<Eigen::Vector3d> none_w;
@@ -114,13 +114,13 @@ TEST(PnpRansac, FailsWithTooFewPoints) {
 
 TEST(PnpRansac, FailsOnPureNoise) {
   // Pixels unrelated to the points: no pose explains 15 of them within 2 px.
-  Scene s = makeScene(100, 1.0, 0.0, 5);
+  PnpScene s = makeScene(100, 1.0, 0.0, 5);
   const PnpResult r = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), PnpRansacOptions{});
   EXPECT_FALSE(r.success);
 }
 
 TEST(PnpRansac, RejectsMismatchedInputsAndBadOptions) {
-  const Scene s = makeScene(30, 0.0, 0.5, 3);
+  const PnpScene s = makeScene(30, 0.0, 0.5, 3);
   std::vector<Eigen::Vector2d> short_pixels(s.pixels.begin(), s.pixels.end() - 1);
   EXPECT_THROW(solvePnpRansac(s.points_w, short_pixels, testing::testCamera(), PnpRansacOptions{}), core::Error);
   PnpRansacOptions bad;
@@ -133,7 +133,7 @@ TEST(PnpRansac, RejectsMismatchedInputsAndBadOptions) {
 
 }  // namespace
 TEST(PnpRansac, BothMinimalSolversRecoverThePose) {
-  const Scene s = makeScene(300, 0.4, 0.5, 17);
+  const PnpScene s = makeScene(300, 0.4, 0.5, 17);
   for (const PnpMinimalSolver solver : {PnpMinimalSolver::kAp3p, PnpMinimalSolver::kEpnp}) {
     PnpRansacOptions options;
     options.minimal_solver = solver;
@@ -149,7 +149,7 @@ TEST(PnpRansac, Ap3pFindsThePoseAtLowInlierRatiosWithinTheBudget) {
   // 150 correspondences of which 30 % are right, as on a frame crowded with people: a three-point sample is all
   // inliers with probability 0.027 (a five-point one with 0.0024), so 300 samples find one with near certainty.
   for (unsigned seed = 1; seed <= 8; ++seed) {
-    const Scene s = makeScene(150, 0.7, 0.5, seed);
+    const PnpScene s = makeScene(150, 0.7, 0.5, seed);
     PnpRansacOptions options;
     options.seed = seed;
     const PnpResult r = solvePnpRansac(s.points_w, s.pixels, testing::testCamera(), options);

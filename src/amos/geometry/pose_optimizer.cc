@@ -60,7 +60,7 @@ double chi2Of(const PoseObservation& obs, const Eigen::Vector3d& r) {
 }
 
 // Huber IRLS weight for a whitened squared error e2 with threshold delta^2 = chi2 threshold.
-double huberWeight(double e2, double delta2) {
+double poseHuberWeight(double e2, double delta2) {
   if (e2 <= delta2) return 1.0;
   return std::sqrt(delta2 / e2);
 }
@@ -114,7 +114,7 @@ PoseOptimizerResult optimizePose(const std::vector<PoseObservation>& obs, const 
         if (!poseObservationJacobian(obs[i], result.T_cw, proj, r, J)) continue;
         const bool stereo = obs[i].u_right >= 0;
         const double delta2 = stereo ? o.chi2_stereo : o.chi2_mono;
-        const double w = obs[i].inv_sigma2 * (robust ? huberWeight(chi2Of(obs[i], r), delta2) : 1.0);
+        const double w = obs[i].inv_sigma2 * (robust ? poseHuberWeight(chi2Of(obs[i], r), delta2) : 1.0);
         const int rows = stereo ? 3 : 2;
         H.noalias() += w * J.topRows(rows).transpose() * J.topRows(rows);
         g.noalias() += w * J.topRows(rows).transpose() * r.head(rows);

@@ -32,7 +32,7 @@ using testing::sameImage;
 // The route a PNG this reader handles takes in this build.
 PngRoute handledRoute() { return pngFastPathAvailable() ? PngRoute::decoded : PngRoute::general; }
 
-cv::Mat imdecodeBytes(const Bytes& bytes, int flags) {
+cv::Mat decodeWithOpenCv(const Bytes& bytes, int flags) {
   return cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<std::uint8_t*>(bytes.data())),
                       flags);
 }
@@ -202,7 +202,7 @@ constexpr std::array<int, 2> kFlags = {cv::IMREAD_COLOR, cv::IMREAD_UNCHANGED};
 void expectLikeImdecode(const Bytes& png, int flags, PngRoute route, const std::string& what) {
   PngReadInfo info;
   const cv::Mat ours = decodePng(png.data(), png.size(), flags, &info);
-  const cv::Mat opencv = imdecodeBytes(png, flags);
+  const cv::Mat opencv = decodeWithOpenCv(png, flags);
   EXPECT_TRUE(sameImage(ours, opencv)) << what << " flags " << flags;
   const PngRoute expected = route == PngRoute::general && opencv.empty() ? PngRoute::rejected : route;
   EXPECT_EQ(info.route, expected) << what << " flags " << flags << ": " << info.reason;
@@ -458,7 +458,7 @@ TEST(PngReader, EveryTruncationOfASmallPngIsRejected) {
     for (int flags : kFlags) {
       PngReadInfo info;
       EXPECT_TRUE(decodePng(prefix.data(), prefix.size(), flags, &info).empty()) << size << " bytes";
-      EXPECT_TRUE(imdecodeBytes(prefix, flags).empty()) << size << " bytes: cv::imdecode disagrees";
+      EXPECT_TRUE(decodeWithOpenCv(prefix, flags).empty()) << size << " bytes: cv::imdecode disagrees";
       EXPECT_EQ(info.route, PngRoute::rejected) << size << " bytes: " << info.reason;
     }
   }
@@ -505,9 +505,9 @@ TEST(PngReader, BadImageDataIsRejectedHereOrByLibpng) {
   // libdeflate hands it to libpng, whose zlib rejects it too.
   expectRoute(broken, PngRoute::rejected, "IDAT: invalid block type");
   for (int flags : kFlags) {
-    EXPECT_TRUE(imdecodeBytes(too_short, flags).empty());
-    EXPECT_TRUE(imdecodeBytes(bad_filter, flags).empty());
-    EXPECT_TRUE(imdecodeBytes(broken, flags).empty());
+    EXPECT_TRUE(decodeWithOpenCv(too_short, flags).empty());
+    EXPECT_TRUE(decodeWithOpenCv(bad_filter, flags).empty());
+    EXPECT_TRUE(decodeWithOpenCv(broken, flags).empty());
     // More data than the image needs: libpng warns and decodes, here as in OpenCV.
     expectLikeImdecode(too_long, flags, PngRoute::general, "too much data");
   }
@@ -589,7 +589,7 @@ TEST(PngReader, RandomlyDamagedImagesDecodeLikeImdecode) {
     for (int flags : kFlags) {
       PngReadInfo info;
       const cv::Mat ours = decodePng(png.data(), png.size(), flags, &info);
-      EXPECT_TRUE(sameImage(ours, imdecodeBytes(png, flags))) << "trial " << trial << ": " << info.reason;
+      EXPECT_TRUE(sameImage(ours, decodeWithOpenCv(png, flags))) << "trial " << trial << ": " << info.reason;
       ++routes[info.route];
     }
   }
@@ -604,7 +604,7 @@ TEST(PngReader, RandomlyDamagedImagesDecodeLikeImdecode) {
 TEST(PngReader, ThreadsDecodeConcurrently) {
   const RawImage image = randomImage(64, 48, 8, 2, 9);
   const Bytes png = encodePng(image, [](std::uint32_t y) { return int(y % 5); });
-  const cv::Mat expected = imdecodeBytes(png, cv::IMREAD_COLOR);
+  const cv::Mat expected = decodeWithOpenCv(png, cv::IMREAD_COLOR);
   std::vector<int> equal(2, 0);
   std::vector<std::thread> threads;
   for (int t = 0; t < 2; ++t) {

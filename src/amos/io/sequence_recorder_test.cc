@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path freshDir(const std::string& name) {
+fs::path freshRecorderDir(const std::string& name) {
   // The recorder makes the folder itself: it must not exist yet.
   const fs::path dir = amos::testing::scratchDir("amos_recorder_test_" + name);
   fs::remove_all(dir);
@@ -53,7 +53,7 @@ TEST(StampText, SixDecimalsWhenExactElseRoundTrip) {
 // What is recorded reads back through the ordinary sequence reader bit for bit: the same colour, the same depth,
 // the same time stamps, in order.
 TEST(SequenceRecorder, RecordingReadsBackBitExact) {
-  const fs::path dir = freshDir("bit_exact");
+  const fs::path dir = freshRecorderDir("bit_exact");
   constexpr double kFactor = 5000.0;
   cv::RNG rng(12);
   const std::vector<double> stamps = {1548339828.252394, 1548339828.285765, 1548339828.317703,
@@ -91,7 +91,7 @@ TEST(SequenceRecorder, RecordingReadsBackBitExact) {
 }
 
 TEST(SequenceRecorder, InvalidDepthIsWrittenAsNoDepthAndRepeatedStampsAreSkipped) {
-  const fs::path dir = freshDir("invalid_depth");
+  const fs::path dir = freshRecorderDir("invalid_depth");
   RgbdFrame f;
   f.timestamp = 5.0;
   f.bgr = cv::Mat(48, 64, CV_8UC3, cv::Scalar(1, 2, 3));
@@ -116,7 +116,7 @@ TEST(SequenceRecorder, InvalidDepthIsWrittenAsNoDepthAndRepeatedStampsAreSkipped
 }
 
 TEST(SequenceRecorder, UnwritableFolderIsAClearError) {
-  const fs::path file = freshDir("not_a_folder");
+  const fs::path file = freshRecorderDir("not_a_folder");
   std::ofstream(file) << "x";
   try {
     SequenceRecorder recorder(file.string(), 5000.0);

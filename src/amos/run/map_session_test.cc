@@ -10,13 +10,14 @@
 #include "amos/core/error.h"
 #include "amos/run/sequence_run.h"
 #include "amos/synth/sequence.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos::run {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
+using amos::testing::kTum3;
 
 std::string sequence() {
   return synth::cachedSequence((fs::path(AMOS_BINARY_DIR) / "test_outputs" / "synth_cache").string(), "static_xyz",

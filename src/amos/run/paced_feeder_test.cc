@@ -14,13 +14,14 @@
 #include "amos/io/dataset.h"
 #include "amos/run/sequence_run.h"
 #include "amos/testing/shared_data.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos::run {
 namespace {
 
-const std::string kFr2Data = "tum_fr2_desk_first50";
-const std::string kFr2 = testing::dataPath(kFr2Data);
-const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
+using amos::testing::kFr2Data;
+using amos::testing::kFr2;
+using amos::testing::kTum2;
 
 // Hands out preloaded frames at once (a camera that is always ahead), then ends or fails.
 class ListSource : public io::FrameSource {

@@ -18,13 +18,14 @@
 #include "amos/report/run_report.h"
 #include "amos/run/sequence_run.h"
 #include "amos/synth/sequence.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos::run {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
+using amos::testing::kTum3;
 constexpr int kFrames = 30;
 
 // A fresh copy of the 30-frame static_xyz sequence (rendered once per build tree) in test_outputs/<name>.

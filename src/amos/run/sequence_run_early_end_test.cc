@@ -19,19 +19,20 @@
 #include "amos/run/sequence_run.h"
 #include "amos/synth/sequence.h"
 #include "amos/testing/scratch_dir.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos::run {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
-constexpr std::size_t kFrames = 30;
+using amos::testing::kTum3;
+constexpr std::size_t kEarlyEndFrames = 30;
 
 SequenceRunOptions optionsFor(const std::string& mode) {
   SequenceRunOptions options;
   options.sequence_dir = synth::cachedSequence(
-      (fs::path(AMOS_BINARY_DIR) / "test_outputs" / "synth_cache").string(), "static_xyz", 1, kFrames);
+      (fs::path(AMOS_BINARY_DIR) / "test_outputs" / "synth_cache").string(), "static_xyz", 1, kEarlyEndFrames);
   options.mode = mode;
   options.deterministic = true;
   return options;
@@ -153,7 +154,7 @@ TEST(SequenceRunEarlyEnd, MappingFailureEndsTheRunWithOutputsKept) {
   EXPECT_THROW(r.rethrowFailure(), core::Error);
   const std::size_t frames = r.slam().stats().frames;
   EXPECT_GE(frames, 2u);
-  EXPECT_LT(frames, kFrames);
+  EXPECT_LT(frames, kEarlyEndFrames);
   EXPECT_EQ(r.trajectory.size(), frames);
   ASSERT_TRUE(r.info.evaluation);
   EXPECT_LT(r.info.evaluation->ate_rmse_m, 0.01);
@@ -182,7 +183,7 @@ TEST(SequenceRunEarlyEnd, ACompleteRunSaysSo) {
   EXPECT_TRUE(r.info.end.reason.empty());
   EXPECT_FALSE(r.failure);
   EXPECT_NO_THROW(r.rethrowFailure());
-  EXPECT_EQ(r.slam().stats().frames, kFrames);
+  EXPECT_EQ(r.slam().stats().frames, kEarlyEndFrames);
 }
 
 }  // namespace

@@ -13,15 +13,16 @@
 #include "amos/report/run_report.h"
 #include "amos/run/sequence_run.h"
 #include "amos/testing/shared_data.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos::run {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kFr2Data = "tum_fr2_desk_first50";
-const std::string kFr2 = testing::dataPath(kFr2Data);
-const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
+using amos::testing::kFr2Data;
+using amos::testing::kFr2;
+using amos::testing::kTum2;
 
 fs::path outputDir(const std::string& name) {
   const fs::path dir = fs::path(AMOS_BINARY_DIR) / "test_outputs" / "sources" / name;

@@ -12,14 +12,15 @@
 #include "amos/config/settings.h"
 #include "amos/synth/sequence.h"
 #include "amos/testing/shared_data.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos::run {
 namespace {
 
-const std::string kFr2Data = "tum_fr2_desk_first50";
-const std::string kFr2 = testing::dataPath(kFr2Data);
-const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
-const std::string kTum3 = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
+using amos::testing::kFr2Data;
+using amos::testing::kFr2;
+using amos::testing::kTum2;
+using amos::testing::kTum3;
 
 std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

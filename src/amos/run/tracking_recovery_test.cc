@@ -14,13 +14,14 @@
 #include "amos/system/slam_system.h"
 #include "amos/testing/shared_data.h"
 #include "amos/testing/slam_input.h"
+#include "amos/testing/test_inputs.h"
 
 namespace amos::run {
 namespace {
 
-const std::string kFr2Data = "tum_fr2_desk_first50";
-const std::string kFr2 = testing::dataPath(kFr2Data);
-const std::string kTum2 = std::string(AMOS_SOURCE_DIR) + "/configs/tum2.yaml";
+using amos::testing::kFr2Data;
+using amos::testing::kFr2;
+using amos::testing::kTum2;
 
 std::vector<io::RgbdFrame> loadFrames(const config::Settings& settings, std::size_t count) {
   io::SequenceReader reader(io::indexSequence(kFr2), settings.readerOptions());
@@ -50,7 +51,7 @@ RecoveryRun run(const config::Settings& settings, const std::vector<io::RgbdFram
   for (std::size_t i = 0; i < frames.size(); ++i) {
     io::RgbdFrame frame = frames[i];
     if (i >= blank_from && i < blank_to) frame.bgr = cv::Mat::zeros(frame.bgr.size(), frame.bgr.type());
-    const system::FrameOutput o = slam.track(testing::trackInput(orb, frame));
+    const system::FrameOutput o = slam.track(amos::testing::trackInput(orb, frame));
     out.states.push_back(o.track.state);
     out.T_cw.push_back(o.track.T_cw);
   }

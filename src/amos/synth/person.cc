@@ -12,7 +12,7 @@ using Eigen::Vector3d;
 
 namespace {
 
-Eigen::Matrix3d rotZ(double a) { return Eigen::AngleAxisd(a, Vector3d::UnitZ()).toRotationMatrix(); }
+Eigen::Matrix3d personRotZ(double a) { return Eigen::AngleAxisd(a, Vector3d::UnitZ()).toRotationMatrix(); }
 
 // Direction in the body's sagittal plane at `angle` forwards from straight down.
 Vector3d swingDir(double angle, double outward = 0) {
@@ -56,7 +56,7 @@ Legs addLegs(const PersonLook& look, const BodyPose& pose, double s, std::uint16
 // Pelvis, torso, arms, neck and head above the hips, in the body frame.
 void addUpperBody(const PersonLook& look, const BodyPose& pose, double s, double hip_z, std::uint16_t id,
                   SceneGeometry& g) {
-  const Eigen::Matrix3d twist = rotZ(pose.twist);
+  const Eigen::Matrix3d twist = personRotZ(pose.twist);
   const double lean = pose.lean + (pose.sitting ? -0.08 : 0.04 * pose.gait_amplitude);
   const Vector3d axis = twist * Vector3d(std::sin(lean), 0, std::cos(lean));
   const Vector3d front = twist * Vector3d(std::cos(lean), 0, -std::sin(lean));
@@ -68,7 +68,7 @@ void addUpperBody(const PersonLook& look, const BodyPose& pose, double s, double
   const Vector3d neck_top = shoulders + 0.11 * s * axis;
   g.addCylinder(shoulders, neck_top, 0.05 * s, look.skin, id, front);
   g.addSphere(neck_top + 0.1 * s * axis, 0.105 * s, look.head, id,
-              rotZ(pose.twist + pose.head_turn) * Vector3d::UnitX(), axis);
+              personRotZ(pose.twist + pose.head_turn) * Vector3d::UnitX(), axis);
   for (int arm = 0; arm < 2; ++arm) {
     const double side = arm == 0 ? 1.0 : -1.0;
     double upper_angle, elbow;

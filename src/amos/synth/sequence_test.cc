@@ -13,7 +13,7 @@
 namespace amos::synth {
 namespace {
 
-SequenceOptions quick(const std::string& preset, int frames = 30, std::uint32_t seed = 3) {
+SequenceOptions quickSequence(const std::string& preset, int frames = 30, std::uint32_t seed = 3) {
   SequenceOptions o;
   o.preset = preset;
   o.seed = seed;
@@ -92,7 +92,7 @@ Reprojection reproject(const SyntheticFrame& fi, const SyntheticFrame& fj, const
 }
 
 TEST(Sequence, StaticPixelsReprojectWithinTheNoiseModel) {
-  const SequenceGenerator gen(quick("walking_xyz"));
+  const SequenceGenerator gen(quickSequence("walking_xyz"));
   const SyntheticFrame f0 = gen.render(0), f1 = gen.render(20);
   // The camera really moved (xyz motion), so the test is not trivially passed by a still camera.
   EXPECT_GT(core::translationNorm(f0.T_wc.inverse() * f1.T_wc), 0.03);
@@ -152,7 +152,7 @@ MaskCheck checkMasks(const SequenceGenerator& gen, int index) {
 TEST(Sequence, MasksAreExactlyTheMoversVisibleGeometryBothWaysRoundOcclusions) {
   // Walkers cross in front of the desk; seated people are hidden by the desk below the chest.
   for (const char* preset : {"walking_xyz", "sitting_xyz", "objects_xyz"}) {
-    const SequenceGenerator gen(quick(preset, 300));
+    const SequenceGenerator gen(quickSequence(preset, 300));
     long movers = 0, hidden = 0;
     for (int index : {40, 130, 220}) {
       const MaskCheck c = checkMasks(gen, index);
@@ -167,7 +167,7 @@ TEST(Sequence, MasksAreExactlyTheMoversVisibleGeometryBothWaysRoundOcclusions) {
 
 TEST(Sequence, EveryMoverShowsUpAndMovesInItsPreset) {
   for (const char* preset : {"walking_static", "sitting_xyz", "box_push", "objects_xyz"}) {
-    const SequenceGenerator gen(quick(preset, 300));
+    const SequenceGenerator gen(quickSequence(preset, 300));
     std::vector<long> seen(gen.instances().size() + 1, 0), moving(gen.instances().size() + 1, 0);
     for (int index = 0; index < gen.frameCount(); index += 30) {
       const cv::Mat mask = gen.renderExact(index, true, true, false).instance;
@@ -195,7 +195,7 @@ TEST(Sequence, StateChangingMoversMoveOnlyInTheirPhase) {
       {"chair_push", {{30, {}}, {80, {}}, {120, {"chair_pusher", "pushed_chair"}}, {270, {}}}},
   };
   for (const auto& [preset, phases] : cases) {
-    const SequenceGenerator gen(quick(preset, 300));
+    const SequenceGenerator gen(quickSequence(preset, 300));
     EXPECT_EQ(gen.preset().static_counterpart, "static_xyz") << preset;
     for (const Phase& phase : phases) {
       std::vector<std::string> moving;
@@ -211,7 +211,7 @@ TEST(Sequence, StateChangingMoversMoveOnlyInTheirPhase) {
     }
   }
   // The person is a prior class, the chair it pushes is not.
-  const SequenceGenerator gen(quick("chair_push", 30));
+  const SequenceGenerator gen(quickSequence("chair_push", 30));
   ASSERT_EQ(gen.instances().size(), 2u);
   EXPECT_EQ(gen.instances()[0].category, "person");
   EXPECT_EQ(gen.instances()[1].category, "object");
@@ -224,7 +224,7 @@ TEST(Sequence, StaticCounterpartFliesTheSamePathThroughTheSameRoom) {
     EXPECT_EQ(findPreset(p.static_counterpart).motion, p.motion) << p.name;
     EXPECT_TRUE(findPreset(p.static_counterpart).movers.empty()) << p.name;
   }
-  SequenceOptions dynamic = quick("box_push", 30), counterpart = quick("static_xyz", 30), removed = dynamic;
+  SequenceOptions dynamic = quickSequence("box_push", 30), counterpart = quickSequence("static_xyz", 30), removed = dynamic;
   removed.movers = false;
   const SequenceGenerator a(dynamic), b(counterpart), c(removed);
   for (int index : {0, 17, 29}) {
@@ -238,19 +238,19 @@ TEST(Sequence, StaticCounterpartFliesTheSamePathThroughTheSameRoom) {
 }
 
 TEST(Sequence, FramesAreIndependentAndSeedsMatter) {
-  const SequenceGenerator gen(quick("walking_xyz", 30));
+  const SequenceGenerator gen(quickSequence("walking_xyz", 30));
   const SyntheticFrame a = gen.render(7);
   gen.render(3);
   const SyntheticFrame b = gen.render(7);
   EXPECT_EQ(cv::norm(a.bgr, b.bgr, cv::NORM_INF), 0);
   EXPECT_EQ(cv::norm(a.depth_raw, b.depth_raw, cv::NORM_INF), 0);
-  const SequenceGenerator other(quick("walking_xyz", 30, 4));
+  const SequenceGenerator other(quickSequence("walking_xyz", 30, 4));
   EXPECT_GT(cv::norm(a.bgr, other.render(7).bgr, cv::NORM_L1), 0);
   EXPECT_FALSE(gen.poseWc(7).isApprox(other.poseWc(7), 1e-6));
 }
 
 TEST(Sequence, MotionBlurSmearsColourOnlyWhereThingsMove) {
-  SequenceOptions sharp = quick("walking_static", 300), blurred = sharp;
+  SequenceOptions sharp = quickSequence("walking_static", 300), blurred = sharp;
   blurred.sensor.motion_blur = true;
   blurred.sensor.exposure_s = 0.03;
   const SequenceGenerator a(sharp), b(blurred);
@@ -272,7 +272,7 @@ TEST(Sequence, MotionBlurSmearsColourOnlyWhereThingsMove) {
 
 TEST(Sequence, LoopIsTrackableEverywhere) {
   // ORB-SLAM needs corners all over every view, walls at a few metres and depth on most of the image.
-  SequenceOptions o = quick("static_loop", 0);
+  SequenceOptions o = quickSequence("static_loop", 0);
   o.metres_per_texel = 0.004;  // the real texture resolution: this is about texture
   const SequenceGenerator gen(o);
   EXPECT_GE(gen.frameCount(), 600);

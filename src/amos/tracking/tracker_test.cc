@@ -18,7 +18,7 @@ namespace {
 
 using amos::testing::PoseNear;
 
-constexpr double kDeg = M_PI / 180;
+constexpr double kDegree = M_PI / 180;
 
 std::shared_ptr<const testing::SyntheticScene> room() {
   static const auto scene =
@@ -58,7 +58,7 @@ TEST(Tracker, TracksASyntheticSequenceNearTheTruth) {
   for (int i = 0; i < seq.size(); ++i) {
     const TrackResult& r = run.results[static_cast<std::size_t>(i)];
     ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
-    EXPECT_THAT(r.T_cw, PoseNear(seq.T_cw(i), 0.01, 0.2 * kDeg)) << "frame " << i;
+    EXPECT_THAT(r.T_cw, PoseNear(seq.T_cw(i), 0.01, 0.2 * kDegree)) << "frame " << i;
   }
   EXPECT_GE(run.results.back().inliers, 100);
 }
@@ -67,7 +67,7 @@ TEST(Tracker, TracksASyntheticSequenceNearTheTruth) {
 // moved on, each handed to the keyframe sink.
 TEST(Tracker, AsksForAKeyFrameWhenTheViewChanges) {
   core::Vector6d pan;
-  pan << 0, 0, 0, 0, 1.5 * kDeg, 0;
+  pan << 0, 0, 0, 0, 1.5 * kDegree, 0;
   std::vector<core::SE3> path = testing::constantVelocityPath(21, pan);  // starts at the identity
   path.insert(path.begin(), 9, core::SE3::Identity());
   const testing::SyntheticSequence seq(room(), path);
@@ -76,7 +76,7 @@ TEST(Tracker, AsksForAKeyFrameWhenTheViewChanges) {
   for (int i = 0; i < seq.size(); ++i) {
     const TrackResult& r = run.results[static_cast<std::size_t>(i)];
     ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
-    EXPECT_THAT(r.T_cw, PoseNear(seq.T_cw(i), 0.01, 0.2 * kDeg)) << "frame " << i;
+    EXPECT_THAT(r.T_cw, PoseNear(seq.T_cw(i), 0.01, 0.2 * kDegree)) << "frame " << i;
     if (i > 0 && r.new_keyframe) {
       ++created;
       if (first_new < 0) first_new = i;
@@ -136,7 +136,7 @@ TEST(Tracker, MakesKeyFramesByViewChangeWhileMappingIsBusy) {
     int inserted = 0;
   };
   core::Vector6d pan;
-  pan << 0, 0, 0, 0, 1.0 * kDeg, 0;
+  pan << 0, 0, 0, 0, 1.0 * kDegree, 0;
   const testing::SyntheticSequence seq(room(), testing::constantVelocityPath(16, pan));
   auto run = [&](TrackerOptions options) {
     options.max_frames_between_keyframes = 1000;
@@ -178,7 +178,7 @@ TEST(Tracker, IsLostOnABlankImageAndRecoversWhenTheViewReturns) {
   for (int i = 8; i < seq.size(); ++i) {
     const TrackResult& r = run.results[static_cast<std::size_t>(i)];
     ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
-    EXPECT_THAT(r.T_cw, PoseNear(seq.T_cw(i) * T_1w.inverse(), 0.01, 0.2 * kDeg)) << "frame " << i;
+    EXPECT_THAT(r.T_cw, PoseNear(seq.T_cw(i) * T_1w.inverse(), 0.01, 0.2 * kDegree)) << "frame " << i;
   }
 }
 
@@ -202,7 +202,7 @@ TEST(Tracker, RecoversAfterALongGapWhereTheLastVelocityTakesTheCamera) {
   for (int i = 26; i < seq.size(); ++i) {
     const TrackResult& r = run.results[static_cast<std::size_t>(i)];
     ASSERT_EQ(r.state, TrackingState::kOk) << "frame " << i;
-    EXPECT_THAT(r.T_cw, PoseNear(seq.T_cw(i) * T_1w.inverse(), 0.01, 0.2 * kDeg)) << "frame " << i;
+    EXPECT_THAT(r.T_cw, PoseNear(seq.T_cw(i) * T_1w.inverse(), 0.01, 0.2 * kDegree)) << "frame " << i;
   }
 }
 

@@ -24,10 +24,10 @@ ServerLimits quickLimits() {
   return limits;
 }
 
-struct Served {
+struct GuardedServed {
   GuardedServer server;
   int port = 0;
-  explicit Served(ServerLimits limits = quickLimits()) : server(limits) {
+  explicit GuardedServed(ServerLimits limits = quickLimits()) : server(limits) {
     server.routes().Get("/ok", [](const httplib::Request&, httplib::Response& res) { res.set_content("ok", "text/plain"); });
     server.routes().Get("/throws", [](const httplib::Request&, httplib::Response&) { throw std::runtime_error("boom"); });
     server.routes().Get("/throws-int", [](const httplib::Request&, httplib::Response&) { throw 42; });
@@ -46,7 +46,7 @@ struct Served {
 };
 
 TEST(GuardedServer, AHandlerThatThrowsGets500AndTheServerGoesOn) {
-  Served s;
+  GuardedServed s;
   EXPECT_EQ(statusOf(testing::roundTrip(s.port, s.request("/throws"))), 500);
   EXPECT_EQ(statusOf(testing::roundTrip(s.port, s.request("/throws-int"))), 500);
   const std::string later = testing::roundTrip(s.port, s.request("/throws-later"));
@@ -55,7 +55,7 @@ TEST(GuardedServer, AHandlerThatThrowsGets500AndTheServerGoesOn) {
 }
 
 TEST(GuardedServer, AHeadNotCompleteInTimeIs408) {
-  Served s;
+  GuardedServed s;
   RawConnection c(s.port);
   c.send("GET /ok HTTP/1.1\r\n");
   const auto start = std::chrono::steady_clock::now();
@@ -66,7 +66,7 @@ TEST(GuardedServer, AHeadNotCompleteInTimeIs408) {
 
 // Keep-alive abuse: an idle kept-alive connection is closed, and a connection carries a bounded number of requests.
 TEST(GuardedServer, KeptAliveConnectionsAreBounded) {
-  Served s;
+  GuardedServed s;
   RawConnection idle(s.port);
   idle.send(s.request("/ok", false));
   const auto start = std::chrono::steady_clock::now();
@@ -91,7 +91,7 @@ TEST(GuardedServer, TheLongestWaitingConnectionMakesRoom) {
   ServerLimits limits = quickLimits();
   limits.max_connections = 4;
   limits.head_timeout = limits.idle_timeout = milliseconds(10000);
-  Served s(limits);
+  GuardedServed s(limits);
   RawConnection first(s.port);
   first.send("GET /ok HTTP/1.1\r\n");
   std::vector<std::unique_ptr<RawConnection>> others;
@@ -106,7 +106,7 @@ TEST(GuardedServer, TheLongestWaitingConnectionMakesRoom) {
 }
 
 TEST(GuardedServer, StopsWithConnectionsOpen) {
-  auto s = std::make_unique<Served>();
+  auto s = std::make_unique<GuardedServed>();
   RawConnection idle(s->port), partial(s->port);
   partial.send("GET /ok HTTP/1.1\r\n");
   const auto start = std::chrono::steady_clock::now();

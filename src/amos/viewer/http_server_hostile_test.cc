@@ -23,7 +23,7 @@ using testing::statusOf;
 
 constexpr std::size_t kFileBytes = 512 * 1024;
 
-struct Served {
+struct HostileServed {
   fs::path run;
   LiveState state;
   std::unique_ptr<ViewerServer> server;
@@ -31,8 +31,8 @@ struct Served {
   std::string host() const { return "Host: 127.0.0.1:" + std::to_string(port()) + "\r\n"; }
 };
 
-std::unique_ptr<Served> serve() {
-  auto s = std::make_unique<Served>();
+std::unique_ptr<HostileServed> serveHostile() {
+  auto s = std::make_unique<HostileServed>();
   const fs::path parent = amos::testing::scratchDirForThisTest("viewer_hostile_");
   s->run = parent / "run";
   fs::create_directories(s->run);
@@ -63,7 +63,7 @@ std::string manyRanges(int count) {
 // Hundreds of ranges once made a reply of hundreds of copies of the file (gigabytes: std::bad_alloc ended the
 // process). Now a list of ranges is ignored: the whole file, once; the process memory stays small.
 TEST(ViewerServerHostile, HundredsOfRangesGetTheFileOnce) {
-  const auto s = serve();
+  const auto s = serveHostile();
   const std::size_t before = testing::peakResidentBytes();
   for (const char* path : {"/files/file.bin", "/api/state", "/"}) {
     RawConnection c(s->port());
@@ -77,7 +77,7 @@ TEST(ViewerServerHostile, HundredsOfRangesGetTheFileOnce) {
 }
 
 TEST(ViewerServerHostile, OneRangeIsServedAndAnUnsatisfiableOneIs416) {
-  const auto s = serve();
+  const auto s = serveHostile();
   std::string reply = testing::get(s->port(), "/files/file.bin", "Range: bytes=26-30\r\n");
   EXPECT_EQ(statusOf(reply), 206) << reply;
   EXPECT_EQ(testing::bodyOf(reply), "abcde");
@@ -93,7 +93,7 @@ TEST(ViewerServerHostile, OneRangeIsServedAndAnUnsatisfiableOneIs416) {
 // A file is streamed from disk: serving a large one costs the process pieces of it, not the whole file (it was
 // read into memory, and copied, for each request).
 TEST(ViewerServerHostile, ALargeFileIsStreamedNotLoaded) {
-  const auto s = serve();
+  const auto s = serveHostile();
   const std::uintmax_t large = 256u << 20;
   fs::resize_file(s->run / "file.bin", large);  // sparse: fast to write and to read
   const std::size_t before = testing::peakResidentBytes();
@@ -107,7 +107,7 @@ TEST(ViewerServerHostile, ALargeFileIsStreamedNotLoaded) {
 
 // DNS rebinding: a page of another site reaches 127.0.0.1 under its own name; the Host header shows it.
 TEST(ViewerServerHostile, AForeignHostIsRefused) {
-  const auto s = serve();
+  const auto s = serveHostile();
   const std::string port = std::to_string(s->port());
   for (const std::string& host :
        std::vector<std::string>{"evil.example:" + port, "evil.example", "127.0.0.1:1", "localhost.evil.example:" + port}) {
@@ -127,7 +127,7 @@ TEST(ViewerServerHostile, AForeignHostIsRefused) {
 // Thirty-odd connections sending their heads a byte at a time held the request threads: /api/state waited
 // seconds. Heads are now read without a thread, so it answers at once.
 TEST(ViewerServerHostile, SlowHeadsDoNotStallTheState) {
-  const auto s = serve();
+  const auto s = serveHostile();
   std::vector<std::unique_ptr<RawConnection>> slow;
   for (int i = 0; i < 40; ++i) {
     slow.push_back(std::make_unique<RawConnection>(s->port()));
@@ -145,7 +145,7 @@ TEST(ViewerServerHostile, SlowHeadsDoNotStallTheState) {
 // Idle connections (opened, nothing sent) beyond the limit make room: the one waiting longest is closed, and a
 // new request is served at once instead of queueing behind them.
 TEST(ViewerServerHostile, ManyIdleConnectionsDoNotKeepRequestsOut) {
-  const auto s = serve();
+  const auto s = serveHostile();
   std::vector<std::unique_ptr<RawConnection>> idle;
   for (int i = 0; i < 300; ++i)  // beyond the limit of open connections (256)
     idle.push_back(std::make_unique<RawConnection>(s->port()));
@@ -157,7 +157,7 @@ TEST(ViewerServerHostile, ManyIdleConnectionsDoNotKeepRequestsOut) {
 // A line without end grew the server's buffer without bound (and held a thread while it came); it is refused
 // once it is longer than the limit.
 TEST(ViewerServerHostile, AnEndlessRequestLineIs414) {
-  const auto s = serve();
+  const auto s = serveHostile();
   RawConnection c(s->port());
   c.send("GET /" + std::string(100000, 'a'));
   const std::string reply = c.readUntilClosed(milliseconds(2000));
@@ -167,7 +167,7 @@ TEST(ViewerServerHostile, AnEndlessRequestLineIs414) {
 
 // The longest target allowed goes through httplib's routing regular expressions (recursive in libstdc++) safely.
 TEST(ViewerServerHostile, TheLongestTargetIsRoutedSafely) {
-  const auto s = serve();
+  const auto s = serveHostile();
   const std::size_t room = 4096 - std::string("GET  HTTP/1.1").size();  // the longest request line allowed
   for (const std::string prefix : {"/files/", "/api/dense/", "/"}) {
     const std::string path = prefix + std::string(room - prefix.size() - 4, 'a') + ".bin";
@@ -180,7 +180,7 @@ TEST(ViewerServerHostile, TheLongestTargetIsRoutedSafely) {
 }
 
 TEST(ViewerServerHostile, TooManyOrTooLongHeadersAre431) {
-  const auto s = serve();
+  const auto s = serveHostile();
   std::string many;
   for (int i = 0; i < 1000; ++i) many += "X-Header-" + std::to_string(i) + ": x\r\n";
   EXPECT_EQ(statusOf(testing::roundTrip(s->port(), "GET /api/state HTTP/1.1\r\n" + s->host() + many + "\r\n")), 431);
@@ -190,7 +190,7 @@ TEST(ViewerServerHostile, TooManyOrTooLongHeadersAre431) {
 }
 
 TEST(ViewerServerHostile, OtherMethodsThanGetAndHeadAre405) {
-  const auto s = serve();
+  const auto s = serveHostile();
   for (const char* method : {"POST", "PUT", "DELETE", "PATCH", "OPTIONS", "TRACE", "CONNECT"}) {
     const std::string reply =
         testing::roundTrip(s->port(), std::string(method) + " /api/state HTTP/1.1\r\n" + s->host() + "\r\n");
@@ -204,7 +204,7 @@ TEST(ViewerServerHostile, OtherMethodsThanGetAndHeadAre405) {
 // A body (announced large, or chunked and never ending) is refused at once, without reading it: 405 for a method
 // other than GET (the server is read-only), 413 for a GET with a body.
 TEST(ViewerServerHostile, ABodyIsRefusedUnread) {
-  const auto s = serve();
+  const auto s = serveHostile();
   for (const std::string framing : {"Content-Length: 1000000000\r\n", "Transfer-Encoding: chunked\r\n"}) {
     for (const char* method : {"POST", "GET"}) {
       RawConnection c(s->port());
@@ -219,7 +219,7 @@ TEST(ViewerServerHostile, ABodyIsRefusedUnread) {
 
 // Path tricks on /files/: a link out of the run, an encoded NUL, encoded '..', a FIFO.
 TEST(ViewerServerHostile, PathTricksAreRefused) {
-  const auto s = serve();
+  const auto s = serveHostile();
   fs::create_symlink(s->run.parent_path() / "secret.txt", s->run / "link.txt");
   fs::create_directory_symlink(s->run.parent_path(), s->run / "up");
   for (const char* path : {"/files/link.txt", "/files/up/secret.txt", "/files/file.bin%00.txt", "/files/%2e%2e/secret.txt",
@@ -232,7 +232,7 @@ TEST(ViewerServerHostile, PathTricksAreRefused) {
 
 // The server keeps serving after all of the above on one connection after another (keep-alive requests too).
 TEST(ViewerServerHostile, KeptAliveConnectionsServeInTurn) {
-  const auto s = serve();
+  const auto s = serveHostile();
   RawConnection c(s->port());
   const std::string request = "GET /files/file.bin HTTP/1.1\r\n" + s->host() + "Range: bytes=0-1\r\n\r\n";
   c.send(request + request + request);  // pipelined

@@ -23,16 +23,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Served {
+struct HttpServed {
   fs::path run;
   LiveState state;
   std::unique_ptr<ViewerServer> server;
   httplib::Client client() const { return httplib::Client("127.0.0.1", server->port()); }
 };
 
-std::unique_ptr<Served> serve() {
-  auto s = std::make_unique<Served>();
-  const fs::path parent = testing::scratchDirForThisTest("viewer_http_");
+std::unique_ptr<HttpServed> serve() {
+  auto s = std::make_unique<HttpServed>();
+  const fs::path parent = amos::testing::scratchDirForThisTest("viewer_http_");
   s->run = parent / "run";
   fs::create_directories(s->run / "overlays");
   std::ofstream(s->run / "stats.json") << R"({"frames": 1})";

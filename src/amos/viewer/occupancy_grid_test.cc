@@ -12,7 +12,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(OccupancyGrid, ReadsTheMapServerFormatAndCountsCells) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_occupancy_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_occupancy_");
   test::writeOccupancy(dir, 40, 20, 0.05);
   const OccupancyGrid g = readOccupancyGrid(dir / "occupancy.yaml");
   EXPECT_EQ(g.image.cols, 40);
@@ -34,7 +34,7 @@ TEST(OccupancyGrid, ReadsTheMapServerFormatAndCountsCells) {
 }
 
 TEST(OccupancyGrid, BadDescriptionsAreErrorsNamingTheFileAndKey) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_occupancy_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_occupancy_");
   test::writeOccupancy(dir, 8, 8, 0.1);
   auto message = [&](const std::string& yaml) {
     test::writeText(dir / "bad.yaml", yaml);

@@ -16,7 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(ReadPly, ReadsABinaryMeshWithColoursAndFaces) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_ply_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_ply_");
   const ColouredGeometry written = test::floorAndWall(-1, 1, 0, 2, 0.5f);
   test::writeBinaryPly(dir / "mesh.ply", written, true);
   const ColouredGeometry read = readPly(dir / "mesh.ply");
@@ -28,7 +28,7 @@ TEST(ReadPly, ReadsABinaryMeshWithColoursAndFaces) {
 }
 
 TEST(ReadPly, ReadsABinaryCloudWithoutFaces) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_ply_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_ply_");
   const ColouredGeometry written = test::gridCloud(0, 1, 0, 1, 0, 10, 1, 2, 3);
   test::writeBinaryPly(dir / "cloud.ply", written, false);
   const ColouredGeometry read = readPly(dir / "cloud.ply");
@@ -38,7 +38,7 @@ TEST(ReadPly, ReadsABinaryCloudWithoutFaces) {
 }
 
 TEST(ReadPly, ReadsAsciiSkipsOtherPropertiesAndSplitsPolygons) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_ply_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_ply_");
   // Normals and an alpha between the wanted properties, double coordinates, a quad and a per-face property.
   test::writeText(dir / "a.ply",
                   "ply\nformat ascii 1.0\ncomment x\nelement vertex 4\nproperty double x\nproperty float nx\n"
@@ -56,7 +56,7 @@ TEST(ReadPly, ReadsAsciiSkipsOtherPropertiesAndSplitsPolygons) {
 }
 
 TEST(ReadPly, ReadsTheSparseMapWithoutColourAsGrey) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_ply_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_ply_");
   test::writeText(dir / "map.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
                                    "property float z\nend_header\n0 0 1\n0.5 -0.25 2\n");
   const ColouredGeometry g = readPly(dir / "map.ply");
@@ -65,7 +65,7 @@ TEST(ReadPly, ReadsTheSparseMapWithoutColourAsGrey) {
 }
 
 TEST(ReadPly, BadFilesAreErrorsNamingTheFile) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_ply_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_ply_");
   const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\n"
                              "property float y\nproperty float z\n";
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -95,7 +95,7 @@ TEST(ReadPly, BadFilesAreErrorsNamingTheFile) {
 // found before anything of the claimed size is allocated or looped over (they used to be std::bad_alloc, or a float
 // list count of -1 read as 2^64 - 1).
 TEST(ReadPly, CountsClaimingMoreThanTheFileHoldsAreErrorsNamingTheFile) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_ply_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_ply_");
   const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
   const std::string binary = "ply\nformat binary_little_endian 1.0\n";
   const std::string ascii = "ply\nformat ascii 1.0\n";
@@ -126,7 +126,7 @@ TEST(ReadPly, CountsClaimingMoreThanTheFileHoldsAreErrorsNamingTheFile) {
 
 // Elements without properties take no bytes: any count of them is read at once (it used to be a loop of 10^18).
 TEST(ReadPly, ElementsWithoutPropertiesAreSkippedWhateverTheirCount) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_ply_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_ply_");
   test::writeText(dir / "empty_items.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
                                            "property float y\nproperty float z\nelement junk 1000000000000000000\n"
                                            "element face 1000000000000000000\nend_header\n0 0 0\n");
@@ -137,7 +137,7 @@ TEST(ReadPly, ElementsWithoutPropertiesAreSkippedWhateverTheirCount) {
 
 // Vertex coordinates that are not finite floats are errors naming the file and the vertex; a NaN colour is 0.
 TEST(ReadPly, NonFiniteCoordinatesAreErrorsNamingTheFile) {
-  const fs::path dir = testing::scratchDirForThisTest("viewer_ply_");
+  const fs::path dir = amos::testing::scratchDirForThisTest("viewer_ply_");
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 2\nproperty double x\nproperty double y\n"
                              "property double z\nproperty float red\nend_header\n0 0 0 nan\n";
   for (const auto& [name, vertex, axis] : {std::tuple{"nan.ply", "nan 0 0 0\n", "x = nan"},
@@ -161,7 +161,7 @@ TEST(ReadPly, NonFiniteCoordinatesAreErrorsNamingTheFile) {
 // The ply fuzz target's corpus (fuzz/corpus/ply/: seeds and the inputs of fixed crashes), replayed through its entry
 // function: no input may crash or throw anything but core::Error.
 TEST(FuzzCorpus, PlyInputsGiveGeometryOrCoreErrors) {
-  EXPECT_GE(testing::replayFuzzCorpus("ply", fuzz::readPlyInput), 9u);
+  EXPECT_GE(amos::testing::replayFuzzCorpus("ply", fuzz::readPlyInput), 9u);
 }
 
 }  // namespace

@@ -105,7 +105,7 @@ TEST(ReportHtml, KeepsTheGroundTruthInTheMapFrameForTheView) {
 }
 
 TEST(ReportHtml, ShowsTheOccupancyGridOnlyWhenTheRunLeftOne) {
-  const std::filesystem::path dir = testing::scratchDirForThisTest("viewer_report_");
+  const std::filesystem::path dir = amos::testing::scratchDirForThisTest("viewer_report_");
   nlohmann::json without = {{"stats", nlohmann::json::object()}};
   addDenseProducts(dir, without);
   EXPECT_FALSE(without.contains("occupancy"));

@@ -69,7 +69,7 @@ bool isSingleByteRange(std::string_view value) {
   return (!first.empty() || !last.empty()) && isDigits(first, 18) && isDigits(last, 18);
 }
 
-struct Header {
+struct RequestHeader {
   std::string_view name, value;
 };
 
@@ -165,7 +165,7 @@ ScreenedHead screenHead(std::string_view head, const HostRule& hosts, const Head
   std::string_view method;
   if (auto refusal = checkRequestLine(lines.front(), limits, method)) return ScreenedHead{std::move(refusal), {}, {}};
   if (lines.size() - 2 > limits.max_headers) return refused(431, fmt::format("more than {} headers", limits.max_headers));
-  std::vector<Header> headers;
+  std::vector<RequestHeader> headers;
   for (std::size_t i = 1; i + 1 < lines.size(); ++i) {
     const std::string_view line = lines[i];
     const std::size_t colon = line.find(':');
@@ -175,7 +175,7 @@ ScreenedHead screenHead(std::string_view head, const HostRule& hosts, const Head
   }
   auto named = [&](std::string_view name) {
     std::vector<std::string_view> values;
-    for (const Header& h : headers)
+    for (const RequestHeader& h : headers)
       if (lowered(h.name) == name) values.push_back(h.value);
     return values;
   };
@@ -190,7 +190,7 @@ ScreenedHead screenHead(std::string_view head, const HostRule& hosts, const Head
     return refused(413, "a request body is never read here");
   ScreenedHead out;
   out.forwarded = std::string(lines.front()) + "\r\n";
-  for (const Header& h : headers) {
+  for (const RequestHeader& h : headers) {
     const std::string name = lowered(h.name);
     if (name == "range") {
       if (isSingleByteRange(h.value) && named("range").size() == 1) out.range = std::string(h.value);

@@ -20,7 +20,7 @@ void write(const fs::path& path, const std::string& text) {
 
 // A run folder inside a parent that also holds a file the viewer must never hand out.
 fs::path makeRun() {
-  const fs::path parent = testing::scratchDirForThisTest("viewer_run_folder_");
+  const fs::path parent = amos::testing::scratchDirForThisTest("viewer_run_folder_");
   const fs::path run = parent / "run";
   write(run / "trajectory.txt", "1.0 0 0 0 0 0 0 1\n2.0 0.1 0 0 0 0 0 1\n");
   write(run / "keyframes.txt", "1.0 0 0 0 0 0 0 1\n");
@@ -62,7 +62,7 @@ TEST(LoadRunFolder, LoadsTrajectoryKeyframesMapStatsAndOverlays) {
 }
 
 TEST(LoadRunFolder, ShowsTheDenseProductsAndTheGroundTruthOfReportHtml) {
-  const fs::path run = testing::scratchDirForThisTest("viewer_run_folder_") / "run";
+  const fs::path run = amos::testing::scratchDirForThisTest("viewer_run_folder_") / "run";
   test::writeRunFolder(run, true);
   LiveState state;
   loadRunFolder(run, state);
@@ -84,7 +84,7 @@ TEST(LoadRunFolder, ShowsTheDenseProductsAndTheGroundTruthOfReportHtml) {
 }
 
 TEST(LoadRunFolder, WithoutDenseProductsOrReportThoseLayersAreEmpty) {
-  const fs::path run = testing::scratchDirForThisTest("viewer_run_folder_") / "run";
+  const fs::path run = amos::testing::scratchDirForThisTest("viewer_run_folder_") / "run";
   test::writeRunFolder(run, false);
   fs::remove(run / "report.html");
   LiveState state;
@@ -97,7 +97,7 @@ TEST(LoadRunFolder, WithoutDenseProductsOrReportThoseLayersAreEmpty) {
 }
 
 TEST(LoadRunFolder, ADenseProductThatCannotBeReadIsLeftOut) {
-  const fs::path run = testing::scratchDirForThisTest("viewer_run_folder_") / "run";
+  const fs::path run = amos::testing::scratchDirForThisTest("viewer_run_folder_") / "run";
   test::writeRunFolder(run, true);
   write(run / "mesh.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty float x\n"
                           "property float y\nproperty float z\nend_header\n");
@@ -109,7 +109,7 @@ TEST(LoadRunFolder, ADenseProductThatCannotBeReadIsLeftOut) {
 }
 
 TEST(LoadRunFolder, TheMaskOverlaysOfReportHtmlAreShownWithoutOverlayFiles) {
-  const fs::path run = testing::scratchDirForThisTest("viewer_run_folder_") / "run";
+  const fs::path run = amos::testing::scratchDirForThisTest("viewer_run_folder_") / "run";
   test::writeRunFolder(run, false);
   write(run / "report.html", reportHtml({{"overlays", {{{"index", 7}, {"t", 1.5}, {"jpeg", "QUJD"}}}}}));
   LiveState state;
@@ -121,7 +121,7 @@ TEST(LoadRunFolder, TheMaskOverlaysOfReportHtmlAreShownWithoutOverlayFiles) {
 }
 
 TEST(LoadRunFolder, AFolderWithoutARunIsAnError) {
-  const fs::path empty = testing::scratchDirForThisTest("viewer_run_folder_");
+  const fs::path empty = amos::testing::scratchDirForThisTest("viewer_run_folder_");
   LiveState state;
   EXPECT_THROW(loadRunFolder(empty, state), core::Error);
 }

@@ -149,7 +149,7 @@ main().catch((e) => { document.getElementById('result').textContent = JSON.strin
 
 TEST(ViewPageBrowser, FitsTheRunShowsDenseLayersAndTogglesThem) {
   if (chromium().empty()) GTEST_SKIP() << "chromium is not installed (scripts/install_deps.sh installs it)";
-  const fs::path scratch = testing::scratchDirForThisTest("viewer_browser_");
+  const fs::path scratch = amos::testing::scratchDirForThisTest("viewer_browser_");
   const fs::path run = scratch / "run";
   test::writeRunFolder(run, true);
   test::writeText(run / "harness.html", kHarness);
@@ -198,7 +198,7 @@ TEST(ViewPageBrowser, FitsTheRunShowsDenseLayersAndTogglesThem) {
 // The live page with a dense cloud handed to the publisher (as `run --dense` does): the page fetches and draws it.
 TEST(ViewPageBrowser, TheLivePageDrawsTheDenseCloud) {
   if (chromium().empty()) GTEST_SKIP() << "chromium is not installed (scripts/install_deps.sh installs it)";
-  const fs::path scratch = testing::scratchDirForThisTest("viewer_browser_");
+  const fs::path scratch = amos::testing::scratchDirForThisTest("viewer_browser_");
   LiveState state;
   SnapshotPublisher publisher(state);
   run::RunStart start;
@@ -221,7 +221,7 @@ TEST(ViewPageBrowser, TheLivePageDrawsTheDenseCloud) {
 
 TEST(ViewPageBrowser, ReportHtmlDrawsTheOccupancyGrid) {
   if (chromium().empty()) GTEST_SKIP() << "chromium is not installed (scripts/install_deps.sh installs it)";
-  const fs::path scratch = testing::scratchDirForThisTest("viewer_browser_");
+  const fs::path scratch = amos::testing::scratchDirForThisTest("viewer_browser_");
   test::writeOccupancy(scratch, 48, 40, 0.05);
   nlohmann::json data = {{"stats", nlohmann::json::object()},
                          {"frames", {{"index", {0, 1}}, {"t", {0.0, 0.1}}, {"frame_ms", {30, 31}}, {"extract_ms", {5, 5}},
