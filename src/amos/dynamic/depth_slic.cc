@@ -509,6 +509,11 @@ bool cpuHasAvx2() {
 
 }  // namespace
 
+void prepareDepthSlic() {
+  cv::Mat lab;
+  cv::cvtColor(cv::Mat(1, 1, CV_8UC3, cv::Scalar::all(0)), lab, cv::COLOR_BGR2Lab);
+}
+
 int integerFactor(cv::Size big, cv::Size small) {
   if (small.width <= 0 || small.height <= 0 || big.width % small.width != 0) return 0;
   const int f = big.width / small.width;

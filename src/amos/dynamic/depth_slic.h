@@ -53,6 +53,12 @@ struct SuperpixelSegmentation {
 // bgr: CV_8UC3; depth: CV_32F metres, same size, 0 (or non-finite) = invalid. Deterministic.
 SuperpixelSegmentation computeDepthSlic(const cv::Mat& bgr, const cv::Mat& depth, const DepthSlicOptions& options);
 
+// Builds, once per process, what OpenCV computes on its first 8-bit BGR -> Lab conversion: lookup tables made with
+// software floating point (~0.15 s on one core), which would otherwise fall on the first frame's superpixels and
+// make that frame several frame periods late (a live run drops the frames that arrive meanwhile). Call it before
+// the first frame; computeDepthSlic works, with the same results, without it.
+void prepareDepthSlic();
+
 // The integer factor f with big = f x small in both directions, or 0 when there is none: for a segmentation,
 // integerFactor(labels.size(), working_labels.size()) > 0 says that `labels` is `working_labels` in f x f blocks.
 int integerFactor(cv::Size big, cv::Size small);

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "amos/core/error.h"
+#include "amos/dynamic/depth_slic.h"
 #include "amos/dynamic/initial_pose_models.h"
 #include "amos/dynamic/reprojection_scoring.h"
 #include "amos/evidence/evidence_sources.h"
@@ -54,6 +55,7 @@ DynamicPipeline::DynamicPipeline(SlamSystem& slam, const dynamic::DynamicOptions
       front_end_(slam.sensor()->camera(), options, evidence::makeEvidenceSources(slam.sensor()->camera(), options)),
       scheduler_(slam.options().orb, options, std::move(segmentation)) {
   options_.check();
+  if (scheduler_.tasks().geometry) dynamic::prepareDepthSlic();  // before the first frame, not in it
   if (scheduler_.tasks().segmentation)
     state_.person_masks.emplace(scheduler_.segmentation()->dilation(), options_.prior);
   if (options_.depth.enabled || options_.baseline_tracks.enabled)
