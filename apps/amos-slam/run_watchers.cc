@@ -15,7 +15,7 @@
 #include "amos/viewer/report_html.h"
 #include "amos/viewer/report_recorder.h"
 #include "amos/viewer/snapshot_publisher.h"
-#include "amos/viewer/whole_file.h"
+#include "amos/core/whole_file.h"
 #endif
 
 namespace amos::app {
@@ -63,10 +63,10 @@ void RunWatchers::writeReport(const std::string& output, const std::string& conf
                               const std::string& options_json) {
   core::Stopwatch watch;
   viewer::ReportInputs inputs;
-  const std::string stats = viewer::readWholeFile(output + "/stats.json");
+  const std::string stats = core::readWholeFile(output + "/stats.json").value_or(std::string());
   inputs.stats = nlohmann::json::parse(stats, nullptr, false);
   inputs.settings_file = config_file;
-  inputs.settings_text = viewer::readWholeFile(config_file);
+  inputs.settings_text = core::readWholeFile(config_file).value_or(std::string());
   inputs.run_options = nlohmann::json::parse(options_json, nullptr, false);
   viewer::writeReportHtml(output, parts_->recorder, inputs);
   spdlog::info("report.html written in {:.0f} ms", watch.elapsedMs());

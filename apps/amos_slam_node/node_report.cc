@@ -4,13 +4,13 @@
 
 #include "amos/core/error.h"
 #include "amos/viewer/report_html.h"
-#include "amos/viewer/whole_file.h"
+#include "amos/core/whole_file.h"
 
 namespace amos::node {
 namespace {
 
 std::string fileText(const std::filesystem::path& path) {
-  std::string text = viewer::readWholeFile(path);
+  std::string text = core::readWholeFile(path).value_or(std::string());
   core::require(!text.empty(), "report.html: cannot read " + path.string());
   return text;
 }

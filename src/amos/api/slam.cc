@@ -26,6 +26,7 @@
 #include "amos/api/settings_sections.h"
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
+#include "amos/core/whole_file.h"
 #include "amos/io/dataset.h"
 #include "amos/io/trajectory.h"
 #include "amos/report/frame_log.h"
@@ -51,11 +52,9 @@ std::vector<StampedPose> publicPoses(const std::vector<io::StampedPose>& poses) 
 }
 
 std::string fileText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  core::require(in.good(), fmt::format("amos::Options::settings_file: cannot read '{}'", path));
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::optional<std::string> text = core::readWholeFile(path);
+  core::require(text.has_value(), fmt::format("amos::Options::settings_file: cannot read '{}'", path));
+  return std::move(*text);
 }
 
 config::Settings readSettings(const Options& options) {

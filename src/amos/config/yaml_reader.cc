@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "amos/core/error.h"
+#include "amos/core/whole_file.h"
 
 namespace amos::config {
 
@@ -23,11 +24,9 @@ std::string withoutOpenCvHeader(std::string text) {
 }  // namespace
 
 YamlReader YamlReader::fromFile(const std::string& path) {
-  std::ifstream in(path);
-  core::require(in.good(), fmt::format("cannot open settings file '{}'", path));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return fromText(buffer.str(), path);
+  const std::optional<std::string> text = core::readWholeFile(path);
+  core::require(text.has_value(), fmt::format("cannot open settings file '{}'", path));
+  return fromText(*text, path);
 }
 
 YamlReader YamlReader::fromText(const std::string& text, const std::string& virtual_path) {

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "amos/core/error.h"
+#include "amos/core/whole_file.h"
 #include "amos/io/atomic_file.h"
 #include "amos/report/frame_log.h"
 
@@ -87,17 +88,10 @@ bool isWithin(const fs::path& path, const fs::path& folder) {
   return true;
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // The names an earlier run's manifest lists, each a plain name in the folder (a manifest naming anything else, a
 // path with '/' or "..", is refused: --overwrite removes nothing outside the folder).
 std::vector<std::string> manifestOutputs(const fs::path& manifest) {
-  const nlohmann::json j = nlohmann::json::parse(readText(manifest), nullptr, false);
+  const nlohmann::json j = nlohmann::json::parse(core::readWholeFile(manifest).value_or(std::string()), nullptr, false);
   const auto bad = [&](const std::string& why) {
     return core::Error(fmt::format("{}: {}; it is not a manifest this program wrote: remove it and the files of that "
                                    "run yourself, or give another --output",
@@ -211,7 +205,7 @@ OutputFolderLock OutputFolderLock::acquire(const std::string& dir) {
       ::close(fd);
       if (error != EWOULDBLOCK)
         throw core::Error(fmt::format("cannot lock '{}': {}", path, std::strerror(error)));
-      std::string holder = readText(path);
+      std::string holder = core::readWholeFile(path).value_or(std::string());
       holder.erase(std::remove(holder.begin(), holder.end(), '\n'), holder.end());
       throw core::Error(fmt::format("output folder '{}' is in use by another run (PID {}, lock file {}): wait for "
                                     "it to end, or give another --output",
@@ -224,7 +218,7 @@ OutputFolderLock OutputFolderLock::acquire(const std::string& dir) {
       ::close(fd);
       continue;
     }
-    std::string previous = readText(path);
+    std::string previous = core::readWholeFile(path).value_or(std::string());
     previous.erase(std::remove(previous.begin(), previous.end(), '\n'), previous.end());
     if (!previous.empty()) {
       spdlog::warn("output folder {}: taking over the lock left by PID {}, which has ended (a run that was killed)",

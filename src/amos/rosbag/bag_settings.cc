@@ -11,6 +11,7 @@
 
 #include "amos/config/yaml_reader.h"
 #include "amos/core/error.h"
+#include "amos/core/whole_file.h"
 
 namespace amos::rosbag {
 
@@ -26,11 +27,9 @@ std::vector<std::pair<std::string, double>> calibrationKeys(const core::CameraIn
 }
 
 std::string fileText(const std::string& path) {
-  std::ifstream in(path);
-  core::require(static_cast<bool>(in), fmt::format("settings file '{}' cannot be read", path));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::optional<std::string> text = core::readWholeFile(path);
+  core::require(text.has_value(), fmt::format("settings file '{}' cannot be read", path));
+  return std::move(*text);
 }
 
 void warnWhenTheyDiffer(const config::Settings& settings, const core::CameraIntrinsics& info,

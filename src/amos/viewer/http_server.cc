@@ -9,7 +9,7 @@
 #include "amos/viewer/file_reply.h"
 #include "amos/viewer/run_folder.h"
 #include "amos/viewer/web_assets.h"
-#include "amos/viewer/whole_file.h"
+#include "amos/core/whole_file.h"
 
 namespace amos::viewer {
 namespace {
@@ -29,8 +29,9 @@ ServerLimits ViewerServer::limits() {
 ViewerServer::ViewerServer(LiveState& state, ServerOptions options)
     : state_(state), options_(std::move(options)), server_(limits()) {
   const std::filesystem::path three = threeJsDir();
-  three_js_ = readWholeFile(three / "build" / "three.min.js");
-  orbit_controls_js_ = readWholeFile(three / "examples" / "js" / "controls" / "OrbitControls.js");
+  three_js_ = core::readWholeFile(three / "build" / "three.min.js").value_or(std::string());
+  orbit_controls_js_ =
+      core::readWholeFile(three / "examples" / "js" / "controls" / "OrbitControls.js").value_or(std::string());
   if (three_js_.empty())
     spdlog::warn("viewer: {} is missing (install libjs-three): the page has no 3D view",
                  (three / "build" / "three.min.js").string());

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "amos/core/error.h"
-#include "amos/viewer/whole_file.h"
+#include "amos/core/whole_file.h"
 
 namespace amos::viewer {
 namespace {
@@ -304,7 +304,7 @@ void skipElement(const Element& e, BodyReader& body) {
 ColouredGeometry readPly(const std::filesystem::path& path) {
   const std::string file = path.string();
   core::require(std::filesystem::is_regular_file(path), fmt::format("{}: no such file", file));
-  return parsePly(readWholeFile(path), file);
+  return parsePly(core::readWholeFile(path).value_or(std::string()), file);
 }
 
 ColouredGeometry parsePly(const std::string& text, const std::string& file) {

@@ -10,7 +10,7 @@
 #include "amos/core/error.h"
 #include "amos/io/trajectory.h"
 #include "amos/viewer/ply_file.h"
-#include "amos/viewer/whole_file.h"
+#include "amos/core/whole_file.h"
 
 namespace amos::viewer {
 
@@ -55,7 +55,7 @@ std::vector<PointSample> mapPoints(const fs::path& path) {
 
 // The data block of the run's report.html (report_html.h), null when there is none or it cannot be read.
 nlohmann::json reportDataOf(const fs::path& report) {
-  const std::string html = readWholeFile(report);
+  const std::string html = core::readWholeFile(report).value_or(std::string());
   const std::string open = "<script id=\"amos-report-data\" type=\"application/json\">";
   const std::size_t begin = html.find(open);
   if (begin == std::string::npos) return nullptr;
@@ -124,7 +124,7 @@ void loadRunFolder(const fs::path& dir, LiveState& state) {
   nlohmann::json info = {{"sequence", dir.string()}, {"live", false}};
   if (has_stats) {
     try {
-      const nlohmann::json stats = nlohmann::json::parse(readWholeFile(dir / "stats.json"));
+      const nlohmann::json stats = nlohmann::json::parse(core::readWholeFile(dir / "stats.json").value_or(std::string()));
       u.summary = stats;
       for (const char* key : {"sequence", "mode", "config"})
         if (stats.contains(key)) info[key] = stats[key];

@@ -22,7 +22,7 @@
 #include "amos/viewer/snapshot_publisher.h"
 #include "amos/report/run_report.h"
 #include "amos/viewer/test_run_folder.h"
-#include "amos/viewer/whole_file.h"
+#include "amos/core/whole_file.h"
 
 namespace amos::viewer {
 namespace {
@@ -51,7 +51,7 @@ Page loadInBrowser(const std::string& url, const fs::path& scratch, const std::s
                               " --enable-logging=stderr --v=0 --virtual-time-budget=30000 --window-size=1200,800"
                               " --dump-dom '" + url + "' > " + dom.string() + " 2> " + log.string();
   std::system(command.c_str());
-  return {readWholeFile(dom), readWholeFile(log)};
+  return {core::readWholeFile(dom).value_or(std::string()), core::readWholeFile(log).value_or(std::string())};
 }
 
 std::vector<std::string> consoleMessages(const std::string& log) {
