@@ -14,15 +14,14 @@
 #include <algorithm>
 #include <condition_variable>
 #include <cstdlib>
-#include <fstream>
 #include <mutex>
-#include <sstream>
 #include <vector>
 
 #include "amos/io/trajectory.h"
 #include "amos/rosbag/bag_index.h"
 #include "amos/rosbag/test_bags.h"
 #include "amos/run/sequence_run.h"
+#include "amos/testing/file_text.h"
 #include "node_messages.h"
 #include "ros_master_fixture.h"
 
@@ -32,6 +31,7 @@ namespace {
 const auto* const kMaster = ::testing::AddGlobalTestEnvironment(new test::RosMaster);
 
 namespace fs = std::filesystem;
+using amos::testing::fileText;
 
 // The poses published on a topic, with a wait for the n-th.
 class PoseListener {
@@ -63,13 +63,6 @@ class PoseListener {
   std::vector<geometry_msgs::PoseStamped> poses_;
 };
 
-std::string fileText(const fs::path& file) {
-  std::ifstream in(file);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // Waits (bounded) until `publisher` has `count` subscribers: the subscription's connection is made asynchronously.
 void waitForSubscribers(const ros::Publisher& publisher, std::size_t count) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -78,6 +71,25 @@ void waitForSubscribers(const ros::Publisher& publisher, std::size_t count) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 }
+
+// ros::AsyncSpinner with two threads, started when made: the node's callbacks run as soon as it subscribes.
+struct StartedSpinner : ros::AsyncSpinner {
+  StartedSpinner() : ros::AsyncSpinner(2) { start(); }
+};
+
+// A node on `options` as a test runs it: its handles, the spinner, the node and a listener on its pose topic.
+struct RunningNode {
+  explicit RunningNode(const NodeOptions& options)
+      : slam(node, private_node, options), listener(node, private_node.resolveName("pose")) {}
+  void stop() {
+    slam.stop();
+    spinner.stop();
+  }
+  ros::NodeHandle node, private_node{"~"};
+  StartedSpinner spinner;
+  SlamNode slam;
+  PoseListener listener;
+};
 
 // Plays the bag's colour / depth pairs into the node's topics, the next once the last one's pose is out.
 void playFrameByFrame(const std::string& bag, const NodeOptions& options, ros::NodeHandle& node,
@@ -184,17 +196,11 @@ TEST(SlamNode, PlayedBagGivesRunsTrajectory) {
   NodeOptions options = syntheticBagOptions();
   options.output_dir = (scratch / "out").string();
   options.cloud_rate = 5;
-  ros::NodeHandle node, private_node("~");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  SlamNode slam_node(node, private_node, options);
-  PoseListener listener(node, private_node.resolveName("pose"));
+  RunningNode running(options);
+  playFrameByFrame(bag, options, running.node, running.listener);
+  running.stop();
 
-  playFrameByFrame(bag, options, node, listener);
-  slam_node.stop();
-  spinner.stop();
-
-  const NodeStats stats = slam_node.stats();
+  const NodeStats stats = running.slam.stats();
   EXPECT_EQ(stats.received, static_cast<std::size_t>(kFrames));
   EXPECT_EQ(stats.dropped, 0u);
   EXPECT_EQ(stats.processed, static_cast<std::size_t>(kFrames));
@@ -205,7 +211,7 @@ TEST(SlamNode, PlayedBagGivesRunsTrajectory) {
   expectRunsFiles(run_dir, options.output_dir);
   expectRunsReport(run_dir, options.output_dir);
 
-  const std::vector<geometry_msgs::PoseStamped> published = listener.poses();
+  const std::vector<geometry_msgs::PoseStamped> published = running.listener.poses();
   ASSERT_EQ(published.size(), expected.trajectory.size());
   for (std::size_t i = 0; i < published.size(); ++i) {
     EXPECT_EQ(rosbag::stampSeconds(published[i].header.stamp), expected.trajectory[i].timestamp);
@@ -226,19 +232,14 @@ TEST(SlamNode, DenseCloudAndGridArriveWhileRunning) {
   options.dense = true;
   options.dense_rate = 10;
   options.output_dir = (scratch / "out").string();
-  ros::NodeHandle node, private_node("~");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  SlamNode slam_node(node, private_node, options);
-  PoseListener listener(node, private_node.resolveName("pose"));
-  playFrameByFrame(bag, options, node, listener);
+  RunningNode running(options);
+  playFrameByFrame(bag, options, running.node, running.listener);
   // Latched: the latest one published is what a new subscriber gets.
-  const auto cloud = ros::topic::waitForMessage<sensor_msgs::PointCloud2>(private_node.resolveName("dense_cloud"),
-                                                                          node, ros::Duration(30));
-  const auto grid = ros::topic::waitForMessage<nav_msgs::OccupancyGrid>(private_node.resolveName("occupancy_grid"),
-                                                                        node, ros::Duration(30));
-  slam_node.stop();  // only now: what arrived above was published while the node ran
-  spinner.stop();
+  const auto cloud = ros::topic::waitForMessage<sensor_msgs::PointCloud2>(
+      running.private_node.resolveName("dense_cloud"), running.node, ros::Duration(30));
+  const auto grid = ros::topic::waitForMessage<nav_msgs::OccupancyGrid>(
+      running.private_node.resolveName("occupancy_grid"), running.node, ros::Duration(30));
+  running.stop();  // only now: what arrived above was published while the node ran
   ASSERT_TRUE(cloud) << "no dense cloud while running";
   EXPECT_GT(cloud->width * cloud->height, 100u);
   ASSERT_TRUE(grid) << "no occupancy grid while running";

@@ -9,11 +9,9 @@
 
 #include <chrono>
 #include <deque>
-#include <fstream>
 #include <mutex>
 #include <optional>
 #include <shared_mutex>
-#include <sstream>
 #include <utility>
 
 #include "amos/api/allocator_tuning.h"
