@@ -18,25 +18,30 @@ KeypointGrid::KeypointGrid(const cv::Rect2d& bounds, const std::vector<cv::KeyPo
   inv_cell_w_ = cols / bounds.width;
   inv_cell_h_ = rows / bounds.height;
   const size_t n = undistorted_keypoints.size();
-  us_.resize(n);
-  vs_.resize(n);
-  octaves_.resize(n);
   std::vector<int> cell_of(n);
   cell_start_.assign(static_cast<size_t>(cols * rows + 1), 0);
   for (size_t i = 0; i < n; ++i) {
     const cv::KeyPoint& kp = undistorted_keypoints[i];
-    us_[i] = kp.pt.x;
-    vs_[i] = kp.pt.y;
-    octaves_[i] = kp.octave;
     cell_of[i] = cellRow(kp.pt.y) * cols + cellCol(kp.pt.x);
     ++cell_start_[static_cast<size_t>(cell_of[i] + 1)];
   }
-  // Counting sort: prefix sums give each cell's start, then indices are dropped in (ascending within a cell).
+  // Counting sort: prefix sums give each cell's start, then the keypoints are dropped in (ascending index within
+  // a cell). Positions and octaves are stored in that cell-major order too, so a window's row of cells is one
+  // contiguous run of memory (the searches of tracking and fusion call this hundreds of thousands of times).
   for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
   std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
   indices_.resize(n);
-  for (size_t i = 0; i < n; ++i)
-    indices_[static_cast<size_t>(fill[static_cast<size_t>(cell_of[i])]++)] = static_cast<int>(i);
+  us_.resize(n);
+  vs_.resize(n);
+  octaves_.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const auto slot = static_cast<size_t>(fill[static_cast<size_t>(cell_of[i])]++);
+    const cv::KeyPoint& kp = undistorted_keypoints[i];
+    indices_[slot] = static_cast<int>(i);
+    us_[slot] = kp.pt.x;
+    vs_[slot] = kp.pt.y;
+    octaves_[slot] = kp.octave;
+  }
 }
 
 int KeypointGrid::cellCol(double u) const {
@@ -65,15 +70,14 @@ void KeypointGrid::featuresInArea(double u, double v, double radius, int min_lev
   const int r0 = cellRow(v - radius), r1 = cellRow(v + radius);
   const bool check_min = min_level >= 0, check_max = max_level >= 0;
   for (int r = r0; r <= r1; ++r) {
-    for (int c = c0; c <= c1; ++c) {
-      const size_t cell = static_cast<size_t>(r * cols_ + c);
-      for (int k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-        const int i = indices_[static_cast<size_t>(k)];
-        const int octave = octaves_[static_cast<size_t>(i)];
-        if ((check_min && octave < min_level) || (check_max && octave > max_level)) continue;
-        if (std::abs(us_[static_cast<size_t>(i)] - u) < radius && std::abs(vs_[static_cast<size_t>(i)] - v) < radius)
-          out.push_back(i);
-      }
+    // Cells c0..c1 of a row are adjacent in the cell-major arrays: one run from the first one's start.
+    const int begin = cell_start_[static_cast<size_t>(r * cols_ + c0)];
+    const int end = cell_start_[static_cast<size_t>(r * cols_ + c1 + 1)];
+    for (int k = begin; k < end; ++k) {
+      const auto slot = static_cast<size_t>(k);
+      const int octave = octaves_[slot];
+      if ((check_min && octave < min_level) || (check_max && octave > max_level)) continue;
+      if (std::abs(us_[slot] - u) < radius && std::abs(vs_[slot] - v) < radius) out.push_back(indices_[slot]);
     }
   }
 }

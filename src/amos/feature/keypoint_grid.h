@@ -36,7 +36,9 @@ class KeypointGrid {
   cv::Rect2d bounds_;
   int cols_ = 0, rows_ = 0;
   double inv_cell_w_ = 0, inv_cell_h_ = 0;
-  std::vector<int> cell_start_;  // cell c holds indices_[cell_start_[c], cell_start_[c + 1])
+  // Cell-major arrays: cell c holds slots [cell_start_[c], cell_start_[c + 1]); slot k is keypoint indices_[k],
+  // at (us_[k], vs_[k]) of octave octaves_[k].
+  std::vector<int> cell_start_;
   std::vector<int> indices_;
   std::vector<float> us_, vs_;
   std::vector<int> octaves_;

@@ -22,7 +22,7 @@ std::vector<int> bruteForce(const std::vector<cv::KeyPoint>& kps, double u, doub
   return out;
 }
 
-TEST(KeypointGrid, AgreesWithBruteForce) {
+TEST(KeypointGrid, AgreesWithBruteForceInCellMajorOrder) {
   // Undistorted bounds of a lens with barrel distortion stick out of the 640x480 image; some keypoints lie
   // outside even those bounds.
   const cv::Rect2d bounds(-12.5, -9.0, 667.0, 501.0);
@@ -43,11 +43,15 @@ TEST(KeypointGrid, AgreesWithBruteForce) {
     const double u = ux(rng), v = uy(rng), r = radius(rng);
     const int min_level = static_cast<int>(rng() % 10) - 2;  // -2..7, negatives mean no bound
     const int max_level = static_cast<int>(rng() % 10) - 2;
-    std::vector<int> got = grid.featuresInArea(u, v, r, min_level, max_level);
+    const std::vector<int> got = grid.featuresInArea(u, v, r, min_level, max_level);
     grid.featuresInArea(u, v, r, min_level, max_level, reused);
     EXPECT_EQ(got, reused);
-    std::sort(got.begin(), got.end());
-    const std::vector<int> expected = bruteForce(kps, u, v, r, min_level, max_level);
+    // Cell-major order, ascending index within a cell: callers' ties (the first of equal distances) depend on it.
+    std::vector<int> expected = bruteForce(kps, u, v, r, min_level, max_level);
+    std::stable_sort(expected.begin(), expected.end(), [&](int a, int b) {
+      const auto cell = [&](int i) { return grid.cellRow(kps[i].pt.y) * grid.cols() + grid.cellCol(kps[i].pt.x); };
+      return cell(a) < cell(b);
+    });
     ASSERT_EQ(got, expected) << "query " << u << "," << v << " r " << r << " levels " << min_level << ".." << max_level;
     total += got.size();
   }
