@@ -40,6 +40,32 @@ bool reprojects(const map::KeyFrame& kf, int idx, const Eigen::Vector3d& pw, con
   return (ex * ex + ey * ey + er * er) < 7.815 * sigma2;
 }
 
+// kf2's keypoints without a map point, in index order, with what the epipolar search tests of each laid out
+// contiguously: the search compares every free keypoint of kf1 with every one of kf2 (~10^6 pairs per neighbour).
+struct FreeKeypoints {
+  std::vector<int> index;
+  std::vector<double> u, v;
+  std::vector<double> max_epipolar2;  // 3.84 sigma^2 of the keypoint's octave (chi-square, 1 dof, 95 %)
+  std::vector<char> near_epipole;     // no depth and within 10 scale-pixels of kf1's epipole
+};
+
+FreeKeypoints freeKeypoints(const map::KeyFrame& kf, double epipole_u, double epipole_v) {
+  const map::Sensor& s = kf.sensor();
+  const map::FrameFeatures& f = kf.features();
+  FreeKeypoints out;
+  for (int i = 0; i < kf.size(); ++i) {
+    if (kf.mapPoint(i)) continue;
+    const cv::KeyPoint& kp = f.keys[i];
+    const double dx = epipole_u - kp.pt.x, dy = epipole_v - kp.pt.y;
+    out.index.push_back(i);
+    out.u.push_back(kp.pt.x);
+    out.v.push_back(kp.pt.y);
+    out.max_epipolar2.push_back(3.84 * s.sigma2()[kp.octave]);
+    out.near_epipole.push_back(f.u_right[i] < 0 && dx * dx + dy * dy < 100 * s.scales()[kp.octave]);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<NewPointCandidate> findNewPoints(const map::Map& map, const map::KeyFramePtr& kf1,
@@ -58,6 +84,7 @@ std::vector<NewPointCandidate> findNewPoints(const map::Map& map, const map::Key
   }
   // A keypoint of kf1 gets at most one new point (the first neighbour that triangulates it wins).
   std::vector<bool> used1(kf1->size(), false);
+  std::vector<int> on_line;  // free2 slots near the current epipolar line
 
   for (const map::KeyFrameId nid : kf1->bestCovisibles(options.neighbors)) {
     const map::KeyFramePtr kf2 = map.keyFrame(nid);
@@ -73,10 +100,7 @@ std::vector<NewPointCandidate> findNewPoints(const map::Map& map, const map::Key
     const Eigen::Vector3d c1_in_2 = T2 * O1;
     const double ex = s.camera().fx() * c1_in_2.x() / c1_in_2.z() + s.camera().cx();
     const double ey = s.camera().fy() * c1_in_2.y() / c1_in_2.z() + s.camera().cy();
-    std::vector<int> free2;
-    for (int i = 0; i < kf2->size(); ++i) {
-      if (!kf2->mapPoint(i)) free2.push_back(i);
-    }
+    const FreeKeypoints free2 = freeKeypoints(*kf2, ex, ey);
     std::vector<int> match12(kf1->size(), -1);
     std::vector<int> taken2(kf2->size(), -1);  // best kf1 index per kf2 keypoint
     std::vector<int> taken2_dist(kf2->size(), 257);
@@ -89,17 +113,17 @@ std::vector<NewPointCandidate> findNewPoints(const map::Map& map, const map::Key
       const double c = kp1.pt.x * F12(0, 2) + kp1.pt.y * F12(1, 2) + F12(2, 2);
       const double den = a * a + b * b;
       if (den <= 0) continue;
+      on_line.clear();
+      for (size_t k = 0; k < free2.index.size(); ++k) {
+        const double num = a * free2.u[k] + b * free2.v[k] + c;
+        if (num * num / den >= free2.max_epipolar2[k]) continue;
+        if (!stereo1 && free2.near_epipole[k]) continue;  // too close to the epipole
+        on_line.push_back(static_cast<int>(k));
+      }
       const std::uint8_t* d1 = f1.descriptors.ptr<std::uint8_t>(i1);
       int best = 257, second = 257, best_i2 = -1;
-      for (const int i2 : free2) {
-        const cv::KeyPoint& kp2 = f2.keys[i2];
-        const double num = a * kp2.pt.x + b * kp2.pt.y + c;
-        if (num * num / den >= 3.84 * s.sigma2()[kp2.octave]) continue;
-        const bool stereo2 = f2.u_right[i2] >= 0;
-        if (!stereo1 && !stereo2) {
-          const double dx = ex - kp2.pt.x, dy = ey - kp2.pt.y;
-          if (dx * dx + dy * dy < 100 * s.scales()[kp2.octave]) continue;  // too close to the epipole
-        }
+      for (const int k : on_line) {
+        const int i2 = free2.index[static_cast<size_t>(k)];
         const int dist = feature::hammingDistance(d1, f2.descriptors.ptr<std::uint8_t>(i2));
         if (dist < best) {
           second = best;
