@@ -39,9 +39,11 @@ fs::path fineDenseConfig() {
   return config;
 }
 
-std::vector<std::string> denseRun(const fs::path& out, std::vector<std::string> more = {}) {
+// A fine dense map (fineDenseConfig) unless `config` is given.
+std::vector<std::string> denseRun(const fs::path& out, std::vector<std::string> more = {}, std::string config = {}) {
+  if (config.empty()) config = fineDenseConfig().string();
   std::vector<std::string> args = {"run",    "--sequence", syntheticSequence("walking_xyz", 40), "--config",
-                                   fineDenseConfig().string(), "--mode", "none", "--dense",
+                                   config, "--mode", "none", "--dense",
                                    "--deterministic", "--output", out.string(), "--save-map",
                                    out.string() + ".map"};
   args.insert(args.end(), more.begin(), more.end());
@@ -75,10 +77,14 @@ TEST(RunOptionalStages, SigkillDuringTheFinalFusionLeavesTheMainOutputs) {
 }
 
 TEST(RunOptionalStages, AFloorPlanThatCannotBeWrittenIsAWarningUnlessAskedToFail) {
+  // The shipped dense settings: this failure needs no long fusion nor large files.
+  const std::string config = std::string(AMOS_SOURCE_DIR) + "/configs/tum3.yaml";
   for (const bool fail_on_optional : {false, true}) {
     const fs::path out = testOutputDir("optional_stages", fail_on_optional ? "floor_fail" : "floor_warn");
-    const Finished f = runChild(denseRun(out, fail_on_optional ? std::vector<std::string>{"--fail-on-optional"}
-                                                               : std::vector<std::string>{}),
+    const Finished f = runChild(denseRun(out,
+                                         fail_on_optional ? std::vector<std::string>{"--fail-on-optional"}
+                                                          : std::vector<std::string>{},
+                                         config),
                                 out.string() + ".stdout", [&](const std::string& line, pid_t) {
                                   // In the way of the floor plan's image, once the folder is the run's.
                                   if (stagesContains(line, kFusionStarted)) fs::create_directories(out / "occupancy.pgm");
