@@ -7,6 +7,7 @@
 #include "amos/core/option_error.h"
 #include "amos/feature/descriptor_distance.h"
 #include "amos/geometry/triangulation.h"
+#include "amos/mapping/epipolar_band.h"
 #include "amos/match/rotation_consistency.h"
 
 namespace amos::mapping {
@@ -40,30 +41,30 @@ bool reprojects(const map::KeyFrame& kf, int idx, const Eigen::Vector3d& pw, con
   return (ex * ex + ey * ey + er * er) < 7.815 * sigma2;
 }
 
-// kf2's keypoints without a map point, in index order, with what the epipolar search tests of each laid out
-// contiguously: the search compares every free keypoint of kf1 with every one of kf2 (~10^6 pairs per neighbour).
+// kf2's keypoints without a map point, in index order: where they are, with the chi-square bound of the epipolar
+// test (3.84 sigma^2 of the keypoint's octave: 1 dof, 95 %), and whether they are too near kf1's epipole (no depth
+// and within 10 scale-pixels of it).
 struct FreeKeypoints {
   std::vector<int> index;
-  std::vector<double> u, v;
-  std::vector<double> max_epipolar2;  // 3.84 sigma^2 of the keypoint's octave (chi-square, 1 dof, 95 %)
-  std::vector<char> near_epipole;     // no depth and within 10 scale-pixels of kf1's epipole
+  std::vector<char> near_epipole;
+  EpipolarBand band;
 };
 
 FreeKeypoints freeKeypoints(const map::KeyFrame& kf, double epipole_u, double epipole_v) {
   const map::Sensor& s = kf.sensor();
   const map::FrameFeatures& f = kf.features();
-  FreeKeypoints out;
+  std::vector<int> index;
+  std::vector<char> near_epipole;
+  std::vector<BandPoint> points;
   for (int i = 0; i < kf.size(); ++i) {
     if (kf.mapPoint(i)) continue;
     const cv::KeyPoint& kp = f.keys[i];
     const double dx = epipole_u - kp.pt.x, dy = epipole_v - kp.pt.y;
-    out.index.push_back(i);
-    out.u.push_back(kp.pt.x);
-    out.v.push_back(kp.pt.y);
-    out.max_epipolar2.push_back(3.84 * s.sigma2()[kp.octave]);
-    out.near_epipole.push_back(f.u_right[i] < 0 && dx * dx + dy * dy < 100 * s.scales()[kp.octave]);
+    index.push_back(i);
+    near_epipole.push_back(f.u_right[i] < 0 && dx * dx + dy * dy < 100 * s.scales()[kp.octave]);
+    points.push_back({kp.pt.x, kp.pt.y, 3.84 * s.sigma2()[kp.octave]});
   }
-  return out;
+  return {std::move(index), std::move(near_epipole), EpipolarBand(std::move(points))};
 }
 
 }  // namespace
@@ -111,18 +112,12 @@ std::vector<NewPointCandidate> findNewPoints(const map::Map& map, const map::Key
       const double a = kp1.pt.x * F12(0, 0) + kp1.pt.y * F12(1, 0) + F12(2, 0);
       const double b = kp1.pt.x * F12(0, 1) + kp1.pt.y * F12(1, 1) + F12(2, 1);
       const double c = kp1.pt.x * F12(0, 2) + kp1.pt.y * F12(1, 2) + F12(2, 2);
-      const double den = a * a + b * b;
-      if (den <= 0) continue;
-      on_line.clear();
-      for (size_t k = 0; k < free2.index.size(); ++k) {
-        const double num = a * free2.u[k] + b * free2.v[k] + c;
-        if (num * num / den >= free2.max_epipolar2[k]) continue;
-        if (!stereo1 && free2.near_epipole[k]) continue;  // too close to the epipole
-        on_line.push_back(static_cast<int>(k));
-      }
+      if (a * a + b * b <= 0) continue;
+      free2.band.near(a, b, c, on_line);
       const std::uint8_t* d1 = f1.descriptors.ptr<std::uint8_t>(i1);
       int best = 257, second = 257, best_i2 = -1;
       for (const int k : on_line) {
+        if (!stereo1 && free2.near_epipole[static_cast<size_t>(k)]) continue;  // too close to the epipole
         const int i2 = free2.index[static_cast<size_t>(k)];
         const int dist = feature::hammingDistance(d1, f2.descriptors.ptr<std::uint8_t>(i2));
         if (dist < best) {
