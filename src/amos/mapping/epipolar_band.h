@@ -2,10 +2,8 @@
 // The epipolar search of new points (new_points.cc) compares each free keypoint of a keyframe with the free
 // keypoints of a neighbour that lie near its epipolar line a u + b v + c = 0 in the neighbour's image: within the
 // chi-square bound of the keypoint's octave, (a u + b v + c)^2 / (a^2 + b^2) < bound. Testing every keypoint costs
-// ~10^6 pairs per neighbour. Here the keypoints are filed in strips, rows sorted by u and columns sorted by v: a
-// line steeper than 45 degrees crosses each row strip within an interval of u found by binary search (a flatter
-// one each column strip within an interval of v), and only the keypoints there get the same exact test, so the
-// result is the brute force's.
+// ~10^6 pairs per neighbour; here the keypoints are filed in coarse cells with the box they span, and only the
+// cells the widest band crosses are tested, with the same exact test, so the result is the brute force's.
 #include <vector>
 
 namespace amos::mapping {
@@ -17,7 +15,7 @@ struct BandPoint {
 
 class EpipolarBand {
  public:
-  static constexpr double kStripPixels = 32;
+  static constexpr double kCellPixels = 32;
 
   explicit EpipolarBand(std::vector<BandPoint> points);
 
@@ -28,23 +26,13 @@ class EpipolarBand {
   const std::vector<BandPoint>& points() const { return points_; }
 
  private:
-  // Points grouped by strip across one axis and sorted along the other ("along").
-  struct Strip {
-    double across_min, across_max;  // the span of its points across the strip
-    int begin, end;                 // its entries in along_ / slots_
+  struct Cell {
+    double centre_u, centre_v, half_u, half_v;  // the box the cell's points span
+    int begin, end;                              // its slots in slots_
   };
-  struct Strips {
-    std::vector<Strip> strips;
-    std::vector<double> along;  // per entry: the coordinate along the strip, ascending within a strip
-    std::vector<int> slots;     // per entry: the point
-  };
-  static Strips makeStrips(const std::vector<BandPoint>& points, bool rows);
-  // Points of `strips` whose line value |along_coef x + across_coef y + c| may be within the band, exact-tested.
-  void search(const Strips& strips, double along_coef, double across_coef, double a, double b, double c,
-              std::vector<int>& out) const;
-
   std::vector<BandPoint> points_;
-  Strips rows_, cols_;  // rows: across = v, along = u; columns: across = u, along = v
+  std::vector<Cell> cells_;  // non-empty cells only
+  std::vector<int> slots_;   // grouped by cell, ascending within a cell
   double max_distance2_ = 0;
 };
 
