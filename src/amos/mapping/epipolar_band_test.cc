@@ -60,6 +60,9 @@ TEST(EpipolarBand, PointsOnTheBoundAndDegenerateLines) {
   EXPECT_EQ(got, (std::vector<int>{0, 1, 3}));
   band.near(0, 0, 1, got);  // no line
   EXPECT_TRUE(got.empty());
+  band.near(std::nan(""), 1, 0, got);  // a broken line: what the brute force keeps (every point)
+  EXPECT_EQ(got, bruteForce(points, std::nan(""), 1, 0));
+  EXPECT_EQ(got.size(), points.size());
   EpipolarBand(std::vector<BandPoint>{}).near(1, 0, 0, got);
   EXPECT_TRUE(got.empty());
 }
