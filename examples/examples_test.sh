@@ -3,7 +3,9 @@
 #   examples_test.sh install   cmake --install the build into $AMOS_PREFIX (emptied first)
 #   examples_test.sh headers   compile each installed public header alone, with only the installed include path
 #                              (and OpenCV's and Eigen's)
-#   examples_test.sh track     build examples/cpp out of tree against $AMOS_PREFIX, run it and
+#   examples_test.sh build     build examples/cpp out of tree against $AMOS_PREFIX into
+#                              $AMOS_BUILD_DIR/examples-cpp-build (emptied first), for the two tests below
+#   examples_test.sh track     run the C++ example track_folder (examples_test.sh build) and
 #                              examples/python/track_folder.py on tum_fr2_desk_first50 (configs/tum2.yaml, mode full,
 #                              deterministic), and check both trajectories equal the installed
 #                              `amos-slam run --deterministic`'s trajectory.txt byte for byte; also writes a mask
@@ -12,13 +14,13 @@
 #                              (`amos-slam synth --preset objects_xyz`), run examples/python/with_my_detector.py on it
 #                              (the caller's masks: the sequence's own mover masks) and check that its masks removed
 #                              keypoints and that its trajectory is evaluated against the ground truth
-#   examples_test.sh dense     build examples/cpp out of tree, run its dense_map and examples/python/dense_map.py on
-#                              tum_fr2_desk_first50 (configs/tum2.yaml, mode none, deterministic) and check that
+#   examples_test.sh dense     run the C++ example dense_map (examples_test.sh build) and
+#                              examples/python/dense_map.py on tum_fr2_desk_first50 (configs/tum2.yaml, mode none, deterministic) and check that
 #                              their mesh.ply (vertices, normals, colours, triangles) and floor plan equal the
 #                              installed `amos-slam run --dense --deterministic`'s byte for byte (skipped, 77,
 #                              without Open3D)
 # The data is looked for in $AMOS_DATA_DIR (else the build's AMOS_DATA_DIR); without it the test is skipped (77),
-# or fails with AMOS_REQUIRE_SHARED_DATA=1. Everything runs from a scratch folder outside both trees, with
+# or fails with AMOS_REQUIRE_SHARED_DATA=1. The runs are made in a scratch folder outside both trees, with
 # AMOS_MODELS unset, so the programs find the models in the installed data folder.
 set -euo pipefail
 : "${AMOS_BUILD_DIR:?}" "${AMOS_PREFIX:?}" "${AMOS_SOURCE_DIR:?}"
@@ -68,24 +70,35 @@ find_sequence() {
   fi
 }
 
-# examples/cpp built out of tree against the installed package, in a scratch folder (the current folder after).
+# examples/cpp built out of tree against the installed package, once for the tests that run it.
+cpp_examples=$AMOS_BUILD_DIR/examples-cpp-build
 build_cpp_examples() {
+  rm -rf "$cpp_examples"
+  cmake -S "$AMOS_SOURCE_DIR/examples/cpp" -B "$cpp_examples" -DCMAKE_PREFIX_PATH="$prefix" \
+    > "$AMOS_BUILD_DIR/examples-cpp-build.log" || { cat "$AMOS_BUILD_DIR/examples-cpp-build.log"; exit 1; }
+  cmake --build "$cpp_examples" >> "$AMOS_BUILD_DIR/examples-cpp-build.log" ||
+    { cat "$AMOS_BUILD_DIR/examples-cpp-build.log"; exit 1; }
+  for program in track_folder dense_map; do
+    [[ -x "$cpp_examples/$program" ]] || { echo "not built: $cpp_examples/$program" >&2; exit 1; }
+  done
+  echo "built examples/cpp against $prefix into $cpp_examples"
+}
+
+# A scratch folder for a test's runs (the current folder after; removed at exit).
+enter_scratch_folder() {
   work=$(mktemp -d "${TMPDIR:-/tmp}/amos-examples.XXXXXX")
   trap 'rm -rf "$work"' EXIT
   cd "$work"
-  cmake -S "$AMOS_SOURCE_DIR/examples/cpp" -B build -DCMAKE_PREFIX_PATH="$prefix" > cmake.log ||
-    { cat cmake.log; exit 1; }
-  cmake --build build > build.log || { cat build.log; exit 1; }
 }
 
 track() {
   local sequence config
   find_sequence
   config=$AMOS_SOURCE_DIR/configs/tum2.yaml
-  build_cpp_examples
+  enter_scratch_folder
   "$prefix/bin/amos-slam" run --sequence "$sequence" --config "$config" --mode full --deterministic \
     --output run > run.log 2>&1 || { tail -20 run.log; exit 1; }
-  build/track_folder "$sequence" "$config" cpp_trajectory.txt full
+  "$cpp_examples/track_folder" "$sequence" "$config" cpp_trajectory.txt full
   cmp run/trajectory.txt cpp_trajectory.txt
   echo "C++ example: trajectory identical to amos-slam run's ($(grep -vc '^#' cpp_trajectory.txt) poses)"
   if [[ "${AMOS_WITH_PYTHON:-0}" == 1 ]]; then
@@ -118,10 +131,10 @@ dense() {
   [[ "${AMOS_WITH_DENSE:-0}" == 1 ]] || { echo "the library is built without the dense map (Open3D)" >&2; exit 77; }
   find_sequence
   config=$AMOS_SOURCE_DIR/configs/tum2.yaml
-  build_cpp_examples
+  enter_scratch_folder
   "$prefix/bin/amos-slam" run --sequence "$sequence" --config "$config" --mode none --deterministic --dense \
     --output run > run.log 2>&1 || { tail -20 run.log; exit 1; }
-  build/dense_map "$sequence" "$config" cpp none
+  "$cpp_examples/dense_map" "$sequence" "$config" cpp none
   same_dense_files cpp
   if [[ "${AMOS_WITH_PYTHON:-0}" == 1 ]]; then
     PYTHONPATH=$prefix/lib/python3/dist-packages "$AMOS_PYTHON" "$AMOS_SOURCE_DIR/examples/python/dense_map.py" \
@@ -147,8 +160,9 @@ detector() {
 case "${1:-}" in
   install) install_package ;;
   headers) compile_headers ;;
+  build) build_cpp_examples ;;
   track) track ;;
   detector) detector ;;
   dense) dense ;;
-  *) echo "usage: $0 install|headers|track|detector|dense" >&2; exit 2 ;;
+  *) echo "usage: $0 install|headers|build|track|detector|dense" >&2; exit 2 ;;
 esac
