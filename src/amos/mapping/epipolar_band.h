@@ -23,8 +23,6 @@ class EpipolarBand {
   // ascending order; `out` is cleared first. Nothing when a = b = 0 (den <= 0).
   void near(double a, double b, double c, std::vector<int>& out) const;
 
-  const std::vector<BandPoint>& points() const { return points_; }
-
  private:
   struct Cell {
     double centre_u, centre_v, half_u, half_v;  // the box the cell's points span

@@ -112,8 +112,7 @@ std::vector<NewPointCandidate> findNewPoints(const map::Map& map, const map::Key
       const double a = kp1.pt.x * F12(0, 0) + kp1.pt.y * F12(1, 0) + F12(2, 0);
       const double b = kp1.pt.x * F12(0, 1) + kp1.pt.y * F12(1, 1) + F12(2, 1);
       const double c = kp1.pt.x * F12(0, 2) + kp1.pt.y * F12(1, 2) + F12(2, 2);
-      if (a * a + b * b <= 0) continue;
-      free2.band.near(a, b, c, on_line);
+      free2.band.near(a, b, c, on_line);  // none for a degenerate line (a = b = 0)
       const std::uint8_t* d1 = f1.descriptors.ptr<std::uint8_t>(i1);
       int best = 257, second = 257, best_i2 = -1;
       for (const int k : on_line) {
