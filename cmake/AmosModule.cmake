@@ -42,6 +42,7 @@ function(amos_add_module_tests name library)
   endif()
   string(REGEX REPLACE "_.*" "" module ${name})
   add_executable(amos_${name}_tests ${tests})
+  amos_test_program_options(amos_${name}_tests)
   target_link_libraries(amos_${name}_tests PRIVATE ${library} ${ARG_DEPS} ${OpenCV_LIBS} GTest::gtest
     GTest::gtest_main)
   target_compile_definitions(amos_${name}_tests PRIVATE

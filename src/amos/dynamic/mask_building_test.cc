@@ -106,7 +106,7 @@ TEST(MaskBuilding, MovingSeedsGrowOverTheUnmeasuredSurfaceAroundThem) {
   std::vector<bool> only_5(16, false);
   only_5[5] = true;
   EXPECT_EQ(dynamicSuperpixels({partition.segmentation, depth}, {border, {false, false}}, {{}, 1.0, false}, options,
-                               {{}, baseline_moving, baseline_points}),
+                               {{}, baseline_moving, baseline_points, {}}),
             only_5);
   std::vector<bool> five_and_nine = only_5;
   five_and_nine[9] = true;
@@ -148,7 +148,7 @@ TEST(MaskBuilding, ARigidMoversSuperpixelsGrowOverTheirSurfaceWithoutTheBaseline
   std::vector<bool> seeds_only(16, false);
   seeds_only[5] = seeds_only[10] = true;
   EXPECT_EQ(dynamicSuperpixels({partition.segmentation, depth}, {border, {false, false}}, {{}, 1.0, false}, options,
-                               {{}, baseline_moving, baseline_points}),
+                               {{}, baseline_moving, baseline_points, {}}),
             seeds_only);
   std::vector<bool> grown = seeds_only;
   grown[9] = true;

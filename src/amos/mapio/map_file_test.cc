@@ -88,7 +88,9 @@ void expectSamePose(const core::SE3& a, const core::SE3& b) { EXPECT_TRUE(a.matr
 void expectSameMat(const cv::Mat& a, const cv::Mat& b) {
   ASSERT_EQ(a.size(), b.size());
   ASSERT_EQ(a.type(), b.type());
-  if (!a.empty()) EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+  if (!a.empty()) {
+    EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+  }
 }
 
 // Entity by entity: every saved field of every keyframe and map point, and the map's own records.
@@ -122,7 +124,9 @@ void expectSameMap(const map::Map& a, const map::Map& b) {
       EXPECT_EQ(ka->features().u_right[i], kb->features().u_right[i]);
       const map::MapPointPtr &pa = ka->mapPoint(i), &pb = kb->mapPoint(i);
       ASSERT_EQ(pa == nullptr, pb == nullptr) << "keypoint " << i;
-      if (pa) EXPECT_EQ(pa->id(), pb->id());
+      if (pa) {
+        EXPECT_EQ(pa->id(), pb->id());
+      }
       EXPECT_EQ(ka->features().grid.featuresInArea(x.pt.x, x.pt.y, 3),
                 kb->features().grid.featuresInArea(x.pt.x, x.pt.y, 3));
     }
