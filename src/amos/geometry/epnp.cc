@@ -13,6 +13,16 @@ namespace {
 
 using Vector10d = Eigen::Matrix<double, 10, 1>;
 using Matrix6x10d = Eigen::Matrix<double, 6, 10>;
+// The three beta approximations' least-squares systems (6 x 3, 4 or 5) share one QR type: one instantiation of
+// Eigen's column-pivoting QR instead of three fixed-size ones (a third of this file's compile time), with no heap
+// allocation (fixed maximum size).
+using Matrix6xNd = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 5>;
+using VectorNd = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 5, 1>;
+
+// Least-squares solution of A x = rho.
+VectorNd solveLeastSquares(const Matrix6xNd& A, const Eigen::Matrix<double, 6, 1>& rho) {
+  return A.colPivHouseholderQr().solve(rho);
+}
 // Thickness (smallest / largest PCA variance) below which a point set counts as flat enough to also try SQPnP,
 // and below which the four-control-point form is numerically singular.
 constexpr double kTryPlanarRatio = 1e-2;
@@ -144,9 +154,9 @@ class Epnp {
  private:
   // N = 4 linearisation: [b11 b12 b13 b14] by least squares (columns 0, 1, 3, 6 of L).
   static Eigen::Vector4d approximation1(const Matrix6x10d& L, const Eigen::Matrix<double, 6, 1>& rho) {
-    Eigen::Matrix<double, 6, 4> A;
+    Matrix6xNd A(6, 4);
     A << L.col(0), L.col(1), L.col(3), L.col(6);
-    const Eigen::Vector4d b = A.colPivHouseholderQr().solve(rho);
+    const VectorNd b = solveLeastSquares(A, rho);
     const double b1 = std::sqrt(std::abs(b[0]));
     const double sign = b[0] < 0 ? -1.0 : 1.0;
     if (b1 == 0) return Eigen::Vector4d::Zero();
@@ -155,9 +165,8 @@ class Epnp {
 
   // N = 2: [b11 b12 b22] (columns 0, 1, 2).
   static Eigen::Vector4d approximation2(const Matrix6x10d& L, const Eigen::Matrix<double, 6, 1>& rho) {
-    Eigen::Matrix<double, 6, 3> A;
-    A << L.col(0), L.col(1), L.col(2);
-    const Eigen::Vector3d b = A.colPivHouseholderQr().solve(rho);
+    const Matrix6xNd A = L.leftCols<3>();
+    const VectorNd b = solveLeastSquares(A, rho);
     double b1, b2;
     if (b[0] < 0) {
       b1 = std::sqrt(-b[0]);
@@ -172,8 +181,8 @@ class Epnp {
 
   // N = 3: [b11 b12 b22 b13 b23] (columns 0..4).
   static Eigen::Vector4d approximation3(const Matrix6x10d& L, const Eigen::Matrix<double, 6, 1>& rho) {
-    const Eigen::Matrix<double, 6, 5> A = L.leftCols<5>();
-    const Eigen::Matrix<double, 5, 1> b = A.colPivHouseholderQr().solve(rho);
+    const Matrix6xNd A = L.leftCols<5>();
+    const VectorNd b = solveLeastSquares(A, rho);
     double b1, b2;
     if (b[0] < 0) {
       b1 = std::sqrt(-b[0]);
