@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Side-by-side table of two builds' interleaved runs (written by bench/ab_fps.sh): per run folder A<i>/B<i> its
 stats.json and time.txt (/usr/bin/time: user s, system s, peak RSS KB). Prints, for A and B, the medians over the
-runs of: fps, ATE, whole-process CPU per frame, peak memory, and each pipeline thread's CPU per frame (the cpu.*
+runs of: fps, ATE, whole-process CPU per frame, peak memory, a paced run's latency (p95, median) and dropped frames,
+and each pipeline thread's CPU per frame (the cpu.*
 stages of stats.json, mean x count / frames) and the rest of the process's CPU; then B/A of the medians, and the median of the per-pair fps ratios.
 
     python3 bench/ab_table.py OUT_FOLDER RUNS
@@ -22,6 +23,12 @@ def run_figures(folder: Path) -> dict:
         "process CPU ms/frame": 1000 * (user + system) / frames,
         "peak memory MiB": rss_kb / 1024,
     }
+    # A paced source (--realtime, a camera): its latency from a frame's arrival to its pose, and the frames dropped.
+    source = stats.get("source", {})
+    if "latency_ms" in source:
+        figures["latency p95 ms"] = source["latency_ms"]["p95"]
+        figures["latency median ms"] = source["latency_ms"]["median"]
+        figures["dropped frames"] = source.get("dropped", 0)
     for name, stage in sorted(stats["stages"].items()):
         if name.startswith("cpu."):
             figures[name + " ms/frame"] = stage["mean_ms"] * stage["count"] / frames
@@ -45,6 +52,9 @@ def main() -> None:
         print(f"| {key} | {va:.2f} | {vb:.2f} | {ratio} |")
     pairs = [y["fps"] / x["fps"] for x, y in zip(a, b)]
     print(f"\nfps B/A per pair: {', '.join(f'{p:.3f}' for p in pairs)}; median {statistics.median(pairs):.3f}")
+    if all("latency p95 ms" in r for r in a + b):
+        lower = sum(y["latency p95 ms"] < x["latency p95 ms"] for x, y in zip(a, b))
+        print(f"latency p95 lower in B in {lower} of {runs} pairs")
 
 
 if __name__ == "__main__":

@@ -14,7 +14,7 @@
 //
 // Threads: push() is called in the run's thread and never waits: the frame's images are shared (the run never
 // writes them after reading), the queue is bounded (Dense.queueFrames) and a frame that finds it full is dropped
-// and counted. The fusion thread (nice +5, OpenMP regions serial: tsdf_volume.h) prepares each frame
+// and counted. The fusion thread (nice +10, OpenMP regions serial: tsdf_volume.h) prepares each frame
 // (frame_preparation.h), compresses it into the store and, every Dense.liveEvery-th, fuses it into the live
 // volume; at most every Dense.livePeriod seconds it hands a downsampled coloured cloud of the live volume to the
 // callback (in the fusion thread) and keeps it as the latest snapshot (liveSnapshot(), any thread). finish() drains
