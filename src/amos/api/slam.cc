@@ -50,9 +50,7 @@ std::vector<StampedPose> publicPoses(const std::vector<io::StampedPose>& poses) 
 }
 
 std::string fileText(const std::string& path) {
-  std::optional<std::string> text = core::readWholeFile(path);
-  core::require(text.has_value(), fmt::format("amos::Options::settings_file: cannot read '{}'", path));
-  return std::move(*text);
+  return core::readWholeFileOrThrow(path, fmt::format("amos::Options::settings_file: cannot read '{}'", path));
 }
 
 config::Settings readSettings(const Options& options) {

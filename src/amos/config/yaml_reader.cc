@@ -22,9 +22,7 @@ std::string withoutOpenCvHeader(std::string text) {
 }  // namespace
 
 YamlReader YamlReader::fromFile(const std::string& path) {
-  const std::optional<std::string> text = core::readWholeFile(path);
-  core::require(text.has_value(), fmt::format("cannot open settings file '{}'", path));
-  return fromText(*text, path);
+  return fromText(core::readWholeFileOrThrow(path, fmt::format("cannot open settings file '{}'", path)), path);
 }
 
 YamlReader YamlReader::fromText(const std::string& text, const std::string& virtual_path) {

@@ -2,6 +2,9 @@
 
 #include <fstream>
 #include <sstream>
+#include <utility>
+
+#include "amos/core/error.h"
 
 namespace amos::core {
 
@@ -13,6 +16,12 @@ std::optional<std::string> readWholeFile(const std::filesystem::path& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+std::string readWholeFileOrThrow(const std::filesystem::path& path, const std::string& message) {
+  std::optional<std::string> text = readWholeFile(path);
+  require(text.has_value(), message);
+  return std::move(*text);
 }
 
 }  // namespace amos::core

@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "amos/core/error.h"
 #include "amos/testing/scratch_dir.h"
 
 namespace amos::core {
@@ -19,6 +20,19 @@ TEST(WholeFile, ReadsEveryByteAndTellsAnEmptyFileFromAMissingOne) {
   EXPECT_EQ(readWholeFile(dir / "empty.txt"), std::string());
   EXPECT_EQ(readWholeFile(dir / "missing.txt"), std::nullopt);
   EXPECT_EQ(readWholeFile(dir), std::nullopt);  // a folder is not a file
+}
+
+TEST(WholeFile, OrThrowGivesTheBytesOrTheCallersMessage) {
+  const std::filesystem::path dir = testing::scratchDirForThisTest("amos_whole_file_throw_");
+  std::ofstream(dir / "settings.yaml") << "Camera.fx: 500\n";
+  EXPECT_EQ(readWholeFileOrThrow(dir / "settings.yaml", "unused"), "Camera.fx: 500\n");
+  try {
+    readWholeFileOrThrow(dir / "missing.yaml", "settings file 'missing.yaml' cannot be read");
+    FAIL() << "no error for a missing file";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "settings file 'missing.yaml' cannot be read");
+  }
+  EXPECT_THROW(readWholeFileOrThrow(dir, "a folder"), Error);
 }
 
 }  // namespace

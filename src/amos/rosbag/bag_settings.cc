@@ -25,9 +25,7 @@ std::vector<std::pair<std::string, double>> calibrationKeys(const core::CameraIn
 }
 
 std::string fileText(const std::string& path) {
-  std::optional<std::string> text = core::readWholeFile(path);
-  core::require(text.has_value(), fmt::format("settings file '{}' cannot be read", path));
-  return std::move(*text);
+  return core::readWholeFileOrThrow(path, fmt::format("settings file '{}' cannot be read", path));
 }
 
 void warnWhenTheyDiffer(const config::Settings& settings, const core::CameraIntrinsics& info,
