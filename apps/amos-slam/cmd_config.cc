@@ -5,11 +5,11 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <string>
 
 #include "amos/config/settings.h"
 #include "amos/core/error.h"
+#include "amos/core/whole_file.h"
 #include "amos/run/settings_sections.h"
 #include "commands.h"
 
@@ -34,17 +34,14 @@ void runConfig(const ConfigArgs& args, int& exit_code) {
     }
   }
   if (!args.readme.empty()) {
-    std::ifstream in(args.readme);
-    core::require(in.good(), "cannot read " + args.readme);
-    std::stringstream text;
-    text << in.rdbuf();
-    const std::string updated = config::withKeyTables(text.str(), run::settingsSections());
-    if (updated != text.str()) {
+    const std::string text = core::readWholeFileOrThrow(args.readme, "cannot read " + args.readme);
+    const std::string updated = config::withKeyTables(text, run::settingsSections());
+    if (updated != text) {
       std::ofstream out(args.readme);
       out << updated;
       core::require(out.good(), "cannot write " + args.readme);
     }
-    std::cout << args.readme << (updated == text.str() ? ": key tables up to date\n" : ": key tables written\n");
+    std::cout << args.readme << (updated == text ? ": key tables up to date\n" : ": key tables written\n");
   }
   if (!args.check.empty()) {
     run::loadSettings(args.check);
