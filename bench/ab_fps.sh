@@ -5,6 +5,8 @@
 # memory and each pipeline thread's CPU per frame.
 #   bash bench/ab_fps.sh BIN_A BIN_B [RUNS=5] [SEQUENCE=../shared/data/bonn_crowd_dev] [CONFIG=configs/bonn.yaml]
 #                        [MODE=full] [-- EXTRA RUN FLAGS...]
+# With CONFIG_B=FILE in the environment B's runs use that settings file instead of CONFIG, so the same binary given
+# twice compares two settings (e.g. a key's cost: CONFIG_B=/tmp/fewer_features.yaml bash bench/ab_fps.sh BIN BIN 5).
 # Run on an otherwise idle machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,9 +21,10 @@ fps() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['fps'])"
 fa=(); fb=(); ratios=()
 for i in $(seq 1 "$runs"); do
   for side in a b; do
-    bin=$a; [[ $side == b ]] && bin=$b
+    bin=$a; cfg=$config
+    [[ $side == b ]] && { bin=$b; cfg=${CONFIG_B:-$config}; }
     /usr/bin/time -f "%U %S %M" -o "$out/$side$i.time" \
-      "$bin" run --sequence "$seq" --config "$config" --mode "$mode" --output "$out/$side$i" "$@" > "$out/$side$i.log" 2>&1
+      "$bin" run --sequence "$seq" --config "$cfg" --mode "$mode" --output "$out/$side$i" "$@" > "$out/$side$i.log" 2>&1
     mv "$out/$side$i.time" "$out/$side$i/time.txt"
   done
   x=$(fps "$out/a$i"); y=$(fps "$out/b$i")
