@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "amos/core/error.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::eval {
 namespace {
@@ -16,8 +17,7 @@ namespace fs = std::filesystem;
 // Three frames of 4x4 px: instance 1 (a person) fills the top row and moves in frames 0-1; instance 2 (an
 // object) fills the bottom row and moves only in frame 2.
 fs::path writeSequence(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / name;
-  fs::remove_all(dir);
+  const fs::path dir = testing::scratchDir(name);
   fs::create_directories(dir / "masks");
   std::ofstream index(dir / "masks.txt");
   index << "# instance masks\n# timestamp filename\n";
@@ -60,8 +60,7 @@ TEST(GroundTruthMasks, FindsFramesByTimeStamp) {
 }
 
 TEST(GroundTruthMasks, AbsentWithoutMasksAndMalformedThrows) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "gt_masks_none";
-  fs::create_directories(dir);
+  const fs::path dir = testing::scratchDir("gt_masks_none");
   EXPECT_FALSE(GroundTruthMasks::find(dir.string()).has_value());
   const fs::path bad = writeSequence("gt_masks_bad");
   std::ofstream(bad / "instances.json") << R"({"instances": {"1": {"class": "person"}}})";

@@ -1,13 +1,13 @@
 #include "amos/eval/mesh_eval.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <filesystem>
 #include <fstream>
 
 #include "amos/core/error.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::eval {
 namespace {
@@ -93,7 +93,7 @@ TEST(MeshEval, AlignsAStillCameraByItsPoses) {
 
 TEST(MeshEval, AMeshWithAVertexThatIsNotFiniteIsAnErrorNamingTheFile) {
   const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / ("amos_nan_mesh_" + std::to_string(::getpid()) + ".ply");
+      testing::scratchDirForThisTest("amos_nan_mesh_") / "mesh.ply";
   std::ofstream(file) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
                          "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                          "0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n";

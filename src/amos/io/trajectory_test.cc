@@ -1,7 +1,6 @@
 #include "amos/io/trajectory.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -10,16 +9,16 @@
 
 #include "amos/core/error.h"
 #include "amos/testing/shared_data.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A scratch file under the build tree, unique per test process.
+// A scratch file of this test process (testing::scratchDir).
 std::string scratchPath(const std::string& name) {
-  const fs::path dir = fs::path(AMOS_BINARY_DIR) / "test_scratch" / ("trajectory_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  static const fs::path dir = testing::scratchDir("amos_trajectory");
   return (dir / name).string();
 }
 

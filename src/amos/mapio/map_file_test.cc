@@ -312,9 +312,7 @@ TEST(MapFile, MissingFileIsAnErrorNamingIt) {
 }
 
 TEST(MapFile, AFolderOrASymlinkLoopIsAnErrorNamingIt) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "amos_map_file_folder_test";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = testing::scratchDirForThisTest("mapio_");
   std::filesystem::create_symlink(dir / "b.map", dir / "a.map");
   std::filesystem::create_symlink(dir / "a.map", dir / "b.map");
   const auto message = [](const std::string& path) {

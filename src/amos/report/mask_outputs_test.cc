@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "amos/core/error.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::report {
 namespace {
@@ -44,8 +45,7 @@ TEST(MaskOutputs, OverlayTintsTheDynamicMaskAndOutlinesTheOthers) {
 }
 
 TEST(MaskOutputs, WriterWritesEveryMaskAndTheChosenOverlays) {
-  const fs::path dir = fs::path(testing::TempDir()) / "mask_outputs_writer";
-  fs::remove_all(dir);
+  const fs::path dir = testing::scratchDir("mask_outputs_writer") / "out";
   MaskOutputWriter writer(dir.string(), 20, 4);
   const cv::Mat bgr(48, 64, CV_8UC3, cv::Scalar(10, 20, 30));
   cv::Mat dynamic(bgr.size(), CV_8U, cv::Scalar(0));

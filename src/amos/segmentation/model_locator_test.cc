@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <unistd.h>
 
 #include "amos/core/error.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::segmentation {
 namespace {
@@ -81,15 +81,13 @@ TEST(ModelLocator, NoModelAnywhereSaysWhatToDo) {
 
 TEST(ModelLocator, RealFileSystem) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("amos_model_locator_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = testing::scratchDirForThisTest("amos_model_locator_");
   for (const auto& f : kFiles) std::ofstream(dir / f) << "x";
   ModelSources s;
   s.cli_dir = dir.string();
   EXPECT_EQ(locateModelDir(s, kFiles).dir, dir.string());
   fs::remove(dir / "mask.onnx");
   EXPECT_THROW(locateModelDir(s, kFiles), core::Error);
-  fs::remove_all(dir);
 }
 
 TEST(ModelLocator, JoinPath) {

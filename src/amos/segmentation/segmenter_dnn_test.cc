@@ -2,7 +2,6 @@
 #include "amos/segmentation/segmenter_dnn.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include "amos/segmentation/segmentation_worker.h"
 #include "amos/segmentation/segmenter_factory.h"
 #include "amos/testing/shared_data.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::segmentation {
 namespace {
@@ -151,8 +151,7 @@ TEST(SegmenterDnn, ResegmentingDropsAPersonWhoIsGone) {
 }
 
 TEST(SegmenterDnn, MissingModelIsAClearStartUpError) {
-  const fs::path empty = fs::temp_directory_path() / ("amos_no_models_" + std::to_string(::getpid()));
-  fs::create_directories(empty);
+  const fs::path empty = testing::scratchDirForThisTest("amos_no_models_");
   SegmenterOptions options;
   options.input_size = 416;
   const std::string message = creationError(options, modelsAt(empty.string()));
@@ -160,14 +159,12 @@ TEST(SegmenterDnn, MissingModelIsAClearStartUpError) {
   EXPECT_NE(message.find("--models"), std::string::npos) << message;
   const std::string nothing = creationError(options, ModelSources{"", "", nullptr, {}});
   EXPECT_NE(nothing.find("--mode geometry"), std::string::npos) << nothing;
-  fs::remove_all(empty);
 }
 
 TEST(SegmenterDnn, CorruptModelIsAClearStartUpError) {
   AMOS_REQUIRE_MODELS("nanodet_m_320.onnx");
   AMOS_REQUIRE_MODELS("selfie_seg_256.onnx");
-  const fs::path dir = fs::temp_directory_path() / ("amos_bad_models_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = testing::scratchDirForThisTest("amos_bad_models_");
   fs::copy_file(kModels + "/selfie_seg_256.onnx", dir / "selfie_seg_256.onnx", fs::copy_options::overwrite_existing);
   {
     // A truncated download: the first 100 kB of the real file.
@@ -184,7 +181,6 @@ TEST(SegmenterDnn, CorruptModelIsAClearStartUpError) {
   fs::copy_file(kModels + "/selfie_seg_256.onnx", dir / "nanodet_m_320.onnx", fs::copy_options::overwrite_existing);
   message = creationError(SegmenterOptions{}, modelsAt(dir.string()));
   EXPECT_NE(message.find("nanodet_m_320.onnx"), std::string::npos) << message;
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 #include "amos/segmentation/segmenter_factory.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "amos/core/error.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::segmentation {
 namespace {
@@ -33,8 +33,7 @@ SegmenterBackend boxOnlyBackend() {
 
 TEST(SegmenterFactory, AnotherBackendFitsWithoutTouchingCallers) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("amos_factory_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = testing::scratchDirForThisTest("amos_factory_");
   std::ofstream(dir / "box_only.onnx") << "weights";
 
   SegmenterFactory factory = builtinSegmenterFactory();

@@ -14,6 +14,7 @@
 #include "amos/core/error.h"
 #include "amos/synth/sequence.h"
 #include "amos/synth/tum_writer.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::synth {
 namespace {
@@ -133,8 +134,7 @@ TEST(SensorEffects, DepthTimeOffsetRendersDepthAtTheShiftedTime) {
 TEST(SensorEffects, DepthTimeOffsetIsInTheWrittenStamps) {
   SequenceOptions o = quick("static_xyz", 3);
   o.sensor.depth_time_offset_s = -0.01;
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "amos_depth_offset";
-  std::filesystem::remove_all(dir);
+  const std::filesystem::path dir = testing::scratchDir("amos_depth_offset") / "sequence";
   renderSequence(o, dir.string());
   std::ifstream assoc(dir / "associations.txt");
   std::string line;

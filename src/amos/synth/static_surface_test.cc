@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "amos/core/error.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::synth {
 namespace {
@@ -37,7 +38,7 @@ TEST(StaticSurface, SamplesTheStaticSceneAlone) {
 }
 
 TEST(StaticSurface, ReadsBackWhatItWrote) {
-  const fs::path file = fs::temp_directory_path() / ("amos_surface_" + std::to_string(::getpid()) + ".ply");
+  const fs::path file = testing::scratchDirForThisTest("amos_surface_") / "surface.ply";
   const std::vector<SurfaceSample> samples = {{{1, 2, 3}, 1.5f}, {{-1, 0.5, 2}, 3.0f}};
   writeSurfacePly(file.string(), samples);
   const std::vector<SurfaceSample> back = readSurfacePly(file.string());

@@ -8,6 +8,7 @@
 
 #include "amos/core/error.h"
 #include "amos/synth/sequence.h"
+#include "amos/testing/scratch_dir.h"
 
 namespace amos::synth {
 namespace {
@@ -88,7 +89,7 @@ TEST(SweptVolume, SolidsByTheirInsideOpenSurfacesByAThinSlab) {
 }
 
 TEST(SweptVolume, ReadsBackWhatItWrote) {
-  const fs::path file = fs::temp_directory_path() / ("amos_swept_" + std::to_string(::getpid()) + ".ply");
+  const fs::path file = testing::scratchDirForThisTest("amos_swept_") / "swept.ply";
   SweptVolumeOptions options;
   options.cell = 0.05;
   const SweptVolume v = sweep(pushedBox({0.4, 0.3, 0.5}, 1.0), frameTimes(0.5), options);
