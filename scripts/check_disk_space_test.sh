@@ -13,7 +13,7 @@ AMOS_MIN_FREE_GIB=0 bash "$script" "$work" 2> "$work/err" || fail "a bar of 0 Gi
 
 AMOS_MIN_FREE_GIB=1000000000 bash "$script" "$work" 2> "$work/err" && echo "ok   exits 0 below the bar" ||
   fail "fails below the bar"
-grep -q "^warning: $work has [0-9]* MiB free; this needs about 1000000000 GiB" "$work/err" &&
+grep -q "^warning: $work has [0-9]* MiB free; a fresh set-up needs about 1000000000 GiB" "$work/err" &&
   echo "ok   the warning names the folder, its free space and the bar" || fail "no warning naming the folder"
 
 if AMOS_MIN_FREE_GIB=lots bash "$script" "$work" 2> "$work/err"; then

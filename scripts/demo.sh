@@ -5,7 +5,7 @@
 # against the exact ground truth.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-AMOS_MIN_FREE_GIB="${AMOS_MIN_FREE_GIB:-2}" bash scripts/check_disk_space.sh  # the core alone: about half
+AMOS_MIN_FREE_GIB="${AMOS_MIN_FREE_GIB:-3}" bash scripts/check_disk_space.sh  # the core alone
 bash scripts/install_deps.sh --core
 bash scripts/build.sh -DAMOS_BUILD_TESTS=OFF -DAMOS_BUILD_BENCH=OFF
 PRESET="${1:-walking_xyz}"
