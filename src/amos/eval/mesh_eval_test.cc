@@ -92,8 +92,7 @@ TEST(MeshEval, AlignsAStillCameraByItsPoses) {
 }
 
 TEST(MeshEval, AMeshWithAVertexThatIsNotFiniteIsAnErrorNamingTheFile) {
-  const std::filesystem::path file =
-      testing::scratchDirForThisTest("amos_nan_mesh_") / "mesh.ply";
+  const std::filesystem::path file = testing::scratchDirForThisTest("amos_nan_mesh_") / "mesh.ply";
   std::ofstream(file) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
                          "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                          "0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n";
@@ -104,7 +103,6 @@ TEST(MeshEval, AMeshWithAVertexThatIsNotFiniteIsAnErrorNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find(file.string() + ": vertex 1 of 3 is not finite"), std::string::npos)
         << e.what();
   }
-  std::filesystem::remove(file);
 }
 
 }  // namespace

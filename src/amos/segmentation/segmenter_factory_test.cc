@@ -49,7 +49,6 @@ TEST(SegmenterFactory, AnotherBackendFitsWithoutTouchingCallers) {
   // The settings file's Segmentation.modelsDir is used when there is no --models.
   options.models_dir = dir.string();
   EXPECT_NO_THROW(createSegmenter(options, ModelSources{}, factory));
-  fs::remove_all(dir);
 }
 
 TEST(SegmenterFactory, ErrorsNameTheBackend) {

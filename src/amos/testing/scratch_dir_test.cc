@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "amos/testing/file_text.h"
@@ -34,12 +35,9 @@ ProbeRun runProbe(const std::string& test_case) {
   while (std::fgets(buffer, sizeof(buffer), pipe.get()) != nullptr) out += buffer;
   ProbeRun run;
   run.status = pclose(pipe.release());
-  for (std::size_t start = 0; start < out.size();) {
-    const std::size_t end = out.find('\n', start);
-    const std::string line = out.substr(start, end - start);
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);)
     if (line.rfind(fs::temp_directory_path().string(), 0) == 0) run.folder = line;
-    start = end == std::string::npos ? out.size() : end + 1;
-  }
   run.err = fileText(err_file.string());
   return run;
 }
